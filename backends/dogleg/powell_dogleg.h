@@ -1,0 +1,48 @@
+// Powell's hybrid method with a scaled dogleg trust region, in the class of
+// MINPACK's hybrj (Moré, Garbow, Hillstrom, "User guide for MINPACK-1",
+// ANL-80-74, 1980): QR of the Jacobian, column-norm scaling, trust-radius
+// updates from the actual/predicted reduction ratio, Broyden rank-1 updates
+// of the factorisation between Jacobian evaluations, and a fresh Jacobian
+// after two failed steps or when progress stalls.
+//
+// Two Jacobian policies:
+//   kBroyden        hybrj: weak Jacobian only when needed, Broyden otherwise
+//   kEveryIteration "Newton-dogleg": the weak Jacobian at every new iterate
+//
+// Backend options (SolverOptions::backend):
+//   factor   initial trust radius = factor · ‖D z0‖ (factor if z0 = 0); > 0, default 100
+//   xtol     stop when radius <= xtol · ‖D z‖ (step_tolerance); >= 0, default 1e-14
+//   scaling  "columns" (D from Jacobian column norms, MINPACK mode 1) or "none"
+#pragma once
+
+#include "eqhb/solver.h"
+
+namespace eqhb {
+
+enum class JacobianPolicy { kBroyden, kEveryIteration };
+
+class PowellDogleg : public Solver {
+ public:
+  explicit PowellDogleg(JacobianPolicy policy) : policy_(policy) {}
+  std::string name() const override;
+  std::string description() const override;
+
+ protected:
+  void run(MonitoredSystem& system, const Eigen::VectorXd& z0, const SolverOptions& options,
+           SolverResult& result) override;
+
+ private:
+  JacobianPolicy policy_;
+};
+
+// The dogleg step in scaled variables y = D p for the model ‖qtf + R p‖
+// (J = Q R, qtf = Qᵀ g) inside ‖D p‖ <= radius. Exposed for testing.
+Eigen::VectorXd doglegStep(const Eigen::MatrixXd& r, const Eigen::VectorXd& diag,
+                           const Eigen::VectorXd& qtf, double radius);
+
+// Re-triangularises Q R + u vᵀ in place by Givens rotations (O(n²)),
+// rotating qtf alongside so that it stays Qᵀ g. Exposed for testing.
+void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
+                   Eigen::VectorXd u, const Eigen::VectorXd& v);
+
+}  // namespace eqhb

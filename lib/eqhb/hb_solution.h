@@ -1,0 +1,30 @@
+// A converged (or not) harmonic-balance answer in physical terms: per DOF and
+// per law component, the Fourier coefficients and the largest magnitude over
+// one period (sampled on the model's N instants).
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "eqhb/hb_model.h"
+
+namespace eqhb {
+
+struct ChannelSummary {
+  std::string label;           // "x1", "law1.r" ...
+  Eigen::VectorXd coefficients;  // HarmonicSet layout
+  double max_abs = 0.0;        // max over the period of |value|
+  double max_abs_rate = 0.0;   // max over the period of |d/dt value|
+  Eigen::VectorXd samples;     // value at t_i = iT/N
+};
+
+struct HbSolution {
+  std::vector<ChannelSummary> displacements;  // one per DOF
+  std::vector<ChannelSummary> forces;         // one per law component
+};
+
+// full = [x_1..x_n, λ_1..λ_L] coefficients (FullSystem layout).
+HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full);
+
+}  // namespace eqhb

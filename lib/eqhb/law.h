@@ -1,0 +1,50 @@
+// A law Ψ(x, ẋ, λ) = 0 kept as an equality (spec §1–2), evaluated on a batch
+// of N time samples at once: one virtual call per evaluation, not per sample.
+//
+// A law of dimension d acts on d DOFs and owns d force components λ; the force
+// it applies on the structure is forceSign() · λ on those DOFs. Its pointwise
+// weak derivatives ∂Ψ_a/∂q_b (q = x, ẋ or λ) are returned as sample columns;
+// the assembly turns them into Jacobian blocks.
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace eqhb {
+
+// Column layout: component a of a quantity is column a; partial ∂Ψ_a/∂q_b is
+// column a * d + b. Rows are the N time samples.
+struct LawSamples {
+  Eigen::MatrixXd displacement, velocity, force;  // N x d inputs
+  Eigen::MatrixXd psi;                            // N x d output
+  Eigen::MatrixXd dpsi_ddisplacement, dpsi_dvelocity, dpsi_dforce;  // N x d² outputs
+
+  void resize(int samples, int dimension);
+};
+
+class Law {
+ public:
+  virtual ~Law() = default;
+  virtual std::string type() const = 0;
+  virtual int dimension() const = 0;
+  // Sign of the force on the structure: +1 when λ is the force itself
+  // (friction), −1 when λ is a pressure pushing in −x (contact).
+  virtual double forceSign() const { return 1.0; }
+  // Which inputs Ψ depends on; the assembly skips the others entirely.
+  virtual bool usesDisplacement() const = 0;
+  virtual bool usesVelocity() const = 0;
+  // Fills psi and, if with_derivatives, the partials of the used inputs.
+  virtual void evaluate(LawSamples& samples, bool with_derivatives) const = 0;
+  // The scaling ρ > 0 of an exact law, if it has one (for --rho).
+  virtual bool setRho(double /*rho*/) { return false; }
+};
+
+// A law attached to DOFs of the structure (0-based, one per component).
+struct AttachedLaw {
+  std::vector<int> dofs;
+  std::shared_ptr<Law> law;
+};
+
+}  // namespace eqhb
