@@ -181,7 +181,7 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
   double radius = 0.0, z_norm = 0.0;
   int consecutive_successes = 0, consecutive_failures = 0;
   int slow_steps = 0, slow_jacobians = 0;
-  bool first_iteration = true;
+  bool no_success_yet = true;
 
   while (true) {
     // ---- fresh weak Jacobian and its QR factorisation
@@ -191,14 +191,17 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     qr.compute(jacobian);
     q = qr.householderQ();
     r = qr.matrixQR().triangularView<Eigen::Upper>();
+    // Until a step succeeds, every Jacobian restarts the scaling and the
+    // radius from scratch (MINPACK's iter == 1 block): a first model that
+    // overshot says nothing about the right radius for the next one.
     if (settings.scale_columns) {
       for (Eigen::Index j = 0; j < n; ++j) {
         const double norm = jacobian.col(j).norm();
         const double scale = norm == 0.0 ? 1.0 : norm;
-        diag[j] = first_iteration ? scale : std::max(diag[j], scale);
+        diag[j] = no_success_yet ? scale : std::max(diag[j], scale);
       }
     }
-    if (first_iteration) {
+    if (no_success_yet) {
       z_norm = diag.cwiseProduct(z).norm();
       radius = z_norm > 0.0 ? settings.factor * z_norm : settings.factor;
     }
@@ -212,8 +215,9 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
       ++result.iterations;
       step = doglegStep(r, diag, qtf, radius);
       const double step_norm = diag.cwiseProduct(step).norm();
-      if (first_iteration) radius = std::min(radius, step_norm);
-      first_iteration = false;
+      // Until a first step succeeds, the radius never exceeds the step taken
+      // (MINPACK's iter == 1 rule).
+      if (no_success_yet) radius = std::min(radius, step_norm);
 
       trial = z + step;
       if (!system.residual(trial, g_trial))
@@ -238,6 +242,7 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
 
       const bool accepted = ratio >= 1e-4;
       if (accepted) {
+        no_success_yet = false;
         z = trial;
         g = g_trial;
         z_norm = diag.cwiseProduct(z).norm();
