@@ -1,0 +1,103 @@
+#include "eqhb/fourier_transform.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+namespace {
+
+Eigen::MatrixXd basisSamples(const HarmonicSet& basis, int n) {
+  Eigen::MatrixXd p(n, basis.size());
+  for (int i = 0; i < n; ++i) {
+    const double theta = 2 * M_PI * i / n;
+    for (size_t h = 0; h < basis.harmonics().size(); ++h) {
+      const int k = basis.harmonics()[h], o = basis.offset(static_cast<int>(h));
+      if (k == 0) {
+        p(i, o) = 1.0;
+      } else {
+        p(i, o) = std::cos(k * theta);
+        p(i, o + 1) = std::sin(k * theta);
+      }
+    }
+  }
+  return p;
+}
+
+class TransformTest : public ::testing::TestWithParam<std::tuple<HarmonicKind, int, int>> {};
+
+TEST_P(TransformTest, SynthesisMatchesTheSeriesAndProjectionInvertsIt) {
+  const auto [kind, count, n] = GetParam();
+  HarmonicSet basis(kind, count);
+  FourierTransform transform(basis, n);
+  const Eigen::VectorXd c = Eigen::VectorXd::Random(basis.size());
+  Eigen::VectorXd samples(n), back(basis.size());
+  transform.synthesize(c.data(), samples.data());
+  EXPECT_LT((samples - basisSamples(basis, n) * c).norm(), 1e-12 * n);
+  transform.project(samples.data(), back.data());
+  EXPECT_LT((back - c).norm(), 1e-13 * basis.size());
+}
+
+TEST_P(TransformTest, GramEqualsTheDenseWeightedProduct) {
+  const auto [kind, count, n] = GetParam();
+  HarmonicSet basis(kind, count);
+  FourierTransform transform(basis, n);
+  const Eigen::VectorXd d = Eigen::VectorXd::Random(n);
+  const Eigen::MatrixXd p = basisSamples(basis, n);
+  Eigen::MatrixXd q = p.transpose() * (2.0 / n);
+  if (basis.harmonics().front() == 0) q.row(0) *= 0.5;
+  const Eigen::MatrixXd dense = q * d.asDiagonal() * p;
+  Eigen::MatrixXd fast(basis.size(), basis.size());
+  transform.gram(d.data(), fast);
+  EXPECT_LT((fast - dense).cwiseAbs().maxCoeff(), 1e-13);
+}
+
+TEST_P(TransformTest, DerivativeMatchesTimeDifferences) {
+  const auto [kind, count, n] = GetParam();
+  HarmonicSet basis(kind, count);
+  FourierTransform transform(basis, n);
+  const double omega = 0.7;
+  const Eigen::VectorXd c = Eigen::VectorXd::Random(basis.size());
+  Eigen::VectorXd dc(basis.size()), rate(n);
+  transform.differentiate(c.data(), omega, dc.data());
+  transform.synthesize(dc.data(), rate.data());
+  // d/dt at t_3 by central differences of the series itself.
+  const double t = 3 * (2 * M_PI / omega) / n, h = 1e-6;
+  auto value = [&](double time) {
+    double v = 0.0;
+    for (size_t k = 0; k < basis.harmonics().size(); ++k) {
+      const int m = basis.harmonics()[k], o = basis.offset(static_cast<int>(k));
+      v += m == 0 ? c[o] : c[o] * std::cos(m * omega * time) + c[o + 1] * std::sin(m * omega * time);
+    }
+    return v;
+  };
+  EXPECT_NEAR(rate[3], (value(t + h) - value(t - h)) / (2 * h), 1e-5 * (1 + std::abs(rate[3])));
+}
+
+INSTANTIATE_TEST_SUITE_P(Bases, TransformTest,
+                         ::testing::Values(std::make_tuple(HarmonicKind::kOdd, 10, 1024),
+                                           std::make_tuple(HarmonicKind::kOdd, 10, 39),
+                                           std::make_tuple(HarmonicKind::kAll, 7, 15),
+                                           std::make_tuple(HarmonicKind::kAll, 12, 64),
+                                           std::make_tuple(HarmonicKind::kOdd, 40, 512)));
+
+TEST(FourierTransform, RejectsTooFewSamples) {
+  HarmonicSet basis(HarmonicKind::kOdd, 10);  // highest harmonic 19 needs N >= 39
+  EXPECT_THROW(FourierTransform(basis, 38), InputError);
+  EXPECT_NO_THROW(FourierTransform(basis, 39));
+}
+
+TEST(HarmonicSet, OddSetOfTenHarmonicsIsOneToNineteen) {
+  HarmonicSet odd(HarmonicKind::kOdd, 10);
+  EXPECT_EQ(odd.harmonics().front(), 1);
+  EXPECT_EQ(odd.harmonics().back(), 19);
+  EXPECT_EQ(odd.size(), 20);
+  HarmonicSet all(HarmonicKind::kAll, 3);
+  EXPECT_EQ(all.size(), 7);
+  EXPECT_THROW(HarmonicSet(HarmonicKind::kOdd, 0), InputError);
+}
+
+}  // namespace
+}  // namespace eqhb

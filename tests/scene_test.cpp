@@ -1,0 +1,113 @@
+#include "eqhb/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "eqhb/coulomb_1d.h"
+#include "eqhb/error.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+const char* kValid = R"(
+name = "t"
+[structure]
+type = "chain"
+m = 1.0
+k = 1.0
+d = 0.02
+[[forcing]]
+dof = 1
+cos = 20.0
+[[law]]
+type = "coulomb-1d"
+dofs = [2]
+muN = 7.2
+[harmonic_balance]
+harmonics = 10
+samples = 64
+omega = 0.4
+)";
+
+std::string replaced(const std::string& from, const std::string& to) {
+  std::string text = kValid;
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+// Expects an InputError whose message contains `needle`.
+void expectError(const std::string& text, const std::string& needle,
+                 const std::vector<std::string>& overrides = {}) {
+  try {
+    parseScene(text, "scene.toml", overrides);
+    FAIL() << "accepted; expected an error mentioning " << needle;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scene, TheShippedFriction1dSceneHasTheSpecParameters) {
+  const Scene scene = loadScene(test::problem("friction-1d.toml"));
+  const HbModel& m = scene.model;
+  EXPECT_EQ(scene.name, "friction-1d");
+  EXPECT_EQ(m.structure.dofs(), 2);
+  EXPECT_DOUBLE_EQ(m.structure.stiffness(0, 0), 2.0);
+  EXPECT_DOUBLE_EQ(m.structure.stiffness(1, 1), 1.0);
+  EXPECT_DOUBLE_EQ(m.structure.damping(0, 1), -0.02);
+  ASSERT_EQ(m.laws.size(), 1u);
+  EXPECT_EQ(m.laws[0].dofs, std::vector<int>{1});
+  const auto& law = dynamic_cast<const Coulomb1D&>(*m.laws[0].law);
+  EXPECT_DOUBLE_EQ(law.muN(), 7.2);
+  EXPECT_EQ(law.form(), CoulombForm::kMinMax);
+  EXPECT_EQ(m.basis.count(), 10);
+  EXPECT_EQ(m.basis.highest(), 19);
+  EXPECT_EQ(m.samples, 1024);
+  EXPECT_DOUBLE_EQ(m.omega, 0.4);
+  EXPECT_DOUBLE_EQ(*scene.sweep_from, 0.1);
+  EXPECT_DOUBLE_EQ(*scene.sweep_to, 0.8);
+}
+
+TEST(Scene, OverridesChangeAnyValueBeforeValidation) {
+  const Scene scene = parseScene(kValid, "scene.toml",
+                                 {"law[0].muN=3.5", "law.form=projection", "structure.d=0.1",
+                                  "harmonic_balance.omega=0.7"});
+  const auto& law = dynamic_cast<const Coulomb1D&>(*scene.model.laws[0].law);
+  EXPECT_DOUBLE_EQ(law.muN(), 3.5);
+  EXPECT_EQ(law.form(), CoulombForm::kProjection);
+  EXPECT_DOUBLE_EQ(scene.model.structure.damping(1, 1), 0.1);
+  EXPECT_DOUBLE_EQ(scene.model.omega, 0.7);
+  expectError(kValid, "law[0].muN = -1", {"law[0].muN=-1"});
+  expectError(kValid, "index 3 out of range", {"law[3].muN=1"});
+  expectError(kValid, "must be PATH=VALUE", {"muN"});
+}
+
+TEST(Scene, MalformedOrIncompleteFilesNameTheProblem) {
+  expectError("name = \"t\"\n[structure\n", "malformed scene file");
+  expectError(replaced("[harmonic_balance]", "[harmonic_balanse]"), "harmonic_balance = (missing): required");
+  expectError(replaced("muN = 7.2", "mu = 7.2"), "law[0].muN = (missing): required");
+  expectError(replaced("d = 0.02", "d = 0.02\ndamping_ratio = 1"), "structure.damping_ratio = 1: unknown key");
+  expectError(replaced("muN = 7.2", "muN = \"lots\""), "law[0].muN = \"lots\": must be a number");
+}
+
+TEST(Scene, NonPhysicalValuesAreRejected) {
+  expectError(replaced("m = 1.0", "m = 0.0"), "structure.m = 0: mass must be > 0");
+  expectError(replaced("m = 1.0", "m = -2.0"), "structure.m = -2: mass must be > 0");
+  expectError(replaced("muN = 7.2", "muN = -1.0"), "law[0].muN = -1: friction limit must be >= 0");
+  expectError(replaced("muN = 7.2", "muN = 7.2\nrho = 0.0"), "law[0].rho = 0: must be > 0");
+  expectError(replaced("muN = 7.2", "muN = nan"), "law[0].muN = nan: must be finite");
+  expectError(replaced("omega = 0.4", "omega = inf"), "harmonic_balance.omega = inf: must be finite");
+  expectError(replaced("samples = 64", "samples = 38"),
+              "harmonic_balance.samples = 38: must be >= 2 k_max + 1 = 39");
+  expectError(replaced("dofs = [2]", "dofs = [3]"), "law[0].dofs = 3: no such DOF");
+  expectError(replaced("dofs = [2]", "dofs = [1, 2]"), "acts on exactly 1 DOF");
+  expectError(replaced("cos = 20.0", "cos = 20.0\nharmonic = 2"), "forcing[0].harmonic = 2: not in the odd");
+  expectError(replaced("type = \"coulomb-1d\"", "type = \"coulomb-3d\""), "unknown law");
+}
+
+TEST(Scene, MissingFileIsAnInputError) {
+  EXPECT_THROW(loadScene("/nonexistent/scene.toml"), InputError);
+}
+
+}  // namespace
+}  // namespace eqhb

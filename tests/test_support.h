@@ -1,0 +1,51 @@
+// Helpers shared by the tests: finite-difference Jacobians and models.
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+
+#include "eqhb/coulomb_1d.h"
+#include "eqhb/hb_model.h"
+#include "eqhb/square_system.h"
+
+namespace eqhb::test {
+
+inline std::string problem(const std::string& file) {
+  return std::string(EQHB_PROBLEMS_DIR) + "/" + file;
+}
+
+// Central differences of system at z, step h.
+inline Eigen::MatrixXd finiteDifferenceJacobian(SquareSystem& system, const Eigen::VectorXd& z,
+                                                double h = 1e-7) {
+  const int n = system.size();
+  Eigen::MatrixXd j(n, n);
+  Eigen::VectorXd plus(n), minus(n), zp = z, zm = z;
+  for (int c = 0; c < n; ++c) {
+    zp[c] += h;
+    zm[c] -= h;
+    system.residual(zp, plus);
+    system.residual(zm, minus);
+    j.col(c) = (plus - minus) / (2 * h);
+    zp[c] = zm[c] = z[c];
+  }
+  return j;
+}
+
+// The 2-DOF chain of the spec (m = k = 1, d = 0.02, f1 = 20 cos ωt), Coulomb on DOF 2.
+inline HbModel chainWithFriction(double mu_n, CoulombForm form, int harmonics, double omega,
+                                 int samples = 256, HarmonicKind kind = HarmonicKind::kOdd) {
+  HbModel model;
+  Eigen::MatrixXd t(2, 2);
+  t << 2, -1, -1, 1;
+  model.structure.mass = Eigen::MatrixXd::Identity(2, 2);
+  model.structure.stiffness = t;
+  model.structure.damping = 0.02 * t;
+  model.structure.loads.push_back({0, 1, 20.0, 0.0});
+  model.laws.push_back({{1}, std::make_shared<Coulomb1D>(mu_n, form, 1.0, 5.0)});
+  model.basis = HarmonicSet(kind, harmonics);
+  model.samples = samples;
+  model.omega = omega;
+  return model;
+}
+
+}  // namespace eqhb::test
