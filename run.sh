@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Set-up and entry point for a fresh Debian 12 machine.
+#   ./run.sh bench [--quick]   install, build, run the benchmark over all scenes -> results/
+#   ./run.sh test              install, build, run the test suite (ctest)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(cmake g++ make pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libnlopt-dev
+  coinor-libipopt-dev libsuitesparse-dev libfftw3-dev libbenchmark-dev libgtest-dev
+  libcminpack-dev libcli11-dev nlohmann-json3-dev libtoml11-dev python3-matplotlib)
+
+install_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build build -j"$(nproc)"
+}
+
+case "${1:-}" in
+  test)
+    install_packages
+    build
+    ctest --test-dir build --output-on-failure -j2
+    ;;
+  bench)
+    shift
+    install_packages
+    build
+    mkdir -p results
+    ./build/eqhb-bench --out results "$@" | tee results/summary.txt
+    /usr/bin/python3 bench/charts.py results
+    echo "report: results/report.md"
+    ;;
+  *)
+    echo "usage: $0 test | bench [--quick]" >&2
+    exit 2
+    ;;
+esac
