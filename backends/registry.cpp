@@ -7,6 +7,15 @@
 #ifdef EQHB_WITH_MINPACK
 #include "minpack/minpack_hybrj.h"
 #endif
+#ifdef EQHB_WITH_CERES
+#include "ceres/ceres_backend.h"
+#endif
+#ifdef EQHB_WITH_IPOPT
+#include "ipopt/ipopt_backend.h"
+#endif
+#ifdef EQHB_WITH_NLOPT
+#include "nlopt/nlopt_backend.h"
+#endif
 
 namespace eqhb {
 
@@ -20,6 +29,20 @@ std::vector<Factory> factories() {
   };
 #ifdef EQHB_WITH_MINPACK
   all.push_back([] { return std::make_unique<MinpackHybrj>(); });
+#endif
+#ifdef EQHB_WITH_CERES
+  all.push_back([] { return std::make_unique<CeresBackend>(CeresStrategy::kLevenbergMarquardt); });
+  all.push_back([] { return std::make_unique<CeresBackend>(CeresStrategy::kDogleg); });
+  all.push_back([] { return std::make_unique<CeresBackend>(CeresStrategy::kSubspaceDogleg); });
+#endif
+#ifdef EQHB_WITH_IPOPT
+  all.push_back([] { return std::make_unique<IpoptBackend>(IpoptFormulation::kLeastSquares); });
+  all.push_back([] { return std::make_unique<IpoptBackend>(IpoptFormulation::kSquare); });
+#endif
+#ifdef EQHB_WITH_NLOPT
+  all.push_back([] { return std::make_unique<NloptBackend>(NloptMethod::kLbfgs); });
+  all.push_back([] { return std::make_unique<NloptBackend>(NloptMethod::kSlsqp); });
+  all.push_back([] { return std::make_unique<NloptBackend>(NloptMethod::kNewuoa); });
 #endif
   return all;
 }

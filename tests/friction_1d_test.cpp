@@ -58,6 +58,28 @@ TEST(Friction1d, EveryFormAndBackendAgreesOnTheExactSolution) {
     }
 }
 
+// Every registered backend either solves friction-1d (ω = 0.4, H = 10) from
+// zero or says it did not; those that converge agree to 1e-8 relative.
+TEST(Friction1d, EveryBackendSolvesOrSaysItDidNot) {
+  const Solved reference = solve("dogleg-newton", true);
+  ASSERT_TRUE(reference.result.converged());
+  int converged = 0;
+  for (const auto& entry : registeredSolvers())
+    for (bool condensed : {true, false}) {
+      const Solved s = solve(entry.name, condensed);
+      const std::string label = entry.name + (condensed ? " condensed" : " full");
+      if (s.result.converged()) {
+        ++converged;
+        EXPECT_LE(s.result.final_norm, 1e-10) << label;
+        EXPECT_LT((s.full - reference.full).norm(), 1e-8 * reference.full.norm()) << label;
+      } else {
+        EXPECT_GT(s.result.final_norm, 1e-10) << label << " " << s.result.summary();
+        EXPECT_NE(s.result.termination, Termination::kConverged) << label;
+      }
+    }
+  EXPECT_GE(converged, 6);  // own dogleg, Newton-dogleg and MINPACK on both systems at least
+}
+
 TEST(Friction1d, SolutionObeysCoulombWhereItSticksAndSlides) {
   const Scene scene = loadScene(test::problem("friction-1d.toml"));
   const Solved s = solve("dogleg", true);

@@ -52,6 +52,7 @@ MonitoredSystem::MonitoredSystem(SquareSystem& inner, const SolverOptions& optio
 
 void MonitoredSystem::record(const Eigen::Ref<Eigen::VectorXd>& g, bool ok) {
   ++residual_evaluations_;
+  if (!ok) ++failed_evaluations_;
   if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
 }
 
@@ -81,6 +82,7 @@ bool MonitoredSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd
     failure_ = "unknown exception in Jacobian evaluation";
   }
   ++jacobian_evaluations_;
+  if (!ok) ++failed_evaluations_;
   if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
   return ok;
 }
@@ -146,6 +148,17 @@ SolverResult Solver::solve(SquareSystem& system, const Eigen::VectorXd& z0,
     result.termination = Termination::kNotProgressing;
     result.native_message += (result.native_message.empty() ? "" : "; ") +
                              std::string("backend reported success above the tolerance");
+  }
+  // Backends that survive a failed trial evaluation (shrinking their step)
+  // may end for another reason; a failed solve that met a failed
+  // evaluation reports it, as the backends that stop at once do.
+  if (!within && monitored.failedEvaluations() > 0 &&
+      result.termination != Termination::kInvalidOptions) {
+    if (result.termination != Termination::kEvaluationFailed)
+      result.native_message += (result.native_message.empty() ? "" : "; ") +
+                               std::to_string(monitored.failedEvaluations()) +
+                               " evaluation(s) failed (non-finite residual or Jacobian)";
+    result.termination = Termination::kEvaluationFailed;
   }
   return result;
 }

@@ -82,6 +82,8 @@ class MonitoredSystem : public SquareSystem {
   double elapsedSeconds() const;
   bool evaluationLimitReached() const;
   bool timeLimitReached() const;
+  // Evaluations (residual or Jacobian) that failed: non-finite or threw.
+  int failedEvaluations() const { return failed_evaluations_; }
   // Set when an evaluation threw; the evaluation then reported failure.
   const std::string& failure() const { return failure_; }
 
@@ -93,6 +95,7 @@ class MonitoredSystem : public SquareSystem {
   int residual_evaluations_ = 0;
   int jacobian_evaluations_ = 0;
   double first_norm_ = std::numeric_limits<double>::quiet_NaN();
+  int failed_evaluations_ = 0;
   std::string failure_;
 };
 

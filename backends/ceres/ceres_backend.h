@@ -1,0 +1,36 @@
+// Ceres Solver trust-region adapter: the square system as the least-squares
+// problem min ½‖g(z)‖² with the analytic (weak) Jacobian, one dense
+// parameter block. Strategies: Levenberg–Marquardt, traditional dogleg,
+// subspace dogleg.
+//
+// The residual tolerance, the evaluation limit and the time limit are
+// enforced from an iteration callback (Ceres has no absolute ‖g‖ test).
+// Backend options: linear_solver = dense_qr (default) | dense_normal_cholesky
+// | sparse_normal_cholesky (SuiteSparse), threads >= 1 (default 1).
+#pragma once
+
+#include "eqhb/solver.h"
+
+namespace eqhb {
+
+enum class CeresStrategy { kLevenbergMarquardt, kDogleg, kSubspaceDogleg };
+
+// Ceres' TerminationType (as int, so the header needs no Ceres include) ->
+// termination.
+Termination ceresTermination(int termination_type);
+
+class CeresBackend : public Solver {
+ public:
+  explicit CeresBackend(CeresStrategy strategy) : strategy_(strategy) {}
+  std::string name() const override;
+  std::string description() const override;
+
+ protected:
+  void run(MonitoredSystem& system, const Eigen::VectorXd& z0, const SolverOptions& options,
+           SolverResult& result) override;
+
+ private:
+  CeresStrategy strategy_;
+};
+
+}  // namespace eqhb
