@@ -101,6 +101,8 @@ int runSolve(const SolveArguments& a) {
   std::vector<double> times;
   for (int i = 0; i < a.repeat; ++i) {
     result = solver->solve(*system, z0, options);
+    if (result.termination == Termination::kInvalidOptions)
+      throw InputError("--option: " + result.native_message);
     times.push_back(result.seconds);
   }
   std::sort(times.begin(), times.end());

@@ -49,6 +49,25 @@ TEST_P(EveryBackend, NanResidualIsAnEvaluationFailureNotACrash) {
   }
 }
 
+TEST_P(EveryBackend, AnExceptionInTheResidualIsAnEvaluationFailure) {
+  class Throwing : public ShiftSystem {
+   public:
+    bool residual(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g) override {
+      if (++calls > 1) throw std::runtime_error("model blew up");
+      return ShiftSystem::residual(z, g);
+    }
+    bool residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,
+                             Eigen::Ref<Eigen::MatrixXd> j) override {
+      j.setIdentity();
+      return residual(z, g);
+    }
+    int calls = 0;
+  } system;
+  const SolverResult r = makeSolver(GetParam())->solve(system, Eigen::VectorXd::Zero(3), {});
+  EXPECT_EQ(r.termination, Termination::kEvaluationFailed) << r.summary();
+  EXPECT_NE(r.native_message.find("model blew up"), std::string::npos) << r.native_message;
+}
+
 TEST_P(EveryBackend, InvalidOptionsAreRejectedBeforeAnyEvaluation) {
   ShiftSystem system;
   SolverOptions options;

@@ -128,8 +128,9 @@ SolverResult Solver::solve(SquareSystem& system, const Eigen::VectorXd& z0,
   result.residual_evaluations = monitored.residualEvaluations();
   result.jacobian_evaluations = monitored.jacobianEvaluations();
   result.initial_norm = monitored.firstNorm();
-  if (!monitored.failure().empty() && result.native_message.empty())
-    result.native_message = monitored.failure();
+  if (!monitored.failure().empty())
+    result.native_message += (result.native_message.empty() ? "" : "; ") +
+                             std::string("evaluation threw: ") + monitored.failure();
 
   // The verdict: re-evaluate at the returned point, outside the counts.
   Eigen::VectorXd g(system.size());
