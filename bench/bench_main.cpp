@@ -79,10 +79,10 @@ int main(int argc, char** argv) {
     const double ref_amplitude = amplitude(ref_scene.model, ref_system.fullCoefficients(ref.solution));
     std::cerr << base.name << ": reference H = " << h_ref << " " << ref.summary() << "\n";
 
+    // The forms of the scene's first law (all its laws take the same form).
     std::vector<std::string> forms = {""};
-    bool has_forms = false;
-    for (const auto& law : base.model.laws) has_forms |= law.law->type() == "coulomb-1d";
-    if (has_forms) forms = {"minmax", "projection", "tanh", "piecewise"};
+    if (!base.model.laws.empty() && !lawForms(base.model.laws[0].law->type()).empty())
+      forms = lawForms(base.model.laws[0].law->type());
     for (int h : harmonic_counts)
       for (const std::string& form : forms)
         for (const bool condensed : {true, false})
@@ -90,7 +90,8 @@ int main(int argc, char** argv) {
             std::vector<std::string> set = {"harmonic_balance.harmonics=" + std::to_string(h)};
             if (!form.empty())
               for (size_t l = 0; l < base.model.laws.size(); ++l)
-                set.push_back("law[" + std::to_string(l) + "].form=" + form);
+                if (base.model.laws[l].law->type() == base.model.laws[0].law->type())
+                  set.push_back("law[" + std::to_string(l) + "].form=" + form);
             const Scene scene = loadScene(path.string(), set);
             std::unique_ptr<HbSystem> system;
             if (condensed) system = std::make_unique<CondensedSystem>(scene.model);

@@ -1,6 +1,7 @@
 #include "solve_command.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include "eqhb/error.h"
 #include "eqhb/hb_solution.h"
 #include "eqhb/hb_systems.h"
+#include "eqhb/invariants.h"
 #include "eqhb/scene.h"
 #include "registry.h"
 
@@ -25,6 +27,7 @@ void addSolveCommand(CLI::App& app, SolveArguments& a) {
   auto* condensed = cmd->add_flag("--condensed", "Solve the condensed system (unknowns: law forces; default)");
   cmd->add_flag("--full", a.full, "Solve the full system (displacements and forces)")->excludes(condensed);
   cmd->add_flag("--json", a.json, "Print one JSON object");
+  cmd->add_flag("--trajectory", a.trajectory, "With --json: add the samples of x and of the law forces over one period");
   cmd->add_option("--set", a.overrides, "Override a scene value: PATH=VALUE, e.g. law[0].muN=5");
   cmd->add_option("--option", a.backend_options, "Backend-specific option NAME=VALUE");
   cmd->add_option("--tolerance", a.tolerance, "Residual tolerance on ‖g‖₂")->capture_default_str();
@@ -48,15 +51,18 @@ std::vector<std::string> sceneOverrides(const SolveArguments& a) {
     const Scene plain = loadScene(a.scene, a.overrides);
     int touched = 0;
     for (size_t l = 0; l < plain.model.laws.size(); ++l) {
-      if (plain.model.laws[l].law->type() != "coulomb-1d") continue;
+      const std::string type = plain.model.laws[l].law->type();
+      const auto& forms = lawForms(type);
+      const bool takes_form = a.form && std::find(forms.begin(), forms.end(), *a.form) != forms.end();
+      const bool takes_rho = a.rho && type != "cubic";
       const std::string law = "law[" + std::to_string(l) + "].";
-      if (a.form) o.push_back(law + "form=\"" + *a.form + "\"");
-      if (a.rho) o.push_back(law + "rho=" + num(*a.rho));
-      ++touched;
+      if (takes_form) o.push_back(law + "form=\"" + *a.form + "\"");
+      if (takes_rho) o.push_back(law + "rho=" + num(*a.rho));
+      touched += takes_form || takes_rho;
     }
     if (touched == 0)
       throwInputError(a.form ? "--form" : "--rho", a.form ? *a.form : num(*a.rho),
-                      "the scene has no law with a form or ρ");
+                      "no law of the scene takes it");
   }
   return o;
 }
@@ -160,6 +166,24 @@ int runSolve(const SolveArguments& a) {
                       {"components", components}});
     }
     out["laws"] = laws;
+    nlohmann::json invariants = nlohmann::json::array();
+    for (const auto& report : checkInvariants(model, system->fullCoefficients(result.solution))) {
+      nlohmann::json measures;
+      for (const auto& [name, value] : report.violations) measures[name] = value;
+      invariants.push_back({{"law", report.law + 1}, {"type", report.type}, {"violations", measures}});
+    }
+    out["invariants"] = invariants;
+    if (a.trajectory) {
+      // One period on the model's N samples: t, x per DOF, λ per law component.
+      nlohmann::json t = nlohmann::json::array();
+      for (int i = 0; i < model.samples; ++i) t.push_back(2 * M_PI / model.omega * i / model.samples);
+      nlohmann::json trajectory = {{"t", t}};
+      for (const auto& c : solution.displacements)
+        trajectory[c.label] = std::vector<double>(c.samples.data(), c.samples.data() + c.samples.size());
+      for (const auto& c : solution.forces)
+        trajectory[c.label] = std::vector<double>(c.samples.data(), c.samples.data() + c.samples.size());
+      out["trajectory"] = trajectory;
+    }
     std::cout << out.dump(2) << "\n";
   } else {
     std::cout << scene.name << " at omega = " << model.omega << ", H = " << model.basis.count()
@@ -171,6 +195,11 @@ int runSolve(const SolveArguments& a) {
     for (const auto& c : solution.displacements)
       std::cout << "  max|" << c.label << "| = " << c.max_abs << "\n";
     for (const auto& c : solution.forces) std::cout << "  max|" << c.label << "| = " << c.max_abs << "\n";
+    for (const auto& report : checkInvariants(model, system->fullCoefficients(result.solution))) {
+      std::cout << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";
+      for (const auto& [name, value] : report.violations) std::cout << " " << name << " " << value;
+      std::cout << "\n";
+    }
   }
   if (!result.converged())
     std::cerr << "eqhb: the solve did not converge: " << terminationName(result.termination)

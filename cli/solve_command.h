@@ -17,6 +17,7 @@ struct SolveArguments {
   std::string solver = "dogleg";
   bool full = false;
   bool json = false;
+  bool trajectory = false;
   std::vector<std::string> overrides;         // --set
   std::vector<std::string> backend_options;   // --option
   double tolerance = 1e-10;

@@ -105,6 +105,32 @@ TEST(Scene, NonPhysicalValuesAreRejected) {
   expectError(replaced("type = \"coulomb-1d\"", "type = \"coulomb-3d\""), "unknown law");
 }
 
+TEST(Scene, LawsOfEveryTypeAreValidated) {
+  auto law = [](const std::string& body) {
+    return replaced("type = \"coulomb-1d\"\ndofs = [2]\nmuN = 7.2", body);
+  };
+  expectError(law("type = \"coulomb-2d\"\ndofs = [2]\nmuN = 8.0"), "acts on exactly 2 DOF(s)");
+  expectError(law("type = \"coulomb-2d\"\ndofs = [1, 2]\nmuN = -8.0"), "law[0].muN = -8: friction limit must be >= 0");
+  expectError(law("type = \"coulomb-2d\"\ndofs = [1, 2]\nmuN = 8.0\nform = \"minmax\""),
+              "law[0].form = \"minmax\": a coulomb-2d law has forms max, projection, smoothed, tanh");
+  expectError(law("type = \"signorini\"\ndofs = [2]\ngap = nan"), "law[0].gap = nan: must be finite");
+  expectError(law("type = \"signorini\"\ndofs = [3]\ngap = 1.0"), "law[0].dofs = 3: no such DOF");
+  expectError(law("type = \"stribeck\"\ndofs = [2]\nmuN_dynamic = -1.0\nmuN_static = 1.5\nv_s = 0.5"),
+              "law[0].muN_dynamic = -1: friction limit must be >= 0");
+  expectError(law("type = \"stribeck\"\ndofs = [2]\nmuN_dynamic = 1.0\nmuN_static = 0.5\nv_s = 0.5"),
+              "law[0].muN_static = 0.5: must be >= muN_dynamic = 1");
+  expectError(law("type = \"stribeck\"\ndofs = [2]\nmuN_dynamic = 1.0\nmuN_static = 1.5\nv_s = 0.0"),
+              "law[0].v_s = 0: must be > 0");
+  expectError(law("type = \"cubic\"\ndofs = [2]\nepsilon = inf"), "law[0].epsilon = inf: must be finite");
+  expectError(law("type = \"cubic\"\ndofs = [2]\nepsilon = 1.0\nrho = 2.0"), "law[0].rho = 2.0: unknown key");
+}
+
+TEST(Scene, EveryShippedSceneLoads) {
+  for (const char* file : {"friction-1d.toml", "friction-2d.toml", "friction-2d-sliding.toml", "contact.toml",
+                           "stribeck.toml", "cubic.toml"})
+    EXPECT_NO_THROW(loadScene(test::problem(file))) << file;
+}
+
 TEST(Scene, MissingFileIsAnInputError) {
   EXPECT_THROW(loadScene("/nonexistent/scene.toml"), InputError);
 }

@@ -6,16 +6,6 @@
 
 namespace eqhb {
 
-void LawSamples::resize(int samples, int dimension) {
-  displacement.setZero(samples, dimension);
-  velocity.setZero(samples, dimension);
-  force.setZero(samples, dimension);
-  psi.setZero(samples, dimension);
-  dpsi_ddisplacement.setZero(samples, dimension * dimension);
-  dpsi_dvelocity.setZero(samples, dimension * dimension);
-  dpsi_dforce.setZero(samples, dimension * dimension);
-}
-
 CoulombForm parseCoulombForm(const std::string& name) {
   if (name == "minmax") return CoulombForm::kMinMax;
   if (name == "projection") return CoulombForm::kProjection;
@@ -44,11 +34,23 @@ Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, double rho, double beta)
     throwInputError("beta", formatNumber(beta), "regularisation slope must be finite and > 0");
 }
 
-bool Coulomb1D::setRho(double rho) {
-  if (!(rho > 0.0) || !std::isfinite(rho))
-    throwInputError("rho", formatNumber(rho), "must be finite and > 0");
-  rho_ = rho;
-  return true;
+std::vector<std::pair<std::string, double>> Coulomb1D::violations(const LawSamples& s) const {
+  return frictionViolations(s.velocity.col(0), s.force.col(0),
+                            Eigen::VectorXd::Constant(s.force.rows(), mu_n_));
+}
+
+std::vector<std::pair<std::string, double>> frictionViolations(
+    const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r,
+    const Eigen::Ref<const Eigen::VectorXd>& limit) {
+  const double v_scale = v.cwiseAbs().maxCoeff();
+  double excess = 0.0, sliding = 0.0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (limit[i] <= 0.0) continue;
+    excess = std::max(excess, std::abs(r[i]) / limit[i] - 1.0);
+    if (std::abs(v[i]) > kSlidingFraction * v_scale)  // clearly sliding: r = −L sign(v)
+      sliding = std::max(sliding, std::abs(r[i] + std::copysign(limit[i], v[i])) / limit[i]);
+  }
+  return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
 }
 
 void Coulomb1D::evaluate(LawSamples& s, bool with_derivatives) const {

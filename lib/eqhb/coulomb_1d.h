@@ -19,6 +19,16 @@ namespace eqhb {
 enum class CoulombForm { kMinMax, kProjection, kTanh, kPiecewise };
 
 CoulombForm parseCoulombForm(const std::string& name);
+
+// Samples with |v| above this fraction of max|v| count as clearly sliding in
+// the physical checks (transitions are left out: a truncated series cannot
+// jump there).
+constexpr double kSlidingFraction = 0.05;
+
+// Checks shared by the 1D friction laws (limit per sample): see Coulomb1D.
+std::vector<std::pair<std::string, double>> frictionViolations(
+    const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r,
+    const Eigen::Ref<const Eigen::VectorXd>& limit);
 std::string coulombFormName(CoulombForm form);
 
 class Coulomb1D : public Law {
@@ -31,7 +41,9 @@ class Coulomb1D : public Law {
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
-  bool setRho(double rho) override;
+  // force_limit_excess: max(|r|/μN − 1, 0); sliding_force_error: max over
+  // clearly sliding samples of |r + μN sign(v)| / μN.
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
 
   CoulombForm form() const { return form_; }
   double muN() const { return mu_n_; }

@@ -37,8 +37,10 @@ class Law {
   virtual bool usesVelocity() const = 0;
   // Fills psi and, if with_derivatives, the partials of the used inputs.
   virtual void evaluate(LawSamples& samples, bool with_derivatives) const = 0;
-  // The scaling ρ > 0 of an exact law, if it has one (for --rho).
-  virtual bool setRho(double /*rho*/) { return false; }
+  // Physical checks on samples of a solution (inputs filled, densely in
+  // time): named worst violations, 0 when the law holds exactly (see each
+  // law for the measures). Truncated Fourier series only approach them.
+  virtual std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const = 0;
 };
 
 // A law attached to DOFs of the structure (0-based, one per component).

@@ -1,13 +1,19 @@
 #include "eqhb/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <toml.hpp>
 
 #include "eqhb/coulomb_1d.h"
+#include "eqhb/coulomb_2d.h"
+#include "eqhb/cubic_stiffness.h"
 #include "eqhb/error.h"
+#include "eqhb/signorini.h"
+#include "eqhb/stribeck.h"
 
 namespace eqhb {
 
@@ -174,22 +180,54 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
              "no such DOF (the structure has " + std::to_string(dofs) + ", numbered from 1)");
     attached.dofs.push_back(static_cast<int>(dof) - 1);
   }
+  // Positive-parameter reader with the field in the message.
+  auto positive = [&](const char* key, std::optional<double> fallback) {
+    const double x = t.number(key, fallback);
+    if (!(x > 0.0)) t.fail(field + "." + key, formatNumber(x), "must be > 0");
+    return x;
+  };
+  auto form = [&](const std::string& fallback) {
+    const std::string name = t.text("form", fallback);
+    const auto& known = lawForms(type);
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const auto& f : known) list += (list.empty() ? "" : ", ") + f;
+      t.fail(field + ".form", "\"" + name + "\"", "a " + type + " law has forms " + list);
+    }
+    return name;
+  };
   if (type == "coulomb-1d") {
     const double mu_n = t.number("muN");
     if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
-    const double rho = t.number("rho", 1.0);
-    if (!(rho > 0.0)) t.fail(field + ".rho", formatNumber(rho), "must be > 0");
-    const double beta = t.number("beta", 100.0);
-    if (!(beta > 0.0)) t.fail(field + ".beta", formatNumber(beta), "must be > 0");
-    CoulombForm form;
-    try {
-      form = parseCoulombForm(t.text("form", std::string("minmax")));
-    } catch (const InputError& e) {
-      throw InputError(source + ": " + field + "." + e.what());
-    }
-    attached.law = std::make_shared<Coulomb1D>(mu_n, form, rho, beta);
+    const double rho = positive("rho", 1.0);
+    const double beta = positive("beta", 100.0);
+    attached.law = std::make_shared<Coulomb1D>(mu_n, parseCoulombForm(form("minmax")), rho, beta);
+  } else if (type == "coulomb-2d") {
+    const double mu_n = t.number("muN");
+    if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
+    const double rho = positive("rho", 1.0);
+    const double epsilon = positive("epsilon", 1e-4);
+    const double alpha = positive("alpha", 100.0);
+    attached.law = std::make_shared<Coulomb2D>(mu_n, parseCoulomb2DForm(form("max")), rho, epsilon, alpha);
+  } else if (type == "signorini") {
+    const double gap = t.number("gap");
+    const double rho = positive("rho", 1.0);
+    attached.law = std::make_shared<Signorini>(gap, parseSignoriniForm(form("min")), rho);
+  } else if (type == "stribeck") {
+    const double dynamic = t.number("muN_dynamic");
+    if (dynamic < 0.0) t.fail(field + ".muN_dynamic", formatNumber(dynamic), "friction limit must be >= 0");
+    const double stat = t.number("muN_static");
+    if (stat < dynamic)
+      t.fail(field + ".muN_static", formatNumber(stat), "must be >= muN_dynamic = " + formatNumber(dynamic));
+    const double v_s = positive("v_s", std::nullopt);
+    const double rho = positive("rho", 1.0);
+    form("minmax");
+    attached.law = std::make_shared<Stribeck>(dynamic, stat, v_s, rho);
+  } else if (type == "cubic") {
+    attached.law = std::make_shared<CubicStiffness>(t.number("epsilon"));
   } else {
-    t.fail(field + ".type", "\"" + type + "\"", "unknown law (known: coulomb-1d)");
+    t.fail(field + ".type", "\"" + type + "\"",
+           "unknown law (known: coulomb-1d, coulomb-2d, signorini, stribeck, cubic)");
   }
   if (static_cast<int>(attached.dofs.size()) != attached.law->dimension())
     t.fail(field + ".dofs", describe(list),
@@ -344,6 +382,18 @@ Scene buildScene(toml::value root, const std::string& source,
 }
 
 }  // namespace
+
+const std::vector<std::string>& lawForms(const std::string& type) {
+  static const std::map<std::string, std::vector<std::string>> forms = {
+      {"coulomb-1d", {"minmax", "projection", "tanh", "piecewise"}},
+      {"coulomb-2d", {"max", "projection", "smoothed", "tanh"}},
+      {"signorini", {"min", "fischer-burmeister", "sign-square"}},
+      {"stribeck", {"minmax"}},
+      {"cubic", {}}};
+  static const std::vector<std::string> none;
+  const auto it = forms.find(type);
+  return it == forms.end() ? none : it->second;
+}
 
 Scene parseScene(const std::string& text, const std::string& source_name,
                  const std::vector<std::string>& overrides) {

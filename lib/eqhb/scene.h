@@ -10,8 +10,15 @@
 //                                              T = tridiag(−1, 2, −1) with T_nn = 1
 //   [structure] type = "matrices"              mass, damping, stiffness (arrays of rows)
 //   [[forcing]] dof, harmonic (1), cos (0), sin (0)
-//   [[law]]     type = "coulomb-1d", dofs = [i], muN >= 0,
-//               form = minmax|projection|tanh|piecewise (minmax), rho > 0 (1), beta > 0 (100)
+//   [[law]]     type, dofs (one per component) and, by type (defaults in brackets):
+//     coulomb-1d  muN >= 0, form = minmax|projection|tanh|piecewise [minmax],
+//                 rho > 0 [1], beta > 0 [100] (slope of the regularised forms)
+//     coulomb-2d  two dofs, muN >= 0, form = max|projection|smoothed|tanh [max],
+//                 rho [1], epsilon > 0 [1e-4] (smoothed), alpha > 0 [100] (tanh)
+//     signorini   gap g0 (wall at x = g0, approached from below),
+//                 form = min|fischer-burmeister|sign-square [min], rho [1]
+//     stribeck    muN_dynamic >= 0, muN_static >= muN_dynamic, v_s > 0, rho [1]
+//     cubic       epsilon (force −ε x³ as the DAE f + ε x³ = 0)
 //   [harmonic_balance] harmonics, set = odd|all, samples, omega
 //   [sweep]     from, to  (optional)
 //
@@ -39,6 +46,9 @@ struct Scene {
 
 // Throws InputError with the file name and the field.
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+// The forms a law type accepts, in scene files and for --form.
+const std::vector<std::string>& lawForms(const std::string& type);
+
 Scene parseScene(const std::string& text, const std::string& source_name,
                  const std::vector<std::string>& overrides = {});
 

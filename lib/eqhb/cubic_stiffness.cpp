@@ -1,0 +1,32 @@
+#include "eqhb/cubic_stiffness.h"
+
+#include <cmath>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+CubicStiffness::CubicStiffness(double epsilon) : epsilon_(epsilon) {
+  if (!std::isfinite(epsilon)) throwInputError("epsilon", formatNumber(epsilon), "must be finite");
+}
+
+void CubicStiffness::evaluate(LawSamples& s, bool with_derivatives) const {
+  const Eigen::Index n = s.psi.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double x = s.displacement(i, 0);
+    s.psi(i, 0) = s.force(i, 0) + epsilon_ * x * x * x;
+    if (with_derivatives) {
+      s.dpsi_ddisplacement(i, 0) = 3.0 * epsilon_ * x * x;
+      s.dpsi_dforce(i, 0) = 1.0;
+    }
+  }
+}
+
+std::vector<std::pair<std::string, double>> CubicStiffness::violations(const LawSamples& s) const {
+  const Eigen::ArrayXd x = s.displacement.col(0).array();
+  const Eigen::ArrayXd residual = s.force.col(0).array() + epsilon_ * x * x * x;
+  const double scale = std::max(s.force.col(0).cwiseAbs().maxCoeff(), 1e-300);
+  return {{"dae_residual", residual.abs().maxCoeff() / scale}};
+}
+
+}  // namespace eqhb

@@ -1,0 +1,26 @@
+// Cubic stiffness kept as a DAE on purpose (spec §2): the force f_nl on the
+// structure is an unknown and Ψ = f_nl + ε x³ = 0 (smooth). Its solutions
+// must agree with the classical explicit substitution f_nl = −ε x³.
+#pragma once
+
+#include "eqhb/law.h"
+
+namespace eqhb {
+
+class CubicStiffness : public Law {
+ public:
+  explicit CubicStiffness(double epsilon);  // finite
+  std::string type() const override { return "cubic"; }
+  int dimension() const override { return 1; }
+  bool usesDisplacement() const override { return true; }
+  bool usesVelocity() const override { return false; }
+  void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  // dae_residual: max |f_nl + ε x³| / max(|f_nl|, tiny).
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  double epsilon() const { return epsilon_; }
+
+ private:
+  double epsilon_;
+};
+
+}  // namespace eqhb

@@ -1,0 +1,46 @@
+#include "eqhb/stribeck.h"
+
+#include <cmath>
+
+#include "eqhb/coulomb_1d.h"
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+Stribeck::Stribeck(double mu_n_dynamic, double mu_n_static, double v_s, double rho)
+    : dynamic_(mu_n_dynamic), drop_(mu_n_static - mu_n_dynamic), v_s_(v_s), rho_(rho) {
+  if (!(mu_n_dynamic >= 0.0) || !std::isfinite(mu_n_dynamic))
+    throwInputError("muN_dynamic", formatNumber(mu_n_dynamic), "friction limit must be finite and >= 0");
+  if (!(mu_n_static >= mu_n_dynamic) || !std::isfinite(mu_n_static))
+    throwInputError("muN_static", formatNumber(mu_n_static), "must be finite and >= muN_dynamic");
+  if (!(v_s > 0.0) || !std::isfinite(v_s)) throwInputError("v_s", formatNumber(v_s), "must be finite and > 0");
+  if (!(rho > 0.0) || !std::isfinite(rho)) throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+}
+
+double Stribeck::limit(double v) const { return dynamic_ + drop_ * std::exp(-std::abs(v) / v_s_); }
+
+void Stribeck::evaluate(LawSamples& s, bool with_derivatives) const {
+  const Eigen::Index n = s.psi.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double v = s.velocity(i, 0), r = s.force(i, 0);
+    const double decay = drop_ * std::exp(-std::abs(v) / v_s_);
+    const double l = dynamic_ + decay;
+    const double dl = v > 0.0 ? -decay / v_s_ : v < 0.0 ? decay / v_s_ : 0.0;  // L'(v)
+    const double a = rho_ * (r + l) - v;
+    const double b = rho_ * (r - l) - v;
+    s.psi(i, 0) = v + std::min(0.0, a) + std::max(0.0, b);
+    if (with_derivatives) {
+      const double lower = a < 0.0 ? 1.0 : 0.0, upper = b > 0.0 ? 1.0 : 0.0;
+      s.dpsi_dvelocity(i, 0) = 1.0 + lower * (rho_ * dl - 1.0) + upper * (-rho_ * dl - 1.0);
+      s.dpsi_dforce(i, 0) = rho_ * (lower + upper);
+    }
+  }
+}
+
+std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSamples& s) const {
+  Eigen::VectorXd limits(s.velocity.rows());
+  for (Eigen::Index i = 0; i < limits.size(); ++i) limits[i] = limit(s.velocity(i, 0));
+  return frictionViolations(s.velocity.col(0), s.force.col(0), limits);
+}
+
+}  // namespace eqhb

@@ -1,0 +1,173 @@
+// Every law: pointwise weak derivatives and assembled Jacobians (full and
+// condensed) against finite differences away from kinks; zero sets.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "eqhb/coulomb_2d.h"
+#include "eqhb/cubic_stiffness.h"
+#include "eqhb/error.h"
+#include "eqhb/hb_systems.h"
+#include "eqhb/signorini.h"
+#include "eqhb/stribeck.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+struct LawCase {
+  std::string label;
+  std::shared_ptr<Law> law;
+};
+
+std::vector<LawCase> allLaws() {
+  return {
+      {"coulomb1d-minmax", std::make_shared<Coulomb1D>(1.3, CoulombForm::kMinMax, 0.8)},
+      {"coulomb1d-projection", std::make_shared<Coulomb1D>(1.3, CoulombForm::kProjection, 0.8)},
+      {"coulomb2d-max", std::make_shared<Coulomb2D>(1.5, Coulomb2DForm::kMax, 0.7)},
+      {"coulomb2d-projection", std::make_shared<Coulomb2D>(1.5, Coulomb2DForm::kProjection, 0.7)},
+      {"coulomb2d-smoothed", std::make_shared<Coulomb2D>(1.5, Coulomb2DForm::kSmoothed, 0.7, 0.3)},
+      {"coulomb2d-tanh", std::make_shared<Coulomb2D>(1.5, Coulomb2DForm::kTanh, 0.7, 1e-4, 2.0)},
+      {"signorini-min", std::make_shared<Signorini>(0.4, SignoriniForm::kMin, 1.5)},
+      {"signorini-fb", std::make_shared<Signorini>(0.4, SignoriniForm::kFischerBurmeister, 1.5)},
+      {"signorini-signsquare", std::make_shared<Signorini>(0.4, SignoriniForm::kSignSquare, 1.5)},
+      {"stribeck", std::make_shared<Stribeck>(1.0, 1.5, 0.5, 0.9)},
+      {"cubic", std::make_shared<CubicStiffness>(0.7)},
+  };
+}
+
+class LawTest : public ::testing::TestWithParam<LawCase> {};
+
+TEST_P(LawTest, PointwisePartialsMatchFiniteDifferences) {
+  const Law& law = *GetParam().law;
+  const int d = law.dimension();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  const int n = 300;
+  LawSamples s;
+  s.resize(n, d);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < d; ++a) {
+      s.displacement(i, a) = u(rng);
+      s.velocity(i, a) = u(rng);
+      s.force(i, a) = u(rng);
+    }
+  law.evaluate(s, true);
+  const double h = 1e-7;
+  Eigen::MatrixXd* inputs[] = {&s.displacement, &s.velocity, &s.force};
+  const Eigen::MatrixXd* partials[] = {&s.dpsi_ddisplacement, &s.dpsi_dvelocity, &s.dpsi_dforce};
+  const bool used[] = {law.usesDisplacement(), law.usesVelocity(), true};
+  for (int q = 0; q < 3; ++q) {
+    if (!used[q]) continue;
+    for (int b = 0; b < d; ++b) {
+      LawSamples plus = s, minus = s;
+      Eigen::MatrixXd* in_plus[] = {&plus.displacement, &plus.velocity, &plus.force};
+      Eigen::MatrixXd* in_minus[] = {&minus.displacement, &minus.velocity, &minus.force};
+      in_plus[q]->col(b).array() += h;
+      in_minus[q]->col(b).array() -= h;
+      law.evaluate(plus, false);
+      law.evaluate(minus, false);
+      for (int a = 0; a < d; ++a)
+        for (int i = 0; i < n; ++i) {
+          const double fd = (plus.psi(i, a) - minus.psi(i, a)) / (2 * h);
+          EXPECT_NEAR((*partials[q])(i, a * d + b), fd, 1e-5 * (1 + std::abs(fd)))
+              << GetParam().label << " q=" << q << " a=" << a << " b=" << b << " sample " << i;
+        }
+    }
+  }
+  (void)inputs;
+}
+
+TEST_P(LawTest, AssembledJacobiansMatchFiniteDifferences) {
+  const std::shared_ptr<Law>& law = GetParam().law;
+  for (bool condensed : {false, true}) {
+    HbModel model;
+    const int n = 3;
+    model.structure.mass = Eigen::MatrixXd::Identity(n, n);
+    model.structure.stiffness = 2.0 * Eigen::MatrixXd::Identity(n, n);
+    model.structure.stiffness(0, 1) = model.structure.stiffness(1, 0) = -1.0;
+    model.structure.damping = 0.05 * model.structure.stiffness;
+    model.structure.loads.push_back({0, 1, 2.0, 0.5});
+    model.laws.push_back({law->dimension() == 2 ? std::vector<int>{1, 2} : std::vector<int>{2}, law});
+    model.basis = HarmonicSet(HarmonicKind::kAll, 3);
+    model.samples = 64;
+    model.omega = 0.8;
+    std::unique_ptr<HbSystem> system;
+    if (condensed) system = std::make_unique<CondensedSystem>(model);
+    else system = std::make_unique<FullSystem>(model);
+    srand(17);
+    const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system->size());
+    Eigen::VectorXd g(system->size());
+    Eigen::MatrixXd j(system->size(), system->size());
+    ASSERT_TRUE(system->residualAndJacobian(z, g, j));
+    const Eigen::MatrixXd fd = test::finiteDifferenceJacobian(*system, z);
+    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()))
+        << GetParam().label << (condensed ? " condensed" : " full");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllLaws, LawTest, ::testing::ValuesIn(allLaws()),
+                         [](const auto& info) {
+                           std::string name = info.param.label;
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
+
+TEST(Laws, ExactFormsVanishOnTheirGraphs) {
+  // 2D Coulomb: sticking (v = 0, ‖r‖ <= μN), sliding r = −μN v/‖v‖.
+  for (auto form : {Coulomb2DForm::kMax, Coulomb2DForm::kProjection}) {
+    Coulomb2D law(2.0, form, 0.6);
+    LawSamples s;
+    s.resize(3, 2);
+    s.force.row(0) << 1.0, -1.2;                                      // stick
+    s.velocity.row(1) << 3.0, 4.0;                                     // slide
+    s.force.row(1) << -2.0 * 0.6, -2.0 * 0.8;
+    s.velocity.row(2) << 1.0, 0.0;                                     // wrong force
+    s.force.row(2) << 2.0, 0.0;
+    law.evaluate(s, false);
+    EXPECT_LT(s.psi.topRows(2).cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_GT(s.psi.row(2).norm(), 1e-3);
+  }
+  // Signorini: g p = 0 with g, p >= 0, for every form; not when both > 0 or one < 0.
+  for (auto form : {SignoriniForm::kMin, SignoriniForm::kFischerBurmeister, SignoriniForm::kSignSquare}) {
+    Signorini law(1.0, form, 2.0);
+    LawSamples s;
+    s.resize(4, 1);
+    s.displacement(0, 0) = 0.3;  // open gap, no pressure
+    s.displacement(1, 0) = 1.0;  // closed gap, pressure
+    s.force(1, 0) = 5.0;
+    s.displacement(2, 0) = 0.5;  // open gap with pressure: wrong
+    s.force(2, 0) = 1.0;
+    s.displacement(3, 0) = 1.5;  // penetration: wrong
+    law.evaluate(s, false);
+    EXPECT_LT(s.psi.topRows(2).cwiseAbs().maxCoeff(), 1e-14) << signoriniFormName(form);
+    EXPECT_GT(std::abs(s.psi(2, 0)), 1e-3) << signoriniFormName(form);
+    EXPECT_GT(std::abs(s.psi(3, 0)), 1e-3) << signoriniFormName(form);
+  }
+  // Stribeck: sliding force is −L(v) sign(v), sticking within L(0).
+  Stribeck stribeck(1.0, 1.5, 0.5);
+  LawSamples s;
+  s.resize(3, 1);
+  s.velocity(0, 0) = 0.7;
+  s.force(0, 0) = -stribeck.limit(0.7);
+  s.force(1, 0) = 1.4;  // stick below μs N
+  s.velocity(2, 0) = -0.2;
+  s.force(2, 0) = 1.0;  // too small a force while sliding
+  stribeck.evaluate(s, false);
+  EXPECT_LT(s.psi.topRows(2).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_GT(std::abs(s.psi(2, 0)), 1e-3);
+}
+
+TEST(Laws, NonPhysicalParametersAreRejected) {
+  EXPECT_THROW(Coulomb2D(-1.0, Coulomb2DForm::kMax), InputError);
+  EXPECT_THROW(Signorini(std::nan(""), SignoriniForm::kMin), InputError);
+  EXPECT_THROW(Signorini(1.0, SignoriniForm::kMin, -1.0), InputError);
+  EXPECT_THROW(Stribeck(-1.0, 1.0, 0.5), InputError);
+  EXPECT_THROW(Stribeck(1.0, 0.5, 0.5), InputError);  // static below dynamic
+  EXPECT_THROW(Stribeck(1.0, 1.5, 0.0), InputError);
+  EXPECT_THROW(CubicStiffness(std::numeric_limits<double>::infinity()), InputError);
+}
+
+}  // namespace
+}  // namespace eqhb
