@@ -5,6 +5,7 @@
 #include "eqhb/error.h"
 #include "registry.h"
 #include "solve_command.h"
+#include "time_commands.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"eqhb: periodic vibrations with dry friction and contact by equality-based harmonic balance"};
@@ -12,6 +13,10 @@ int main(int argc, char** argv) {
   eqhb::cli::SolveArguments solve;
   eqhb::cli::addSolveCommand(app, solve);
   auto* solvers = app.add_subcommand("solvers", "List the registered solver backends");
+  eqhb::cli::SolveArguments simulate_hb, compare_hb;
+  eqhb::cli::TimeArguments simulate_time, compare_time;
+  eqhb::cli::addSimulateCommand(app, simulate_hb, simulate_time);
+  eqhb::cli::addCompareCommand(app, compare_hb, compare_time);
   CLI11_PARSE(app, argc, argv);
   try {
     if (solvers->parsed()) {
@@ -19,6 +24,8 @@ int main(int argc, char** argv) {
         std::cout << entry.name << "\t" << entry.description << "\n";
       return 0;
     }
+    if (app.got_subcommand("simulate")) return eqhb::cli::runSimulate(simulate_hb, simulate_time);
+    if (app.got_subcommand("compare")) return eqhb::cli::runCompare(compare_hb, compare_time);
     return eqhb::cli::runSolve(solve);
   } catch (const eqhb::InputError& e) {
     std::cerr << "eqhb: error: " << e.what() << "\n";

@@ -17,55 +17,26 @@ namespace eqhb::cli {
 
 void addSolveCommand(CLI::App& app, SolveArguments& a) {
   auto* cmd = app.add_subcommand("solve", "Solve one scene at one frequency");
-  cmd->add_option("scene", a.scene, "Scene file (problems/*.toml)")->required();
-  cmd->add_option("--omega", a.omega, "Forcing frequency ω (overrides harmonic_balance.omega)");
-  cmd->add_option("--harmonics", a.harmonics, "Highest harmonic H");
-  cmd->add_option("--samples", a.samples, "Time samples N per period (>= 2H+1)");
-  cmd->add_option("--solver", a.solver, "Backend name (see `eqhb solvers`)");
-  cmd->add_option("--form", a.form, "Law form for every friction law: minmax|projection|tanh|piecewise");
-  cmd->add_option("--rho", a.rho, "Scaling ρ > 0 of every exact law");
-  auto* condensed = cmd->add_flag("--condensed", "Solve the condensed system (unknowns: law forces; default)");
-  cmd->add_flag("--full", a.full, "Solve the full system (displacements and forces)")->excludes(condensed);
+  addSceneOptions(cmd, a.scene);
+  addSolverOptions(cmd, a);
   cmd->add_flag("--json", a.json, "Print one JSON object");
   cmd->add_flag("--trajectory", a.trajectory, "With --json: add the samples of x and of the law forces over one period");
-  cmd->add_option("--set", a.overrides, "Override a scene value: PATH=VALUE, e.g. law[0].muN=5");
+  cmd->add_option("--repeat", a.repeat, "Repeat the solve and report the median time")
+      ->check(CLI::Range(1, 100000));
+}
+
+void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
+  cmd->add_option("--solver", a.solver, "Backend name (see `eqhb solvers`)");
+  auto* condensed = cmd->add_flag("--condensed", "Solve the condensed system (unknowns: law forces; default)");
+  cmd->add_flag("--full", a.full, "Solve the full system (displacements and forces)")->excludes(condensed);
   cmd->add_option("--option", a.backend_options, "Backend-specific option NAME=VALUE");
   cmd->add_option("--tolerance", a.tolerance, "Residual tolerance on ‖g‖₂")->capture_default_str();
   cmd->add_option("--max-iterations", a.max_iterations, "Iteration limit")->capture_default_str();
   cmd->add_option("--max-evaluations", a.max_evaluations, "Residual evaluation limit")->capture_default_str();
   cmd->add_option("--time-limit", a.time_limit, "Seconds per solve, 0 = none")->capture_default_str();
-  cmd->add_option("--repeat", a.repeat, "Repeat the solve and report the median time")
-      ->check(CLI::Range(1, 100000));
 }
 
 namespace {
-
-std::vector<std::string> sceneOverrides(const SolveArguments& a) {
-  std::vector<std::string> o = a.overrides;
-  auto num = [](double x) { return formatNumber(x); };
-  if (a.omega) o.push_back("harmonic_balance.omega=" + num(*a.omega));
-  if (a.harmonics) o.push_back("harmonic_balance.harmonics=" + std::to_string(*a.harmonics));
-  if (a.samples) o.push_back("harmonic_balance.samples=" + std::to_string(*a.samples));
-  if (a.form || a.rho) {
-    // --form and --rho apply to every law that has them: look at the scene first.
-    const Scene plain = loadScene(a.scene, a.overrides);
-    int touched = 0;
-    for (size_t l = 0; l < plain.model.laws.size(); ++l) {
-      const std::string type = plain.model.laws[l].law->type();
-      const auto& forms = lawForms(type);
-      const bool takes_form = a.form && std::find(forms.begin(), forms.end(), *a.form) != forms.end();
-      const bool takes_rho = a.rho && type != "cubic";
-      const std::string law = "law[" + std::to_string(l) + "].";
-      if (takes_form) o.push_back(law + "form=\"" + *a.form + "\"");
-      if (takes_rho) o.push_back(law + "rho=" + num(*a.rho));
-      touched += takes_form || takes_rho;
-    }
-    if (touched == 0)
-      throwInputError(a.form ? "--form" : "--rho", a.form ? *a.form : num(*a.rho),
-                      "no law of the scene takes it");
-  }
-  return o;
-}
 
 nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd& c) {
   nlohmann::json harmonics = nlohmann::json::array(), cos = nlohmann::json::array(),
@@ -81,12 +52,13 @@ nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd&
 
 }  // namespace
 
-int runSolve(const SolveArguments& a) {
-  const Scene scene = loadScene(a.scene, sceneOverrides(a));
-  const HbModel& model = scene.model;
-  std::unique_ptr<HbSystem> system;
-  if (a.full) system = std::make_unique<FullSystem>(model);
-  else system = std::make_unique<CondensedSystem>(model);
+HbRun solveHarmonicBalance(const SolveArguments& a) {
+  HbRun run;
+  run.scene = loadSceneWith(a.scene);
+  const HbModel& model = run.scene.model;
+  if (a.full) run.system = std::make_unique<FullSystem>(model);
+  else run.system = std::make_unique<CondensedSystem>(model);
+  HbSystem* system = run.system.get();
 
   SolverOptions options;
   options.residual_tolerance = a.tolerance;
@@ -103,15 +75,25 @@ int runSolve(const SolveArguments& a) {
   auto solver = makeSolver(a.solver);
 
   const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system->size());
-  SolverResult result;
-  std::vector<double> times;
   for (int i = 0; i < a.repeat; ++i) {
-    result = solver->solve(*system, z0, options);
-    if (result.termination == Termination::kInvalidOptions)
-      throw InputError("--option: " + result.native_message);
-    times.push_back(result.seconds);
+    run.result = solver->solve(*system, z0, options);
+    if (run.result.termination == Termination::kInvalidOptions)
+      throw InputError("--option: " + run.result.native_message);
+    run.times.push_back(run.result.seconds);
   }
-  std::sort(times.begin(), times.end());
+  std::sort(run.times.begin(), run.times.end());
+  run.options = options;
+  return run;
+}
+
+int runSolve(const SolveArguments& a) {
+  const HbRun run = solveHarmonicBalance(a);
+  const Scene& scene = run.scene;
+  const HbModel& model = scene.model;
+  const HbSystem* system = run.system.get();
+  const SolverResult& result = run.result;
+  const SolverOptions& options = run.options;
+  const std::vector<double>& times = run.times;
   const double median = times.size() % 2 ? times[times.size() / 2]
                                          : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
   const HbSolution solution = summarize(model, system->fullCoefficients(result.solution));

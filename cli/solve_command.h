@@ -3,22 +3,23 @@
 
 #include <CLI/CLI.hpp>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "eqhb/hb_systems.h"
+#include "eqhb/solver.h"
+#include "scene_arguments.h"
+
 namespace eqhb::cli {
 
 struct SolveArguments {
-  std::string scene;
-  std::optional<double> omega, rho;
-  std::optional<int> harmonics, samples;
-  std::optional<std::string> form;
+  SceneArguments scene;
   std::string solver = "dogleg";
   bool full = false;
   bool json = false;
   bool trajectory = false;
-  std::vector<std::string> overrides;         // --set
   std::vector<std::string> backend_options;   // --option
   double tolerance = 1e-10;
   int max_iterations = 1000;
@@ -27,7 +28,20 @@ struct SolveArguments {
   int repeat = 1;
 };
 
+// One harmonic-balance solve (repeated --repeat times) and what it used.
+struct HbRun {
+  Scene scene;
+  std::unique_ptr<HbSystem> system;
+  SolverResult result;
+  SolverOptions options;
+  std::vector<double> times;  // sorted
+};
+HbRun solveHarmonicBalance(const SolveArguments& args);
+
 void addSolveCommand(CLI::App& app, SolveArguments& args);
+// Solver options and the backend's pass-through options from the flags;
+// throws InputError.
+void addSolverOptions(CLI::App* command, SolveArguments& args);
 // Returns the process exit code: 0 converged, 1 not converged.
 int runSolve(const SolveArguments& args);
 

@@ -1,5 +1,6 @@
 #include "eqhb/coulomb_1d.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "eqhb/error.h"
@@ -32,6 +33,12 @@ Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, double rho, double beta)
     throwInputError("rho", formatNumber(rho), "must be finite and > 0");
   if (!(beta > 0.0) || !std::isfinite(beta))
     throwInputError("beta", formatNumber(beta), "regularisation slope must be finite and > 0");
+}
+
+LocalVector Coulomb1D::solveStep(const StepProblem& step) const {
+  LocalVector force(1);
+  force[0] = std::clamp(-step.u_free[0] / step.delassus(0, 0), -mu_n_, mu_n_);
+  return force;
 }
 
 std::vector<std::pair<std::string, double>> Coulomb1D::violations(const LawSamples& s) const {

@@ -44,6 +44,8 @@ class Coulomb1D : public Law {
   // force_limit_excess: max(|r|/μN − 1, 0); sliding_force_error: max over
   // clearly sliding samples of |r + μN sign(v)| / μN.
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  // λ = proj_[−μN, μN](−u_free / D): stick (u_end = 0) if that fits, else slide.
+  LocalVector solveStep(const StepProblem& step) const override;
 
   CoulombForm form() const { return form_; }
   double muN() const { return mu_n_; }

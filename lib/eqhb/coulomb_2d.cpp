@@ -1,5 +1,6 @@
 #include "eqhb/coulomb_2d.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "eqhb/coulomb_1d.h"
@@ -94,6 +95,30 @@ void Coulomb2D::evaluate(LawSamples& s, bool with_derivatives) const {
         s.dpsi_dvelocity(i, a * 2 + b) = dv(a, b);
       }
   }
+}
+
+namespace {
+Eigen::Vector2d projectOnDisc(const Eigen::Vector2d& x, double radius) {
+  const double norm = x.norm();
+  return norm <= radius ? x : Eigen::Vector2d(x * (radius / norm));
+}
+}  // namespace
+
+LocalVector Coulomb2D::solveStep(const StepProblem& step) const {
+  const Eigen::Matrix2d d = step.delassus;
+  const Eigen::Vector2d u_free = step.u_free;
+  // Step 1/L with L the largest eigenvalue of D: a contraction on the disc.
+  const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(d).eigenvalues().maxCoeff();
+  Eigen::Vector2d lambda = projectOnDisc(-u_free / largest, mu_n_);
+  for (int iteration = 0; iteration < 10000; ++iteration) {
+    const Eigen::Vector2d next = projectOnDisc(lambda - (d * lambda + u_free) / largest, mu_n_);
+    const double change = (next - lambda).norm();
+    lambda = next;
+    if (change <= 1e-15 * std::max(mu_n_, 1e-300)) break;
+  }
+  LocalVector force(2);
+  force << lambda[0], lambda[1];
+  return force;
 }
 
 std::vector<std::pair<std::string, double>> Coulomb2D::violations(const LawSamples& s) const {

@@ -17,6 +17,8 @@ class CubicStiffness : public Law {
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   // dae_residual: max |f_nl + ε x³| / max(|f_nl|, tiny).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  // Newton on λ + ε x_θ(λ)³ = 0, x_θ the displacement at the θ-point.
+  LocalVector solveStep(const StepProblem& step) const override;
   double epsilon() const { return epsilon_; }
 
  private:

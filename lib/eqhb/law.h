@@ -24,6 +24,21 @@ struct LawSamples {
   void resize(int samples, int dimension);
 };
 
+// One time step of the nonsmooth reference integrator, seen by one law
+// (Moreau–Jean / θ-method, see time_integrator.h): with the law's force λ
+// held over the step, the velocity of its DOFs at the end of the step is
+//   u_end = u_free + delassus · λ,
+// and the displacement x_end = x_start + h (θ u_end + (1 − θ) v_start).
+// Sizes are at most 2 (no heap allocation per step).
+using LocalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1>;
+using LocalMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
+struct StepProblem {
+  LocalVector x_start, v_start, u_free;
+  LocalMatrix delassus;  // h Wᵀ Ŵ⁻¹ W · forceSign, symmetric definite
+  double h = 0.0, theta = 1.0;
+  double restitution = 0.0;  // Newton impact coefficient (contact laws)
+};
+
 class Law {
  public:
   virtual ~Law() = default;
@@ -41,6 +56,9 @@ class Law {
   // time): named worst violations, 0 when the law holds exactly (see each
   // law for the measures). Truncated Fourier series only approach them.
   virtual std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const = 0;
+  // The exact (set-valued) law on one time step: the force λ over the step.
+  // Regularised forms are ignored here: the reference is the exact law.
+  virtual LocalVector solveStep(const StepProblem& step) const = 0;
 };
 
 // A law attached to DOFs of the structure (0-based, one per component).

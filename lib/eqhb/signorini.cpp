@@ -66,6 +66,18 @@ void Signorini::evaluate(LawSamples& s, bool with_derivatives) const {
   }
 }
 
+LocalVector Signorini::solveStep(const StepProblem& step) const {
+  LocalVector pressure(1);
+  pressure[0] = 0.0;
+  const double gap = gap_ - step.x_start[0];
+  const double gap_rate = -step.v_start[0];  // ġ = −ẋ
+  if (gap + 0.5 * step.h * gap_rate > 0.0) return pressure;  // stays open
+  // ġ_end = −u_end = −u_free − D p, with D = −h G (force −p): ġ_end = −u_free + h G p.
+  const double stiffness = -step.delassus(0, 0);  // h G > 0
+  pressure[0] = std::max(0.0, (step.u_free[0] - step.restitution * gap_rate) / stiffness);
+  return pressure;
+}
+
 std::vector<std::pair<std::string, double>> Signorini::violations(const LawSamples& s) const {
   const Eigen::ArrayXd g = gap_ - s.displacement.col(0).array();
   const Eigen::ArrayXd p = s.force.col(0).array();

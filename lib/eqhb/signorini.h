@@ -30,6 +30,9 @@ class Signorini : public Law {
   // Relative to max|g| and max|p| over the period: penetration max(−g, 0),
   // negative_pressure max(−p, 0), complementarity max |g p| (0 when g ⊥ p).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  // Moreau's velocity-level contact with Newton's impact law: when the gap
+  // predicted at mid-step is closed, 0 <= ġ_end + e ġ_start ⊥ p >= 0.
+  LocalVector solveStep(const StepProblem& step) const override;
 
  private:
   double gap_;

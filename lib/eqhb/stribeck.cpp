@@ -37,6 +37,27 @@ void Stribeck::evaluate(LawSamples& s, bool with_derivatives) const {
   }
 }
 
+LocalVector Stribeck::solveStep(const StepProblem& step) const {
+  LocalVector force(1);
+  const double d = step.delassus(0, 0), u_free = step.u_free[0];
+  if (std::abs(u_free) <= d * limit(0.0)) {
+    force[0] = -u_free / d;  // sticks: u_end = 0
+    return force;
+  }
+  // φ(w) = w − |u_free| + D L(w): φ(0) < 0 <= φ(|u_free|).
+  double low = 0.0, high = std::abs(u_free), w = high;
+  for (int iteration = 0; iteration < 200 && high - low > 1e-15 * std::abs(u_free); ++iteration) {
+    const double phi = w - std::abs(u_free) + d * limit(w);
+    if (phi > 0.0) high = w;
+    else low = w;
+    const double dphi = 1.0 - d * drop_ * std::exp(-w / v_s_) / v_s_;
+    const double newton = dphi > 0.0 ? w - phi / dphi : -1.0;
+    w = newton > low && newton < high ? newton : 0.5 * (low + high);
+  }
+  force[0] = -std::copysign(limit(w), u_free);
+  return force;
+}
+
 std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSamples& s) const {
   Eigen::VectorXd limits(s.velocity.rows());
   for (Eigen::Index i = 0; i < limits.size(); ++i) limits[i] = limit(s.velocity(i, 0));

@@ -19,6 +19,9 @@ class Stribeck : public Law {
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   // As Coulomb1D, with the limit L(v) of each sample.
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  // Stick if |u_free| <= D L(0); else slide with w = |u_end| > 0 solving
+  // w = |u_free| − D L(w) (bracketed bisection–Newton), λ = −L(w) sign(u_free).
+  LocalVector solveStep(const StepProblem& step) const override;
   double limit(double v) const;
 
  private:

@@ -1,0 +1,46 @@
+#include "scene_arguments.h"
+
+#include <algorithm>
+
+#include "eqhb/error.h"
+
+namespace eqhb::cli {
+
+void addSceneOptions(CLI::App* cmd, SceneArguments& a) {
+  cmd->add_option("scene", a.scene, "Scene file (problems/*.toml)")->required();
+  cmd->add_option("--omega", a.omega, "Forcing frequency ω (overrides harmonic_balance.omega)");
+  cmd->add_option("--harmonics", a.harmonics, "Number of harmonics H (odd set: 1,3,..,2H-1; all: 0..H)");
+  cmd->add_option("--samples", a.samples, "Time samples N per period (>= 2 k_max + 1)");
+  cmd->add_option("--form", a.form, "Law form, for every law that has it (e.g. minmax, projection, min)");
+  cmd->add_option("--rho", a.rho, "Scaling ρ > 0 of every law that has one");
+  cmd->add_option("--set", a.overrides, "Override a scene value: PATH=VALUE, e.g. law[0].muN=5");
+}
+
+Scene loadSceneWith(const SceneArguments& a) {
+  std::vector<std::string> o = a.overrides;
+  auto num = [](double x) { return formatNumber(x); };
+  if (a.omega) o.push_back("harmonic_balance.omega=" + num(*a.omega));
+  if (a.harmonics) o.push_back("harmonic_balance.harmonics=" + std::to_string(*a.harmonics));
+  if (a.samples) o.push_back("harmonic_balance.samples=" + std::to_string(*a.samples));
+  if (a.form || a.rho) {
+    // --form and --rho apply to every law that has them: look at the scene first.
+    const Scene plain = loadScene(a.scene, a.overrides);
+    int touched = 0;
+    for (size_t l = 0; l < plain.model.laws.size(); ++l) {
+      const std::string type = plain.model.laws[l].law->type();
+      const auto& forms = lawForms(type);
+      const bool takes_form = a.form && std::find(forms.begin(), forms.end(), *a.form) != forms.end();
+      const bool takes_rho = a.rho && type != "cubic";
+      const std::string law = "law[" + std::to_string(l) + "].";
+      if (takes_form) o.push_back(law + "form=\"" + *a.form + "\"");
+      if (takes_rho) o.push_back(law + "rho=" + num(*a.rho));
+      touched += takes_form || takes_rho;
+    }
+    if (touched == 0)
+      throwInputError(a.form ? "--form" : "--rho", a.form ? *a.form : num(*a.rho),
+                      "no law of the scene takes it");
+  }
+  return loadScene(a.scene, o);
+}
+
+}  // namespace eqhb::cli

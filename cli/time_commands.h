@@ -1,0 +1,23 @@
+// `eqhb simulate` (the nonsmooth time-domain reference) and `eqhb compare`
+// (a harmonic-balance solve against it, with the error measures).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include "eqhb/time_integrator.h"
+#include "solve_command.h"
+
+namespace eqhb::cli {
+
+struct TimeArguments {
+  TimeOptions options;
+  bool from_hb = false;    // simulate: start from the HB solution of the scene
+  bool from_rest = false;  // compare: start from rest instead of the HB solution
+};
+
+void addSimulateCommand(CLI::App& app, SolveArguments& solve, TimeArguments& time);
+void addCompareCommand(CLI::App& app, SolveArguments& solve, TimeArguments& time);
+int runSimulate(const SolveArguments& solve, const TimeArguments& time);
+int runCompare(const SolveArguments& solve, const TimeArguments& time);
+
+}  // namespace eqhb::cli
