@@ -39,6 +39,9 @@ case "${1:-}" in
     build
     mkdir -p results
     ./build/eqhb-bench --out results "$@" | tee results/summary.txt
+    quick=""
+    for a in "$@"; do [ "$a" = "--quick" ] && quick="--quick"; done
+    ./build/eqhb-convergence --out results $quick | tee results/convergence.txt
     /usr/bin/python3 bench/charts.py results
     echo "report: results/report.md"
     ;;

@@ -1,5 +1,7 @@
 #include "eqhb/hb_solution.h"
 
+#include <algorithm>
+
 #include "eqhb/fourier_transform.h"
 
 namespace eqhb {
@@ -37,6 +39,23 @@ HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full) {
       solution.forces.push_back(channel(transform, model.omega, label, full.segment(base + q * nb, nb)));
     }
   return solution;
+}
+
+Eigen::VectorXd transferCoefficients(const HbModel& from, const HbModel& to, const Eigen::VectorXd& full) {
+  const int channels = from.structure.dofs() + from.lawComponents();
+  const int nb_from = from.basis.size(), nb_to = to.basis.size();
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(channels * nb_to);
+  const auto& ks = from.basis.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h) {
+    if (!to.basis.contains(ks[h])) continue;
+    const auto& target = to.basis.harmonics();
+    const int t = static_cast<int>(std::lower_bound(target.begin(), target.end(), ks[h]) - target.begin());
+    const int width = ks[h] == 0 ? 1 : 2;
+    for (int c = 0; c < channels; ++c)
+      out.segment(c * nb_to + to.basis.offset(t), width) =
+          full.segment(c * nb_from + from.basis.offset(static_cast<int>(h)), width);
+  }
+  return out;
 }
 
 }  // namespace eqhb

@@ -27,4 +27,9 @@ struct HbSolution {
 // full = [x_1..x_n, λ_1..λ_L] coefficients (FullSystem layout).
 HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full);
 
+// The same channels on another harmonic set: shared harmonics are copied,
+// the others are zero (continuation in H; both models have the same DOFs
+// and laws).
+Eigen::VectorXd transferCoefficients(const HbModel& from, const HbModel& to, const Eigen::VectorXd& full);
+
 }  // namespace eqhb

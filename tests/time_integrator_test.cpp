@@ -1,0 +1,120 @@
+#include "eqhb/time_integrator.h"
+
+#include <gtest/gtest.h>
+
+#include <complex>
+
+#include "eqhb/error.h"
+#include "eqhb/hb_systems.h"
+#include "eqhb/scene.h"
+#include "registry.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+// The chain without friction (μN = 0), heavier damping so that a run
+// settles in a few periods.
+HbModel dampedLinearChain() {
+  HbModel model = test::chainWithFriction(0.0, CoulombForm::kMinMax, 1, 0.5);
+  model.structure.damping *= 10.0;
+  return model;
+}
+
+// Exact steady state: x = Re(X e^{iωt}), (K − ω²M + iωC) X = F.
+Eigen::VectorXd exactCoefficients(const HbModel& m) {
+  const std::complex<double> i(0.0, 1.0);
+  const Eigen::MatrixXcd a = m.structure.stiffness.cast<std::complex<double>>() -
+                             m.omega * m.omega * m.structure.mass.cast<std::complex<double>>() +
+                             i * m.omega * m.structure.damping.cast<std::complex<double>>();
+  Eigen::VectorXcd f = Eigen::VectorXcd::Zero(2);
+  f[0] = 20.0;
+  const Eigen::VectorXcd x = a.lu().solve(f);
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(6);  // [x1 (cos, sin), x2, λ]
+  for (int d = 0; d < 2; ++d) {
+    full[2 * d] = x[d].real();
+    full[2 * d + 1] = -x[d].imag();
+  }
+  return full;
+}
+
+double errorAt(const HbModel& model, double h, double theta) {
+  TimeOptions options;
+  options.step = h;
+  options.theta = theta;
+  options.periodic_tolerance = 1e-12;
+  const Eigen::VectorXd exact = exactCoefficients(model);
+  const TimeReference ref = integrateToSteadyState(model, options, exact);
+  EXPECT_TRUE(ref.periodic);
+  const auto errors = compareWithReference(model, exact, ref);
+  return std::max(errors[0].relative_l2, errors[1].relative_l2);
+}
+
+TEST(TimeIntegrator, ImplicitEulerMatchesTheLinearSteadyStateToFirstOrder) {
+  const HbModel model = dampedLinearChain();
+  const double coarse = errorAt(model, 2e-2, 1.0), fine = errorAt(model, 1e-2, 1.0);
+  EXPECT_LT(fine, 0.05);
+  EXPECT_NEAR(coarse / fine, 2.0, 0.25);  // O(h)
+}
+
+TEST(TimeIntegrator, MidpointRuleIsSecondOrderOnTheLinearPart) {
+  const HbModel model = dampedLinearChain();
+  const double coarse = errorAt(model, 2e-2, 0.5), fine = errorAt(model, 1e-2, 0.5);
+  EXPECT_LT(fine, 1e-3);
+  EXPECT_NEAR(coarse / fine, 4.0, 0.5);  // O(h²)
+}
+
+TEST(TimeIntegrator, ContinuouslySlidingCoulombOscillatorAgreesWithHarmonicBalance) {
+  TimeOptions options;  // h = 1e-4, midpoint
+  double previous = 1.0;
+  for (int harmonics : {20, 60}) {
+    const Scene scene = loadScene(test::problem("coulomb-oscillator.toml"),
+                                  {"harmonic_balance.harmonics=" + std::to_string(harmonics),
+                                   "harmonic_balance.samples=4096"});
+    CondensedSystem system(scene.model);
+    const SolverResult r = makeSolver("dogleg")->solve(system, Eigen::VectorXd::Zero(system.size()), {});
+    ASSERT_TRUE(r.converged()) << r.summary();
+    const Eigen::VectorXd hb = system.fullCoefficients(r.solution);
+    const TimeReference ref = integrateToSteadyState(scene.model, options);  // from rest
+    ASSERT_TRUE(ref.periodic);
+    // The mass never sticks: |r| = μN wherever it moves.
+    EXPECT_NEAR(ref.force.col(0).cwiseAbs().maxCoeff(), 0.3, 1e-12);
+    const auto errors = compareWithReference(scene.model, hb, ref);
+    EXPECT_LT(errors[0].relative_l2, 0.01) << "H = " << harmonics;
+    EXPECT_LT(errors[0].first_harmonic_error, 0.01) << "H = " << harmonics;
+    EXPECT_LT(errors[0].relative_l2, previous) << "the error must fall with H";
+    previous = errors[0].relative_l2;
+  }
+}
+
+TEST(TimeIntegrator, ExactLawsHoldAtEveryStep) {
+  // Contact: the pressure is never negative and the gap closes only with pressure.
+  const Scene contact = loadScene(test::problem("contact.toml"));
+  TimeOptions options;
+  options.step = 1e-3;
+  options.max_periods = 200;
+  const TimeReference ref = integrateToSteadyState(contact.model, options);
+  EXPECT_GE(ref.force.col(0).minCoeff(), 0.0);
+  EXPECT_GT(ref.force.col(0).maxCoeff(), 0.0);  // the wall is hit
+  EXPECT_LT(ref.displacement.col(1).maxCoeff(), 2.0 + 1e-2);  // (O(h) penetration at most)
+  // 2D friction: ‖r‖ <= μN at every step.
+  const Scene planar = loadScene(test::problem("friction-2d.toml"));
+  const TimeReference ref2 = integrateToSteadyState(planar.model, options);
+  for (Eigen::Index i = 0; i < ref2.force.rows(); ++i) EXPECT_LE(ref2.force.row(i).norm(), 8.0 * (1 + 1e-12));
+}
+
+TEST(TimeIntegrator, RejectsBadOptions) {
+  const HbModel model = dampedLinearChain();
+  TimeOptions options;
+  options.step = -1.0;
+  EXPECT_THROW(integrateToSteadyState(model, options), InputError);
+  options = {};
+  options.theta = 0.2;
+  EXPECT_THROW(integrateToSteadyState(model, options), InputError);
+  options = {};
+  options.restitution = 2.0;
+  EXPECT_THROW(integrateToSteadyState(model, options), InputError);
+}
+
+}  // namespace
+}  // namespace eqhb
