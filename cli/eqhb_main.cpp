@@ -5,6 +5,7 @@
 #include "eqhb/error.h"
 #include "registry.h"
 #include "solve_command.h"
+#include "sweep_command.h"
 #include "time_commands.h"
 
 int main(int argc, char** argv) {
@@ -17,6 +18,9 @@ int main(int argc, char** argv) {
   eqhb::cli::TimeArguments simulate_time, compare_time;
   eqhb::cli::addSimulateCommand(app, simulate_hb, simulate_time);
   eqhb::cli::addCompareCommand(app, compare_hb, compare_time);
+  eqhb::cli::SolveArguments sweep_hb;
+  eqhb::cli::SweepArguments sweep;
+  eqhb::cli::addSweepCommand(app, sweep_hb, sweep);
   CLI11_PARSE(app, argc, argv);
   try {
     if (solvers->parsed()) {
@@ -25,6 +29,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (app.got_subcommand("simulate")) return eqhb::cli::runSimulate(simulate_hb, simulate_time);
+    if (app.got_subcommand("sweep")) return eqhb::cli::runSweep(sweep_hb, sweep);
     if (app.got_subcommand("compare")) return eqhb::cli::runCompare(compare_hb, compare_time);
     return eqhb::cli::runSolve(solve);
   } catch (const eqhb::InputError& e) {

@@ -1,0 +1,24 @@
+// `eqhb sweep`: a frequency-response curve by continuation in ω.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+#include "solve_command.h"
+
+namespace eqhb::cli {
+
+struct SweepArguments {
+  std::optional<double> from, to;  // default: the scene's [sweep]
+  double step = 0.01;
+  bool arclength = false;
+  int max_points = 20000;
+  std::string out;    // CSV file
+  std::string chart;  // PNG/SVG prefix
+};
+
+void addSweepCommand(CLI::App& app, SolveArguments& solve, SweepArguments& sweep);
+int runSweep(const SolveArguments& solve, const SweepArguments& sweep);
+
+}  // namespace eqhb::cli
