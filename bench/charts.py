@@ -1,8 +1,17 @@
 #!/usr/bin/env python3
-"""Charts for eqhb-bench (matplotlib): work-precision (median time vs
-accuracy, one marker per backend) and time per backend, PNG and SVG."""
+"""Charts of the eqhb benchmark (matplotlib, PNG and SVG), from the CSV files
+that eqhb-bench and eqhb-convergence write into one folder:
+  work_precision_SCENE   median time vs error against the time reference
+  performance_profile    Dolan-More profile over every scene/form/system case
+  failure_map_SCENE      success rate of each backend over each grid
+  curve_SCENE_*          frequency-response curves (via cli/plot_curve.py)
+  convergence_*          HB error vs harmonics, reference error vs step
+"""
 import csv
+import glob
 import math
+import os
+import subprocess
 import sys
 from collections import defaultdict
 
@@ -11,51 +20,127 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+HERE = os.path.dirname(os.path.abspath(__file__))
 
-def main(folder):
-    import os
-    if not os.path.exists(f"{folder}/bench.csv"):
-        convergence_charts(folder)
-        return
-    rows = list(csv.DictReader(open(f"{folder}/bench.csv")))
+
+def save(fig, folder, name):
+    fig.tight_layout()
+    for ext in ("png", "svg"):
+        fig.savefig(f"{folder}/{name}.{ext}")
+    plt.close(fig)
+
+
+def number(text):
+    try:
+        value = float(text)
+    except ValueError:
+        return math.nan
+    return value
+
+
+def work_precision(folder, rows):
     by_scene = defaultdict(list)
     for r in rows:
-        by_scene[r["scene"]].append(r)
+        if r["study"] == "scenes":
+            by_scene[r["scene"]].append(r)
     for scene, cases in by_scene.items():
         fig, ax = plt.subplots(figsize=(7, 4.5))
         for solver in sorted({c["solver"] for c in cases}):
-            pts = [(float(c["median_seconds"]), float(c["relative_error_max_abs"]), c)
-                   for c in cases if c["solver"] == solver and c["converged"] == "true"
-                   and not math.isnan(float(c["relative_error_max_abs"]))]
+            pts = [(number(c["median_seconds"]), number(c["error_reference"])) for c in cases
+                   if c["solver"] == solver and c["converged"] == "true"]
+            pts = [p for p in pts if not math.isnan(p[1])]
             if pts:
-                ax.scatter([p[0] for p in pts], [max(p[1], 1e-16) for p in pts], label=solver, alpha=0.8)
-        failed = [c for c in cases if c["converged"] != "true"]
+                ax.scatter([p[0] for p in pts], [max(p[1], 1e-16) for p in pts], label=solver, alpha=0.75)
+        failed = sum(c["converged"] != "true" for c in cases)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("median time per solve [s]")
-        ax.set_ylabel("relative error of max|x| vs highest-H solution")
-        ax.set_title(f"{scene}: work-precision ({len(failed)} of {len(cases)} cases did not converge)")
+        ax.set_ylabel("L2 error of x vs time-domain reference")
+        ax.set_title(f"{scene}: work-precision ({failed} of {len(cases)} cases failed)")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend()
-        fig.tight_layout()
-        for ext in ("png", "svg"):
-            fig.savefig(f"{folder}/work_precision_{scene}.{ext}")
-        plt.close(fig)
-    convergence_charts(folder)
-    print(f"charts written to {folder}")
+        ax.legend(fontsize=7)
+        save(fig, folder, f"work_precision_{scene}")
+
+
+def performance_profile(folder, rows):
+    cases = defaultdict(dict)
+    for r in rows:
+        if r["study"] != "scenes":
+            continue
+        key = (r["scene"], r["form"], r["system"])
+        t = number(r["median_seconds"]) if r["converged"] == "true" else math.inf
+        cases[key][r["solver"]] = t
+    solvers = sorted({s for c in cases.values() for s in c})
+    ratios = defaultdict(list)
+    for times in cases.values():
+        best = min(times.values())
+        for s in solvers:
+            t = times.get(s, math.inf)
+            ratios[s].append(t / best if math.isfinite(best) and math.isfinite(t) else math.inf)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    taus = [1.0 * (1.05 ** i) for i in range(0, 160)]
+    for s in solvers:
+        rs = ratios[s]
+        ax.step(taus, [sum(r <= tau for r in rs) / len(rs) for tau in taus], where="post", label=s)
+    ax.set_xscale("log")
+    ax.set_xlabel("tau (time / best time on the case)")
+    ax.set_ylabel("fraction of cases solved within tau")
+    ax.set_title(f"performance profile over {len(cases)} cases (scene x form x system)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    save(fig, folder, "performance_profile")
+
+
+def failure_maps(folder):
+    path = f"{folder}/failure_maps.csv"
+    if not os.path.exists(path):
+        return
+    rows = list(csv.DictReader(open(path)))
+    for scene in sorted({r["scene"] for r in rows}):
+        grids = [g for g in ("start", "harmonics", "rho", "forcing") if any(r["grid"] == g and r["scene"] == scene for r in rows)]
+        fig, axes = plt.subplots(1, len(grids), figsize=(4 * len(grids), 3.6), squeeze=False)
+        for ax, grid in zip(axes[0], grids):
+            sub = [r for r in rows if r["scene"] == scene and r["grid"] == grid]
+            solvers = sorted({r["solver"] for r in sub})
+            values = []
+            for r in sub:
+                if r["value"] not in values:
+                    values.append(r["value"])
+            matrix = []
+            for s in solvers:
+                line = []
+                for v in values:
+                    cell = [r for r in sub if r["solver"] == s and r["value"] == v]
+                    line.append(sum(r["converged"] == "true" for r in cell) / len(cell) if cell else math.nan)
+                matrix.append(line)
+            ax.imshow(matrix, cmap="RdYlGn", vmin=0, vmax=1, aspect="auto")
+            ax.set_xticks(range(len(values)), values, rotation=45, fontsize=7)
+            ax.set_yticks(range(len(solvers)), solvers, fontsize=7)
+            ax.set_title(f"{grid}", fontsize=9)
+            for i, line in enumerate(matrix):
+                for j, value in enumerate(line):
+                    if not math.isnan(value):
+                        ax.text(j, i, f"{value:.0%}", ha="center", va="center", fontsize=6)
+        fig.suptitle(f"{scene}: success rate (green) / failure (red)")
+        save(fig, folder, f"failure_map_{scene}")
+
+
+def curves(folder):
+    for path in sorted(glob.glob(f"{folder}/curve_*.csv")):
+        prefix = path[:-4]
+        name = os.path.basename(prefix)[len("curve_"):]
+        subprocess.run([sys.executable, os.path.join(HERE, "..", "cli", "plot_curve.py"), path, prefix, name],
+                       check=False)
 
 
 def convergence_charts(folder):
-    """Error of the harmonic balance vs H, and of the reference vs h."""
-    import glob
-    import os
     path = f"{folder}/convergence.csv"
     if not os.path.exists(path):
         return
     rows = [r for r in csv.DictReader(open(path)) if r["converged"] in ("1", "true")]
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for omega in sorted({r["omega"] for r in rows}):
-        pts = [(int(r["harmonics"]), float(r["l2_x2"]), float(r["error_max_abs_x2"])) for r in rows if r["omega"] == omega]
+        pts = [(int(r["harmonics"]), number(r["l2_x2"]), number(r["error_max_abs_x2"])) for r in rows if r["omega"] == omega]
         ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=f"L2 error of x2, w = {omega}")
         ax.loglog([p[0] for p in pts], [max(p[2], 1e-16) for p in pts], "s--", alpha=0.6,
                   label=f"error of max|x2|, w = {omega}")
@@ -64,26 +149,31 @@ def convergence_charts(folder):
     ax.set_title("harmonic balance: error vs number of harmonics")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    for ext in ("png", "svg"):
-        fig.savefig(f"{folder}/convergence_harmonics.{ext}")
-    plt.close(fig)
+    save(fig, folder, "convergence_harmonics")
     files = sorted(glob.glob(f"{folder}/reference_*.csv"))
     if files:
         fig, ax = plt.subplots(figsize=(7, 4.5))
         for f in files:
             rs = list(csv.DictReader(open(f)))
-            ax.loglog([float(r["step"]) for r in rs], [float(r["l2_error_vs_finest"]) for r in rs], "o-",
-                      label=os.path.basename(f)[len("reference_"):-4])
+            ax.loglog([number(r["step"]) for r in rs], [number(r["l2_error_vs_finest"]) for r in rs], "o-",
+                      label="w = " + os.path.basename(f)[len("reference_"):-4])
         ax.set_xlabel("time step h")
         ax.set_ylabel("relative L2 error vs finest step")
-        ax.set_title("time-domain reference: error vs step (w in legend)")
+        ax.set_title("time-domain reference: error vs step")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
-        fig.tight_layout()
-        for ext in ("png", "svg"):
-            fig.savefig(f"{folder}/convergence_step.{ext}")
-        plt.close(fig)
+        save(fig, folder, "convergence_step")
+
+
+def main(folder):
+    if os.path.exists(f"{folder}/bench.csv"):
+        rows = list(csv.DictReader(open(f"{folder}/bench.csv")))
+        work_precision(folder, rows)
+        performance_profile(folder, rows)
+    failure_maps(folder)
+    curves(folder)
+    convergence_charts(folder)
+    print(f"charts written to {folder}")
 
 
 if __name__ == "__main__":

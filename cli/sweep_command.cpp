@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 #include "eqhb/continuation.h"
@@ -27,26 +26,6 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
   cmd->add_option("--chart", w.chart, "Write a chart of the curve: PREFIX.png and PREFIX.svg (matplotlib)");
 }
 
-namespace {
-
-void writeCsv(const std::string& path, const Curve& curve, int dofs) {
-  std::ofstream out(path);
-  if (!out) throw InputError("--out = " + path + ": cannot write the file");
-  out << "omega,converged,termination,iterations,residual_evaluations,jacobian_evaluations,seconds";
-  for (int i = 1; i <= dofs; ++i) out << ",max_abs_x" << i;
-  for (int i = 1; i <= dofs; ++i) out << ",first_harmonic_x" << i;
-  out << ",energy,fold\n";
-  out.precision(10);
-  for (const auto& p : curve.points) {
-    out << p.omega << "," << (p.converged ? "true" : "false") << "," << p.termination << "," << p.iterations << ","
-        << p.residual_evaluations << "," << p.jacobian_evaluations << "," << p.seconds;
-    for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.max_abs[i] : NAN);
-    for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.first_harmonic[i] : NAN);
-    out << "," << (p.converged ? p.energy : NAN) << "," << (p.fold ? "true" : "false") << "\n";
-  }
-}
-
-}  // namespace
 
 int runSweep(const SolveArguments& s, const SweepArguments& w) {
   const Scene scene = loadSceneWith(s.scene);
@@ -100,10 +79,10 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   } else if (w.arclength) {
     std::cout << "  no fold\n";
   }
-  if (!w.out.empty()) writeCsv(w.out, curve, dofs);
+  if (!w.out.empty()) writeCurveCsv(w.out, curve, dofs);
   if (!w.chart.empty()) {
     const std::string csv = w.out.empty() ? w.chart + ".csv" : w.out;
-    if (w.out.empty()) writeCsv(csv, curve, dofs);
+    if (w.out.empty()) writeCurveCsv(csv, curve, dofs);
     const std::string command = std::string("/usr/bin/python3 ") + EQHB_PLOT_CURVE + " '" + csv + "' '" + w.chart +
                                 "' '" + scene.name + "'";
     if (std::system(command.c_str()) != 0)

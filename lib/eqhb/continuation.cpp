@@ -1,6 +1,7 @@
 #include "eqhb/continuation.h"
 
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <memory>
 
@@ -51,6 +52,23 @@ bool trySetOmega(HbSystem& system, double omega, std::string* why) {
 }
 
 }  // namespace
+
+void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path + ": cannot write the curve file");
+  out << "omega,converged,termination,iterations,residual_evaluations,jacobian_evaluations,seconds";
+  for (int i = 1; i <= dofs; ++i) out << ",max_abs_x" << i;
+  for (int i = 1; i <= dofs; ++i) out << ",first_harmonic_x" << i;
+  out << ",energy,fold\n";
+  out.precision(10);
+  for (const auto& p : curve.points) {
+    out << p.omega << "," << (p.converged ? "true" : "false") << "," << p.termination << "," << p.iterations << ","
+        << p.residual_evaluations << "," << p.jacobian_evaluations << "," << p.seconds;
+    for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.max_abs[i] : NAN);
+    for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.first_harmonic[i] : NAN);
+    out << "," << (p.converged ? p.energy : NAN) << "," << (p.fold ? "true" : "false") << "\n";
+  }
+}
 
 CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full) {
   CurvePoint p;

@@ -66,6 +66,11 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
 Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
                      const ContinuationOptions& options, const Progress& progress = nullptr);
 
+// The curve as CSV: ω, converged, termination, counts, time, max|x_i|,
+// first-harmonic amplitude of x_i, energy, fold. Throws InputError if the
+// file cannot be written.
+void writeCurveCsv(const std::string& path, const Curve& curve, int dofs);
+
 // Physical summary of a solution (max|x|, first harmonic, energy).
 CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full);
 
