@@ -2,12 +2,14 @@
 # Set-up and entry point for a fresh Debian 12 machine.
 #   ./run.sh bench [--quick]   install, build, run the benchmark over all scenes -> results/
 #   ./run.sh test              install, build, run the test suite (ctest)
+#   ./run.sh perf-check        short benchmark compared with bench/baseline.json (CI)
+#   ./run.sh baseline          re-record bench/baseline.json (on purpose only)
 set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(cmake g++ make pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libnlopt-dev
   coinor-libipopt-dev libsuitesparse-dev libfftw3-dev libbenchmark-dev libgtest-dev
-  libcminpack-dev libcli11-dev nlohmann-json3-dev libtoml11-dev python3-matplotlib)
+  libcminpack-dev libcli11-dev nlohmann-json3-dev libtoml11-dev python3 python3-matplotlib)
 
 install_packages() {
   local missing=()
@@ -38,15 +40,31 @@ case "${1:-}" in
     install_packages
     build
     mkdir -p results
-    ./build/eqhb-bench --out results "$@" | tee results/summary.txt
     quick=""
     for a in "$@"; do [ "$a" = "--quick" ] && quick="--quick"; done
+    ./build/eqhb-bench --out results "$@" | tee results/summary.txt
     ./build/eqhb-convergence --out results $quick | tee results/convergence.txt
+    ./build/eqhb-micro --benchmark_min_time=0.02 --benchmark_out=results/micro.json \
+      --benchmark_out_format=json >/dev/null
+    /usr/bin/python3 bench/micro_slopes.py results/micro.json results/micro.md
     /usr/bin/python3 bench/charts.py results
-    echo "report: results/report.md"
+    echo "report: results/report.md (and micro.md, convergence.txt, charts *.png/*.svg)"
+    ;;
+  perf-check)
+    install_packages
+    build
+    ./build/eqhb-bench --quick --out build/perf >/dev/null
+    /usr/bin/python3 bench/perf_check.py bench/baseline.json build/perf/bench.json
+    ;;
+  baseline)
+    install_packages
+    build
+    ./build/eqhb-bench --quick --out build/perf >/dev/null
+    cp build/perf/bench.json bench/baseline.json
+    echo "bench/baseline.json re-recorded: commit it with the reason"
     ;;
   *)
-    echo "usage: $0 test | bench [--quick]" >&2
+    echo "usage: $0 test | bench [--quick] | perf-check | baseline" >&2
     exit 2
     ;;
 esac
