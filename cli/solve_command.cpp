@@ -52,14 +52,7 @@ nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd&
 
 }  // namespace
 
-HbRun solveHarmonicBalance(const SolveArguments& a) {
-  HbRun run;
-  run.scene = loadSceneWith(a.scene);
-  const HbModel& model = run.scene.model;
-  if (a.full) run.system = std::make_unique<FullSystem>(model);
-  else run.system = std::make_unique<CondensedSystem>(model);
-  HbSystem* system = run.system.get();
-
+SolverOptions solverOptions(const SolveArguments& a) {
   SolverOptions options;
   options.residual_tolerance = a.tolerance;
   options.max_iterations = a.max_iterations;
@@ -72,6 +65,18 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
   }
   std::string why;
   if (!options.isValid(&why)) throw InputError(why);
+  return options;
+}
+
+HbRun solveHarmonicBalance(const SolveArguments& a) {
+  HbRun run;
+  run.scene = loadSceneWith(a.scene);
+  const HbModel& model = run.scene.model;
+  if (a.full) run.system = std::make_unique<FullSystem>(model);
+  else run.system = std::make_unique<CondensedSystem>(model);
+  HbSystem* system = run.system.get();
+
+  const SolverOptions options = solverOptions(a);
   auto solver = makeSolver(a.solver);
 
   const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system->size());

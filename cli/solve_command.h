@@ -37,6 +37,8 @@ struct HbRun {
   std::vector<double> times;  // sorted
 };
 HbRun solveHarmonicBalance(const SolveArguments& args);
+// The common solver options and the --option pass-through; throws InputError.
+SolverOptions solverOptions(const SolveArguments& args);
 
 void addSolveCommand(CLI::App& app, SolveArguments& args);
 // Solver options and the backend's pass-through options from the flags;

@@ -38,16 +38,7 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   options.max_step = std::max(1.0, w.step);
   options.max_points = w.max_points;
   options.condensed = !s.full;
-  SolverOptions solver_options;
-  solver_options.residual_tolerance = s.tolerance;
-  solver_options.max_iterations = s.max_iterations;
-  solver_options.max_evaluations = s.max_evaluations;
-  solver_options.time_limit = s.time_limit;
-  for (const auto& kv : s.backend_options) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) throwInputError("--option", kv, "must be NAME=VALUE");
-    solver_options.backend[kv.substr(0, eq)] = kv.substr(eq + 1);
-  }
+  const SolverOptions solver_options = solverOptions(s);
   auto solver = makeSolver(s.solver);
   const int dofs = scene.model.structure.dofs();
   const bool terminal = isatty(STDERR_FILENO);
