@@ -138,7 +138,7 @@ Case runCase(const std::string& study, const fs::path& path, const std::vector<s
   c.residual_evaluations = r.residual_evaluations;
   c.jacobian_evaluations = r.jacobian_evaluations;
   c.residual_norm = r.final_norm;
-  c.median_seconds = median(times);
+  c.median_seconds = r.termination == Termination::kInvalidOptions ? NAN : median(times);
   if (c.converged && truth) {
     const Eigen::VectorXd full = system->fullCoefficients(r.solution);
     if (truth->has_reference) c.error_reference = worstDisplacementError(compareWithReference(scene.model, full, truth->reference));
