@@ -1,6 +1,7 @@
 #include "failure_maps.h"
 
 #include <iostream>
+#include <memory>
 #include <random>
 
 #include "eqhb/error.h"
@@ -12,8 +13,13 @@ namespace eqhb::bench {
 
 namespace {
 
+std::unique_ptr<HbSystem> makeSystem(const HbModel& model, bool condensed) {
+  if (condensed) return std::make_unique<CondensedSystem>(model);
+  return std::make_unique<FullSystem>(model);
+}
+
 FailureRow solveOnce(const Scene& scene, const std::string& grid, const std::string& value, int seed,
-                     const std::string& solver_name, const Eigen::VectorXd* start) {
+                     const std::string& solver_name, const Eigen::VectorXd* start, bool condensed) {
   FailureRow row;
   row.scene = scene.name;
   row.grid = grid;
@@ -21,11 +27,11 @@ FailureRow solveOnce(const Scene& scene, const std::string& grid, const std::str
   row.value = value;
   row.seed = seed;
   try {
-    CondensedSystem system(scene.model);
+    auto system = makeSystem(scene.model, condensed);
     SolverOptions options;
     options.time_limit = 1.0;
-    const Eigen::VectorXd z0 = start ? *start : Eigen::VectorXd::Zero(system.size());
-    const SolverResult r = makeSolver(solver_name)->solve(system, z0, options);
+    const Eigen::VectorXd z0 = start ? *start : Eigen::VectorXd::Zero(system->size());
+    const SolverResult r = makeSolver(solver_name)->solve(*system, z0, options);
     row.converged = r.converged();
     row.termination = terminationName(r.termination);
     row.iterations = r.iterations;
@@ -42,13 +48,20 @@ std::vector<FailureRow> failureMaps(const std::filesystem::path& path, const std
                                     bool quick) {
   std::vector<FailureRow> rows;
   const Scene base = loadScene(path.string());
-  // The reference solution for perturbed starts.
-  CondensedSystem system(base.model);
-  const SolverResult solved = makeSolver("dogleg")->solve(system, Eigen::VectorXd::Zero(system.size()), {});
+  // The system the own dogleg solves from a cold start (condensed if it
+  // can), and its solution as the centre of the perturbed starts.
+  bool condensed = true;
+  SolverResult solved;
+  for (bool c : {true, false}) {
+    auto system = makeSystem(base.model, c);
+    solved = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
+    condensed = c;
+    if (solved.converged()) break;
+  }
   const std::vector<double> sigmas = quick ? std::vector<double>{0.1, 1.0} : std::vector<double>{0.01, 0.1, 0.3, 1.0, 3.0};
   const int seeds = quick ? 2 : 5;
   for (const auto& solver : solvers) {
-    rows.push_back(solveOnce(base, "start", "cold", 0, solver, nullptr));
+    rows.push_back(solveOnce(base, "start", "cold", 0, solver, nullptr, condensed));
     if (solved.converged()) {
       const double rms = solved.solution.norm() / std::sqrt(static_cast<double>(solved.solution.size()));
       for (double sigma : sigmas)
@@ -57,14 +70,14 @@ std::vector<FailureRow> failureMaps(const std::filesystem::path& path, const std
           std::normal_distribution<double> normal;
           Eigen::VectorXd z0 = solved.solution;
           for (Eigen::Index i = 0; i < z0.size(); ++i) z0[i] += sigma * rms * normal(rng);
-          rows.push_back(solveOnce(base, "start", formatNumber(sigma), seed, solver, &z0));
+          rows.push_back(solveOnce(base, "start", formatNumber(sigma), seed, solver, &z0, condensed));
         }
     }
     for (int h : quick ? std::vector<int>{5, 40} : std::vector<int>{5, 10, 20, 40, 80}) {
       const int samples = std::max(base.model.samples, 16 * h);
       const Scene s = loadScene(path.string(), {"harmonic_balance.harmonics=" + std::to_string(h),
                                                 "harmonic_balance.samples=" + std::to_string(samples)});
-      rows.push_back(solveOnce(s, "harmonics", std::to_string(h), 0, solver, nullptr));
+      rows.push_back(solveOnce(s, "harmonics", std::to_string(h), 0, solver, nullptr, condensed));
     }
     const bool has_rho = !base.model.laws.empty() && base.model.laws[0].law->type() != "cubic";
     if (has_rho)
@@ -72,7 +85,7 @@ std::vector<FailureRow> failureMaps(const std::filesystem::path& path, const std
         std::vector<std::string> set;
         for (size_t l = 0; l < base.model.laws.size(); ++l)
           if (base.model.laws[l].law->type() != "cubic") set.push_back("law[" + std::to_string(l) + "].rho=" + formatNumber(rho));
-        rows.push_back(solveOnce(loadScene(path.string(), set), "rho", formatNumber(rho), 0, solver, nullptr));
+        rows.push_back(solveOnce(loadScene(path.string(), set), "rho", formatNumber(rho), 0, solver, nullptr, condensed));
       }
     for (double scale : quick ? std::vector<double>{0.5, 2.0} : std::vector<double>{0.25, 0.5, 1.0, 2.0, 4.0}) {
       std::vector<std::string> set;
@@ -82,9 +95,10 @@ std::vector<FailureRow> failureMaps(const std::filesystem::path& path, const std
         set.push_back(f + "cos=" + formatNumber(scale * load.cos_amplitude));
         set.push_back(f + "sin=" + formatNumber(scale * load.sin_amplitude));
       }
-      rows.push_back(solveOnce(loadScene(path.string(), set), "forcing", formatNumber(scale), 0, solver, nullptr));
+      rows.push_back(solveOnce(loadScene(path.string(), set), "forcing", formatNumber(scale), 0, solver, nullptr, condensed));
     }
-    std::cerr << "  failure maps " << base.name << " " << solver << " done\n";
+    std::cerr << "  failure maps " << base.name << " (" << (condensed ? "condensed" : "full") << ") " << solver
+              << " done\n";
   }
   return rows;
 }

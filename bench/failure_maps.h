@@ -5,6 +5,8 @@
 //   harmonics  H from 5 to 80, cold start
 //   rho        the law scaling ρ from 0.01 to 100, cold start
 //   forcing    the loads scaled by 0.25 .. 4, cold start
+// on the condensed system, or the full one where the own dogleg cannot
+// solve the condensed one from a cold start (contact).
 #pragma once
 
 #include <filesystem>
