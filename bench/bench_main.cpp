@@ -114,8 +114,7 @@ Case runCase(const std::string& study, const fs::path& path, const std::vector<s
   c.harmonics = scene.model.basis.count();
   std::unique_ptr<HbSystem> system;
   try {
-    if (condensed) system = std::make_unique<CondensedSystem>(scene.model);
-    else system = std::make_unique<FullSystem>(scene.model);
+    system = makeHbSystem(scene.model, condensed);
   } catch (const std::exception& e) {
     c.termination = "not_applicable";
     return c;

@@ -13,11 +13,6 @@ namespace eqhb::bench {
 
 namespace {
 
-std::unique_ptr<HbSystem> makeSystem(const HbModel& model, bool condensed) {
-  if (condensed) return std::make_unique<CondensedSystem>(model);
-  return std::make_unique<FullSystem>(model);
-}
-
 FailureRow solveOnce(const Scene& scene, const std::string& grid, const std::string& value, int seed,
                      const std::string& solver_name, const Eigen::VectorXd* start, bool condensed) {
   FailureRow row;
@@ -27,7 +22,7 @@ FailureRow solveOnce(const Scene& scene, const std::string& grid, const std::str
   row.value = value;
   row.seed = seed;
   try {
-    auto system = makeSystem(scene.model, condensed);
+    auto system = makeHbSystem(scene.model, condensed);
     SolverOptions options;
     options.time_limit = 1.0;
     const Eigen::VectorXd z0 = start ? *start : Eigen::VectorXd::Zero(system->size());
@@ -53,7 +48,7 @@ std::vector<FailureRow> failureMaps(const std::filesystem::path& path, const std
   bool condensed = true;
   SolverResult solved;
   for (bool c : {true, false}) {
-    auto system = makeSystem(base.model, c);
+    auto system = makeHbSystem(base.model, c);
     solved = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
     condensed = c;
     if (solved.converged()) break;

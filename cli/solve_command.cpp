@@ -72,8 +72,7 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
   HbRun run;
   run.scene = loadSceneWith(a.scene);
   const HbModel& model = run.scene.model;
-  if (a.full) run.system = std::make_unique<FullSystem>(model);
-  else run.system = std::make_unique<CondensedSystem>(model);
+  run.system = makeHbSystem(model, !a.full);
   HbSystem* system = run.system.get();
 
   const SolverOptions options = solverOptions(a);

@@ -24,11 +24,6 @@ void ContinuationOptions::validate() const {
 
 namespace {
 
-std::unique_ptr<HbSystem> makeSystem(const HbModel& model, bool condensed) {
-  if (condensed) return std::make_unique<CondensedSystem>(model);
-  return std::make_unique<FullSystem>(model);
-}
-
 void fillCounts(CurvePoint& p, const SolverResult& r) {
   p.converged = r.converged();
   p.termination = terminationName(r.termination);
@@ -108,7 +103,7 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   Curve curve;
   HbModel m = model;
   m.omega = options.from;
-  auto system = makeSystem(m, options.condensed);
+  auto system = makeHbSystem(m, options.condensed);
   const double direction = options.to > options.from ? 1.0 : -1.0;
   const int grid = static_cast<int>(std::floor(std::abs(options.to - options.from) / options.step + 1e-9));
   Eigen::VectorXd z = Eigen::VectorXd::Zero(system->size());
@@ -254,7 +249,7 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
   Curve curve;
   HbModel m = model;
   m.omega = options.from;
-  auto system = makeSystem(m, options.condensed);
+  auto system = makeHbSystem(m, options.condensed);
   const int n = system->size();
   const double direction = options.to > options.from ? 1.0 : -1.0;
   const double lo = std::min(options.from, options.to), hi = std::max(options.from, options.to);
@@ -372,7 +367,7 @@ SolverResult solveByHarmonicContinuation(const HbModel& model, Solver& solver, c
   HbModel seed_model;
   SolverResult result;
   while (true) {
-    auto system = makeSystem(current, condensed);
+    auto system = makeHbSystem(current, condensed);
     Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system->size());
     if (seed.size()) z0 = system->fromFullCoefficients(transferCoefficients(seed_model, current, seed));
     result = solver.solve(*system, z0, options);

@@ -241,4 +241,9 @@ Eigen::VectorXd CondensedSystem::fromFullCoefficients(const Eigen::VectorXd& ful
   return full.tail(components_ * nb_);
 }
 
+std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed) {
+  if (condensed) return std::make_unique<CondensedSystem>(model);
+  return std::make_unique<FullSystem>(model);
+}
+
 }  // namespace eqhb

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <vector>
 
 #include "eqhb/hb_model.h"
@@ -98,5 +99,8 @@ class CondensedSystem : public HbSystem {
   std::vector<std::vector<Eigen::MatrixXd>> coupling_;
   std::vector<Eigen::VectorXd> offset_;  // c per component's DOF (nb)
 };
+
+// The condensed or the full system of a model (throws as their constructors).
+std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed);
 
 }  // namespace eqhb
