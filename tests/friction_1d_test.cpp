@@ -52,6 +52,7 @@ TEST(Friction1d, EveryFormAndBackendAgreesOnTheExactSolution) {
   ASSERT_TRUE(reference.result.converged());
   for (const std::string solver : {"dogleg", "dogleg-newton", "minpack"})
     for (const std::string form : {"minmax", "projection"}) {
+      if (!test::registered(solver)) continue;
       const Solved s = solve(solver, true, {"law[0].form=" + form});
       ASSERT_TRUE(s.result.converged()) << solver << " " << form << ": " << s.result.summary();
       EXPECT_LT((s.full - reference.full).norm(), 1e-8 * reference.full.norm()) << solver << " " << form;
@@ -77,7 +78,8 @@ TEST(Friction1d, EveryBackendSolvesOrSaysItDidNot) {
         EXPECT_NE(s.result.termination, Termination::kConverged) << label;
       }
     }
-  EXPECT_GE(converged, 6);  // own dogleg, Newton-dogleg and MINPACK on both systems at least
+  // Own dogleg, Newton-dogleg (and MINPACK when built) on both systems at least.
+  EXPECT_GE(converged, test::registered("minpack") ? 6 : 4);
 }
 
 TEST(Friction1d, SolutionObeysCoulombWhereItSticksAndSlides) {

@@ -7,8 +7,12 @@
 #include "eqhb/coulomb_1d.h"
 #include "eqhb/hb_model.h"
 #include "eqhb/square_system.h"
+#include "registry.h"
 
 namespace eqhb::test {
+
+// Whether a backend was compiled in (CMake options EQHB_WITH_*).
+inline bool registered(const std::string& name);
 
 inline std::string problem(const std::string& file) {
   return std::string(EQHB_PROBLEMS_DIR) + "/" + file;
@@ -46,6 +50,12 @@ inline HbModel chainWithFriction(double mu_n, CoulombForm form, int harmonics, d
   model.samples = samples;
   model.omega = omega;
   return model;
+}
+
+inline bool registered(const std::string& name) {
+  for (const auto& entry : registeredSolvers())
+    if (entry.name == name) return true;
+  return false;
 }
 
 }  // namespace eqhb::test
