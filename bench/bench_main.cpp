@@ -255,6 +255,32 @@ int main(int argc, char** argv) {
                     << " " << c.median_seconds << " s\n";
           cases.push_back(c);
         }
+    // Variants of the default formulation: ρ an order of magnitude off its
+    // default, and twice the harmonics.
+    if (quick) continue;
+    const std::string default_form = forms[0].empty() ? "-" : forms[0];
+    const bool has_rho = !base.model.laws.empty() && base.model.laws[0].law->type() != "cubic";
+    std::vector<std::pair<std::string, std::vector<std::string>>> variants;
+    if (has_rho)
+      for (const char* rho : {"0.1", "10"}) {
+        std::vector<std::string> set;
+        for (size_t l = 0; l < base.model.laws.size(); ++l)
+          if (base.model.laws[l].law->type() != "cubic") set.push_back("law[" + std::to_string(l) + "].rho=" + rho);
+        variants.push_back({default_form + ", rho=" + rho, set});
+      }
+    const int h2 = 2 * base.model.basis.count();
+    variants.push_back({default_form, {"harmonic_balance.harmonics=" + std::to_string(h2),
+                                       "harmonic_balance.samples=" + std::to_string(std::max(base.model.samples, 16 * h2))}});
+    for (const auto& [label, set] : variants)
+      for (bool condensed : {true, false})
+        for (const std::string name : {"dogleg", "dogleg-newton", "minpack", "ipopt-ls"}) {
+          if (std::find(all_backends.begin(), all_backends.end(), name) == all_backends.end()) continue;
+          Case c = runCase("variants", path, set, name, condensed, repeats, 2.0, &truth);
+          c.form = label;
+          std::cerr << "  " << c.scene << " H=" << c.harmonics << " " << c.form << " " << c.system << " " << name
+                    << ": " << c.termination << "\n";
+          cases.push_back(c);
+        }
   }
 
   for (Case& c : cases)
@@ -407,6 +433,8 @@ int main(int argc, char** argv) {
          << " is used as reference even if it has not met the 1e-7 periodicity tolerance.\n"
          << "\n## Scenes, formulations and backends\n\n" << table(cases, "scenes")
          << "\n![performance profile](performance_profile.png)\n"
+         << "\n## Variants: rho and harmonics\n\nThe scene's first form with rho = 0.1 and 10, and with twice the "
+         << "harmonics, on both systems.\n\n" << table(cases, "variants")
          << "\n## Failure maps\n\nSuccess over the grids of initial guesses, harmonics, rho and forcing "
          << "(failure_maps.csv, charts failure_map_SCENE.png):\n\n" << success.str()
          << "\n## Frequency-response curves\n\n| scene | sequential points | failed | s | arclength points | folds | arclength stop | s |\n"
