@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "eqhb/continuation.h"
 #include "eqhb/error.h"
 #include "eqhb/hb_solution.h"
 #include "eqhb/hb_systems.h"
@@ -23,6 +24,8 @@ void addSolveCommand(CLI::App& app, SolveArguments& a) {
   cmd->add_flag("--trajectory", a.trajectory, "With --json: add the samples of x and of the law forces over one period");
   cmd->add_option("--repeat", a.repeat, "Repeat the solve and report the median time")
       ->check(CLI::Range(1, 100000));
+  cmd->add_option("--from-harmonics", a.from_harmonics,
+                  "Start from the solution at H0, 2H0, ... (continuation in H: for large H where a cold start fails)");
 }
 
 void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
@@ -78,7 +81,24 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
   const SolverOptions options = solverOptions(a);
   auto solver = makeSolver(a.solver);
 
-  const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system->size());
+  Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system->size());
+  if (a.from_harmonics) {
+    // Seed: solve at H₀, 2H₀, ... below the target H, each from the last.
+    const int target = model.basis.count();
+    if (*a.from_harmonics < 1 || *a.from_harmonics >= target)
+      throwInputError("--from-harmonics", std::to_string(*a.from_harmonics),
+                      "must be >= 1 and below --harmonics (" + std::to_string(target) + ")");
+    int seed_harmonics = *a.from_harmonics;
+    while (2 * seed_harmonics < target) seed_harmonics *= 2;
+    HbModel seed_model = model;
+    seed_model.basis = HarmonicSet(model.basis.kind(), seed_harmonics);
+    Eigen::VectorXd seed;
+    const SolverResult r = solveByHarmonicContinuation(seed_model, *solver, options, *a.from_harmonics, !a.full, &seed);
+    if (!r.converged())
+      std::cerr << "eqhb: warning: the seed at H = " << seed_harmonics << " did not converge ("
+                << terminationName(r.termination) << "); starting from its last iterate\n";
+    z0 = system->fromFullCoefficients(transferCoefficients(seed_model, model, seed));
+  }
   for (int i = 0; i < a.repeat; ++i) {
     run.result = solver->solve(*system, z0, options);
     if (run.result.termination == Termination::kInvalidOptions)

@@ -26,6 +26,7 @@ struct SolveArguments {
   int max_evaluations = 10000;
   double time_limit = 0.0;
   int repeat = 1;
+  std::optional<int> from_harmonics;  // seed by continuation in H from this H₀
 };
 
 // One harmonic-balance solve (repeated --repeat times) and what it used.
