@@ -20,7 +20,8 @@ TEST(PowellDogleg, RankOneUpdateKeepsTheFactorisationExact) {
   Eigen::VectorXd qtf = q.transpose() * g;
   const Eigen::VectorXd u = Eigen::VectorXd::Random(n), v = Eigen::VectorXd::Random(n);
   const Eigen::MatrixXd q_before = q;
-  rankOneUpdate(q, r, qtf, u, v);
+  Eigen::VectorXd u_work = u;
+  rankOneUpdate(q, r, qtf, u_work, v);
   // Q⁺R⁺ = Q (R + u vᵀ) = J + (Q u) vᵀ
   EXPECT_LT((q * r - (j + (q_before * u) * v.transpose())).norm(), 1e-12);
   EXPECT_LT((q.transpose() * q - Eigen::MatrixXd::Identity(n, n)).norm(), 1e-12);

@@ -79,12 +79,12 @@ std::string PowellDogleg::description() const {
              : "own Powell dogleg with the weak Jacobian at every iterate (Newton-dogleg)";
 }
 
-Eigen::VectorXd doglegStep(const Eigen::MatrixXd& r, const Eigen::VectorXd& diag,
-                           const Eigen::VectorXd& qtf, double radius) {
+void doglegStep(const Eigen::MatrixXd& r, const Eigen::VectorXd& diag, const Eigen::VectorXd& qtf,
+                double radius, DoglegWorkspace& w, Eigen::VectorXd& step) {
   const Eigen::Index n = qtf.size();
   // Gauss–Newton step: R p = −qtf; a zero pivot is replaced by a tiny
   // multiple of its column so a singular R still yields a finite direction.
-  Eigen::VectorXd gauss_newton(n);
+  Eigen::VectorXd& gauss_newton = w.gauss_newton;
   for (Eigen::Index j = n - 1; j >= 0; --j) {
     double sum = -qtf[j];
     for (Eigen::Index i = j + 1; i < n; ++i) sum -= r(j, i) * gauss_newton[i];
@@ -95,34 +95,54 @@ Eigen::VectorXd doglegStep(const Eigen::MatrixXd& r, const Eigen::VectorXd& diag
     }
     gauss_newton[j] = sum / pivot;
   }
-  const Eigen::VectorXd y_gn = diag.cwiseProduct(gauss_newton);
-  const double gn_norm = y_gn.norm();
-  if (gn_norm <= radius) return gauss_newton;
+  w.scaled_newton = diag.cwiseProduct(gauss_newton);
+  const double gn_norm = w.scaled_newton.norm();
+  if (gn_norm <= radius) {
+    step = gauss_newton;
+    return;
+  }
 
   // Steepest descent of ½‖qtf + R p‖² in scaled variables: −D⁻¹ Rᵀ qtf.
-  const Eigen::VectorXd gradient = (r.transpose() * qtf).cwiseQuotient(diag);
-  const double gradient_norm = gradient.norm();
-  if (gradient_norm == 0.0) return gauss_newton * (radius / gn_norm);
-  const Eigen::VectorXd direction = -(gradient / gradient_norm);  // scaled, unit
-  const double curvature = (r * direction.cwiseQuotient(diag)).norm();
+  w.gradient.noalias() = r.transpose() * qtf;
+  w.gradient.array() /= diag.array();
+  const double gradient_norm = w.gradient.norm();
+  if (gradient_norm == 0.0) {
+    step = gauss_newton * (radius / gn_norm);
+    return;
+  }
+  w.direction = -(w.gradient / gradient_norm);  // scaled, unit
+  w.unscaled = w.direction.cwiseQuotient(diag);
+  w.image.noalias() = r * w.unscaled;
+  const double curvature = w.image.norm();
   const double cauchy_length =
       curvature > 0.0 ? gradient_norm / (curvature * curvature) : std::numeric_limits<double>::infinity();
-  if (cauchy_length >= radius) return (radius * direction).cwiseQuotient(diag);
+  if (cauchy_length >= radius) {
+    step = (radius * w.direction).cwiseQuotient(diag);
+    return;
+  }
 
   // Walk from the Cauchy point towards Gauss–Newton until ‖y‖ = radius:
   // ‖y_c + τ d‖² = radius², τ in (0, 1).
-  const Eigen::VectorXd y_c = cauchy_length * direction;
-  const Eigen::VectorXd d = y_gn - y_c;
-  const double a = d.squaredNorm();
-  const double b = y_c.dot(d);
-  const double c = y_c.squaredNorm() - radius * radius;  // < 0
+  w.cauchy = cauchy_length * w.direction;
+  w.difference = w.scaled_newton - w.cauchy;
+  const double a = w.difference.squaredNorm();
+  const double b = w.cauchy.dot(w.difference);
+  const double c = w.cauchy.squaredNorm() - radius * radius;  // < 0
   const double root = std::sqrt(b * b - a * c);
   const double tau = b > 0.0 ? -c / (b + root) : (root - b) / a;
-  return (y_c + tau * d).cwiseQuotient(diag);
+  step = (w.cauchy + tau * w.difference).cwiseQuotient(diag);
+}
+
+Eigen::VectorXd doglegStep(const Eigen::MatrixXd& r, const Eigen::VectorXd& diag,
+                           const Eigen::VectorXd& qtf, double radius) {
+  DoglegWorkspace workspace(qtf.size());
+  Eigen::VectorXd step(qtf.size());
+  doglegStep(r, diag, qtf, radius, workspace, step);
+  return step;
 }
 
 void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
-                   Eigen::VectorXd u, const Eigen::VectorXd& v) {
+                   Eigen::VectorXd& u, const Eigen::VectorXd& v) {
   const Eigen::Index n = r.rows();
   // 1. Rotate u onto e₁ from the bottom up; R becomes upper Hessenberg.
   for (Eigen::Index i = n - 1; i > 0; --i) {
@@ -161,7 +181,9 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     return;
   }
   const Eigen::Index n = system.size();
-  Eigen::VectorXd z = z0, g(n), trial(n), g_trial(n), step(n);
+  // Every vector of the iteration is made here, once.
+  Eigen::VectorXd z = z0, g(n), trial(n), g_trial(n), step(n), model_residual(n), qt_trial(n), u(n), v(n);
+  DoglegWorkspace workspace(n);
   Eigen::MatrixXd jacobian(n, n), q(n, n), r(n, n);
   Eigen::VectorXd diag = Eigen::VectorXd::Ones(n), qtf(n);
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(n, n);
@@ -213,7 +235,7 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
       if (result.iterations >= options.max_iterations)
         return finish(Termination::kIterationLimit, 6, "iteration limit");
       ++result.iterations;
-      step = doglegStep(r, diag, qtf, radius);
+      doglegStep(r, diag, qtf, radius, workspace, step);
       const double step_norm = diag.cwiseProduct(step).norm();
       // Until a first step succeeds, the radius never exceeds the step taken
       // (MINPACK's iter == 1 rule).
@@ -224,7 +246,8 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
         return finish(Termination::kEvaluationFailed, -1, "residual evaluation failed");
       const double trial_norm = g_trial.norm();
       const double actual = trial_norm < g_norm ? 1.0 - std::pow(trial_norm / g_norm, 2) : -1.0;
-      const Eigen::VectorXd model_residual = qtf + r * step;  // Qᵀ(g + J p)
+      model_residual.noalias() = r * step;  // Qᵀ(g + J p) = qtf + R p
+      model_residual += qtf;
       const double model_norm = model_residual.norm();
       const double predicted = model_norm < g_norm ? 1.0 - std::pow(model_norm / g_norm, 2) : 0.0;
       const double ratio = predicted > 0.0 ? actual / predicted : 0.0;
@@ -278,9 +301,9 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
 
       // Broyden update of Q R: J⁺ = J + (g⁺ − g − J p)(D²p)ᵀ / ‖Dp‖², in
       // the rotated frame Rᵀ-side u = (Qᵀg⁺ − Qᵀg − R p)/‖Dp‖.
-      const Eigen::VectorXd qt_trial = q.transpose() * g_trial;
-      const Eigen::VectorXd u = (qt_trial - model_residual) / step_norm;
-      const Eigen::VectorXd v = diag.cwiseProduct(diag.cwiseProduct(step)) / step_norm;
+      qt_trial.noalias() = q.transpose() * g_trial;
+      u = (qt_trial - model_residual) / step_norm;
+      v = diag.cwiseProduct(diag.cwiseProduct(step)) / step_norm;
       if (accepted) qtf = qt_trial;
       rankOneUpdate(q, r, qtf, u, v);
       fresh_jacobian = false;

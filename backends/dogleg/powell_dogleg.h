@@ -35,14 +35,25 @@ class PowellDogleg : public Solver {
   JacobianPolicy policy_;
 };
 
+// Work vectors of doglegStep, sized once per problem.
+struct DoglegWorkspace {
+  explicit DoglegWorkspace(Eigen::Index n)
+      : gauss_newton(n), scaled_newton(n), gradient(n), direction(n), unscaled(n), image(n), cauchy(n),
+        difference(n) {}
+  Eigen::VectorXd gauss_newton, scaled_newton, gradient, direction, unscaled, image, cauchy, difference;
+};
+
 // The dogleg step in scaled variables y = D p for the model ‖qtf + R p‖
-// (J = Q R, qtf = Qᵀ g) inside ‖D p‖ <= radius. Exposed for testing.
+// (J = Q R, qtf = Qᵀ g) inside ‖D p‖ <= radius, into `step` (no allocation).
+void doglegStep(const Eigen::MatrixXd& r, const Eigen::VectorXd& diag, const Eigen::VectorXd& qtf,
+                double radius, DoglegWorkspace& workspace, Eigen::VectorXd& step);
+// The same, allocating (tests).
 Eigen::VectorXd doglegStep(const Eigen::MatrixXd& r, const Eigen::VectorXd& diag,
                            const Eigen::VectorXd& qtf, double radius);
 
 // Re-triangularises Q R + u vᵀ in place by Givens rotations (O(n²)),
-// rotating qtf alongside so that it stays Qᵀ g. Exposed for testing.
+// rotating qtf alongside so that it stays Qᵀ g; u is overwritten.
 void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
-                   Eigen::VectorXd u, const Eigen::VectorXd& v);
+                   Eigen::VectorXd& u, const Eigen::VectorXd& v);
 
 }  // namespace eqhb
