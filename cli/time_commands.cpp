@@ -27,16 +27,14 @@ nlohmann::json referenceJson(const HbModel& model, const TimeReference& ref) {
                         {"steps_per_period", ref.steps_per_period},
                         {"periodicity_error", ref.periodicity_error},
                         {"seconds", ref.seconds}};
-  const HbSolution summary = summarize(model, ref.coefficients);
+  const int nb = model.basis.size();
   nlohmann::json dofs = nlohmann::json::array();
-  for (int i = 0; i < model.structure.dofs(); ++i) {
-    const auto& c = summary.displacements[i];
+  for (int i = 0; i < model.structure.dofs(); ++i)
     dofs.push_back({{"dof", i + 1},
                     {"max_abs", ref.displacement.col(i).cwiseAbs().maxCoeff()},
                     {"max_abs_velocity", ref.velocity.col(i).cwiseAbs().maxCoeff()},
-                    {"first_harmonic_amplitude", std::hypot(c.coefficients[model.basis.harmonics()[0] == 0 ? 1 : 0],
-                                                            c.coefficients[model.basis.harmonics()[0] == 0 ? 2 : 1])}});
-  }
+                    {"first_harmonic_amplitude",
+                     firstHarmonicAmplitude(model.basis, ref.coefficients.data() + i * nb)}});
   out["dofs"] = dofs;
   nlohmann::json forces = nlohmann::json::array();
   for (int q = 0; q < ref.force.cols(); ++q)

@@ -71,26 +71,18 @@ CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full) {
   p.full = full;
   const HbSolution s = summarize(model, full);
   const int n = model.structure.dofs(), nb = model.basis.size();
-  const auto& ks = model.basis.harmonics();
   for (int i = 0; i < n; ++i) {
     p.max_abs.push_back(s.displacements[i].max_abs);
-    double a1 = 0.0;
-    for (size_t h = 0; h < ks.size(); ++h)
-      if (ks[h] == 1) {
-        const int o = i * nb + model.basis.offset(static_cast<int>(h));
-        a1 = std::hypot(full[o], full[o + 1]);
-      }
-    p.first_harmonic.push_back(a1);
+    p.first_harmonic.push_back(firstHarmonicAmplitude(model.basis, full.data() + i * nb));
   }
   // Period means by Parseval: mean(a b) = a0 b0 + ½ Σ (a_k b_k + a'_k b'_k).
-  FourierTransform transform(model.basis, model.samples);
   Eigen::MatrixXd x(nb, n), v(nb, n);
   for (int i = 0; i < n; ++i) {
     x.col(i) = full.segment(i * nb, nb);
-    transform.differentiate(x.col(i).data(), model.omega, v.col(i).data());
+    differentiateCoefficients(model.basis, x.col(i).data(), model.omega, v.col(i).data());
   }
   Eigen::VectorXd weight = Eigen::VectorXd::Constant(nb, 0.5);
-  if (ks.front() == 0) weight[0] = 1.0;
+  if (model.basis.harmonics().front() == 0) weight[0] = 1.0;
   const Eigen::MatrixXd kx = x * model.structure.stiffness, mv = v * model.structure.mass;
   p.energy = 0.5 * (weight.asDiagonal() * (x.cwiseProduct(kx) + v.cwiseProduct(mv))).sum();
   return p;

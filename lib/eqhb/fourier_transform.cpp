@@ -132,11 +132,11 @@ void FourierTransform::gram(const double* weights, Eigen::Ref<Eigen::MatrixXd> o
   }
 }
 
-void FourierTransform::differentiate(const double* in, double omega, double* out) const {
-  const auto& ks = basis_.harmonics();
+void differentiateCoefficients(const HarmonicSet& basis, const double* in, double omega, double* out) {
+  const auto& ks = basis.harmonics();
   for (size_t h = 0; h < ks.size(); ++h) {
     const int k = ks[h];
-    const int o = basis_.offset(static_cast<int>(h));
+    const int o = basis.offset(static_cast<int>(h));
     if (k == 0) {
       out[o] = 0.0;
     } else {

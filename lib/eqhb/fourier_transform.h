@@ -22,6 +22,11 @@
 
 namespace eqhb {
 
+// Coefficients of d/dt of the series with coefficients `in` at frequency ω:
+// (a, b) of harmonic k -> (kω b, −kω a). A coefficient operation (no FFT);
+// `in` and `out` must not alias.
+void differentiateCoefficients(const HarmonicSet& basis, const double* in, double omega, double* out);
+
 class FourierTransform {
  public:
   // Throws InputError if samples < basis.minimumSamples().
@@ -40,9 +45,10 @@ class FourierTransform {
   // out (basis.size() x basis.size()) = Q diag(weights) P.
   void gram(const double* weights, Eigen::Ref<Eigen::MatrixXd> out);
 
-  // Coefficients of d/dt of the series with coefficients `in` at frequency ω:
-  // (a, b) of harmonic k -> (kω b, −kω a). `in` and `out` must not alias.
-  void differentiate(const double* in, double omega, double* out) const;
+  // differentiateCoefficients on this transform's basis.
+  void differentiate(const double* in, double omega, double* out) const {
+    differentiateCoefficients(basis_, in, omega, out);
+  }
   // out = G Dω for a square block G (columns mixed per harmonic); used to
   // chain a weak-Jacobian block through the velocity. out must not alias g.
   void rightMultiplyDerivative(const Eigen::Ref<const Eigen::MatrixXd>& g, double omega,

@@ -1,6 +1,7 @@
 #include "eqhb/hb_solution.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "eqhb/fourier_transform.h"
 
@@ -39,6 +40,16 @@ HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full) {
       solution.forces.push_back(channel(transform, model.omega, label, full.segment(base + q * nb, nb)));
     }
   return solution;
+}
+
+double firstHarmonicAmplitude(const HarmonicSet& basis, const double* c) {
+  const auto& ks = basis.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h)
+    if (ks[h] == 1) {
+      const int o = basis.offset(static_cast<int>(h));
+      return std::hypot(c[o], c[o + 1]);
+    }
+  return 0.0;
 }
 
 Eigen::VectorXd transferCoefficients(const HbModel& from, const HbModel& to, const Eigen::VectorXd& full) {

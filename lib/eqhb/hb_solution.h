@@ -27,6 +27,10 @@ struct HbSolution {
 // full = [x_1..x_n, λ_1..λ_L] coefficients (FullSystem layout).
 HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full);
 
+// |(a₁, b₁)|, the amplitude of the first harmonic of one channel (0 if the
+// basis has no harmonic 1).
+double firstHarmonicAmplitude(const HarmonicSet& basis, const double* coefficients);
+
 // The same channels on another harmonic set: shared harmonics are copied,
 // the others are zero (continuation in H; both models have the same DOFs
 // and laws).

@@ -5,6 +5,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/fourier_transform.h"
+#include "eqhb/hb_solution.h"
 
 namespace eqhb {
 
@@ -173,22 +174,15 @@ std::vector<ChannelError> compareWithReference(const HbModel& model, const Eigen
   FourierTransform transform(model.basis, steps);
   const int nb = model.basis.size(), n = model.structure.dofs();
   Eigen::VectorXd hb(steps), rate_coefficients(nb), ref_coefficients(nb);
-  auto amplitude1 = [&](const double* c) {
-    for (size_t hh = 0; hh < model.basis.harmonics().size(); ++hh)
-      if (model.basis.harmonics()[hh] == 1) {
-        const int o = model.basis.offset(static_cast<int>(hh));
-        return std::hypot(c[o], c[o + 1]);
-      }
-    return 0.0;
-  };
   auto fill = [&](ChannelError& e, const Eigen::VectorXd& ref, const double* hb_c, const double* ref_c) {
     transform.synthesize(hb_c, hb.data());
     e.relative_l2 = (hb - ref).norm() / std::max(ref.norm(), 1e-300);
     e.max_abs_reference = ref.cwiseAbs().maxCoeff();
     e.max_abs_hb = hb.cwiseAbs().maxCoeff();
     e.relative_max_abs = std::abs(e.max_abs_hb - e.max_abs_reference) / std::max(e.max_abs_reference, 1e-300);
-    const double a_ref = amplitude1(ref_c);
-    e.first_harmonic_error = a_ref > 0.0 ? std::abs(amplitude1(hb_c) - a_ref) / a_ref : 0.0;
+    const double a_ref = firstHarmonicAmplitude(model.basis, ref_c);
+    e.first_harmonic_error =
+        a_ref > 0.0 ? std::abs(firstHarmonicAmplitude(model.basis, hb_c) - a_ref) / a_ref : 0.0;
   };
   std::vector<ChannelError> errors;
   for (int i = 0; i < n; ++i) {
