@@ -244,11 +244,8 @@ int main(int argc, char** argv) {
       for (bool condensed : {true, false})
         for (const auto& name : scene_backends) {
           if (std::find(all_backends.begin(), all_backends.end(), name) == all_backends.end()) continue;
-          std::vector<std::string> set;
-          if (!form.empty())
-            for (size_t l = 0; l < base.model.laws.size(); ++l)
-              if (base.model.laws[l].law->type() == base.model.laws[0].law->type())
-                set.push_back("law[" + std::to_string(l) + "].form=" + form);
+          const std::vector<std::string> set =
+              form.empty() ? std::vector<std::string>{} : lawOverrides(base.model, "form", form);
           Case c = runCase("scenes", path, set, name, condensed, repeats, 2.0, &truth);
           c.form = form.empty() ? "-" : form;
           std::cerr << "  " << c.scene << " " << c.form << " " << c.system << " " << name << ": " << c.termination
@@ -259,15 +256,11 @@ int main(int argc, char** argv) {
     // default, and twice the harmonics.
     if (quick) continue;
     const std::string default_form = forms[0].empty() ? "-" : forms[0];
-    const bool has_rho = !base.model.laws.empty() && base.model.laws[0].law->type() != "cubic";
     std::vector<std::pair<std::string, std::vector<std::string>>> variants;
-    if (has_rho)
-      for (const char* rho : {"0.1", "10"}) {
-        std::vector<std::string> set;
-        for (size_t l = 0; l < base.model.laws.size(); ++l)
-          if (base.model.laws[l].law->type() != "cubic") set.push_back("law[" + std::to_string(l) + "].rho=" + rho);
-        variants.push_back({default_form + ", rho=" + rho, set});
-      }
+    for (const char* rho : {"0.1", "10"}) {
+      const auto set = lawOverrides(base.model, "rho", rho);
+      if (!set.empty()) variants.push_back({default_form + ", rho=" + rho, set});
+    }
     const int h2 = 2 * base.model.basis.count();
     variants.push_back({default_form, {"harmonic_balance.harmonics=" + std::to_string(h2),
                                        "harmonic_balance.samples=" + std::to_string(std::max(base.model.samples, 16 * h2))}});

@@ -74,14 +74,11 @@ std::vector<FailureRow> failureMaps(const std::filesystem::path& path, const std
                                                 "harmonic_balance.samples=" + std::to_string(samples)});
       rows.push_back(solveOnce(s, "harmonics", std::to_string(h), 0, solver, nullptr, condensed));
     }
-    const bool has_rho = !base.model.laws.empty() && base.model.laws[0].law->type() != "cubic";
-    if (has_rho)
-      for (double rho : quick ? std::vector<double>{0.1, 10.0} : std::vector<double>{0.01, 0.1, 1.0, 10.0, 100.0}) {
-        std::vector<std::string> set;
-        for (size_t l = 0; l < base.model.laws.size(); ++l)
-          if (base.model.laws[l].law->type() != "cubic") set.push_back("law[" + std::to_string(l) + "].rho=" + formatNumber(rho));
+    for (double rho : quick ? std::vector<double>{0.1, 10.0} : std::vector<double>{0.01, 0.1, 1.0, 10.0, 100.0}) {
+      const auto set = lawOverrides(base.model, "rho", formatNumber(rho));
+      if (!set.empty())
         rows.push_back(solveOnce(loadScene(path.string(), set), "rho", formatNumber(rho), 0, solver, nullptr, condensed));
-      }
+    }
     for (double scale : quick ? std::vector<double>{0.5, 2.0} : std::vector<double>{0.25, 0.5, 1.0, 2.0, 4.0}) {
       std::vector<std::string> set;
       for (size_t i = 0; i < base.model.structure.loads.size(); ++i) {

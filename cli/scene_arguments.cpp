@@ -25,18 +25,14 @@ Scene loadSceneWith(const SceneArguments& a) {
   if (a.form || a.rho) {
     // --form and --rho apply to every law that has them: look at the scene first.
     const Scene plain = loadScene(a.scene, a.overrides);
-    int touched = 0;
-    for (size_t l = 0; l < plain.model.laws.size(); ++l) {
-      const std::string type = plain.model.laws[l].law->type();
-      const auto& forms = lawForms(type);
-      const bool takes_form = a.form && std::find(forms.begin(), forms.end(), *a.form) != forms.end();
-      const bool takes_rho = a.rho && type != "cubic";
-      const std::string law = "law[" + std::to_string(l) + "].";
-      if (takes_form) o.push_back(law + "form=\"" + *a.form + "\"");
-      if (takes_rho) o.push_back(law + "rho=" + num(*a.rho));
-      touched += takes_form || takes_rho;
+    std::vector<std::string> laws;
+    if (a.form) laws = lawOverrides(plain.model, "form", *a.form);
+    if (a.rho) {
+      const auto rho = lawOverrides(plain.model, "rho", num(*a.rho));
+      laws.insert(laws.end(), rho.begin(), rho.end());
     }
-    if (touched == 0)
+    o.insert(o.end(), laws.begin(), laws.end());
+    if (laws.empty())
       throwInputError(a.form ? "--form" : "--rho", a.form ? *a.form : num(*a.rho),
                       "no law of the scene takes it");
   }

@@ -395,6 +395,22 @@ const std::vector<std::string>& lawForms(const std::string& type) {
   return it == forms.end() ? none : it->second;
 }
 
+bool lawTakesRho(const std::string& type) { return type != "cubic"; }
+
+std::vector<std::string> lawOverrides(const HbModel& model, const std::string& key, const std::string& value) {
+  std::vector<std::string> out;
+  for (size_t l = 0; l < model.laws.size(); ++l) {
+    const std::string type = model.laws[l].law->type();
+    const auto& forms = lawForms(type);
+    const bool takes = key == "form" ? std::find(forms.begin(), forms.end(), value) != forms.end()
+                                     : key == "rho" && lawTakesRho(type);
+    if (!takes) continue;
+    const std::string quoted = key == "form" ? "\"" + value + "\"" : value;
+    out.push_back("law[" + std::to_string(l) + "]." + key + "=" + quoted);
+  }
+  return out;
+}
+
 Scene parseScene(const std::string& text, const std::string& source_name,
                  const std::vector<std::string>& overrides) {
   toml::value root;

@@ -48,6 +48,11 @@ struct Scene {
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
 // The forms a law type accepts, in scene files and for --form.
 const std::vector<std::string>& lawForms(const std::string& type);
+// Whether a law type has the scaling ρ.
+bool lawTakesRho(const std::string& type);
+// Overrides "law[i].KEY=VALUE" for every law of the model that takes them:
+// KEY "form" (laws having that form) or "rho" (laws having ρ).
+std::vector<std::string> lawOverrides(const HbModel& model, const std::string& key, const std::string& value);
 
 Scene parseScene(const std::string& text, const std::string& source_name,
                  const std::vector<std::string>& overrides = {});
