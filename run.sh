@@ -25,7 +25,9 @@ install_packages() {
 }
 
 build() {
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+  launcher=()
+  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
   cmake --build build -j"$(nproc)"
 }
 

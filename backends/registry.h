@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "eqhb/solver.h"
+#include "eqhb/solvers/solver.h"
 
 namespace eqhb {
 

@@ -12,12 +12,12 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "eqhb/continuation.h"
+#include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
-#include "eqhb/hb_solution.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/scene.h"
-#include "eqhb/time_integrator.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
+#include "eqhb/references/time_integrator.h"
 #include "failure_maps.h"
 #include "mgh/mgh_problems.h"
 #include "registry.h"

@@ -11,10 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "eqhb/error.h"
-#include "eqhb/hb_solution.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/scene.h"
-#include "eqhb/time_integrator.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
+#include "eqhb/references/time_integrator.h"
 #include "registry.h"
 
 using namespace eqhb;

@@ -5,8 +5,8 @@
 #include <random>
 
 #include "eqhb/error.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/scene.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
 #include "registry.h"
 
 namespace eqhb::bench {

@@ -4,12 +4,12 @@
 // (a dogleg solve limited to one iteration: Jacobian, QR, one step).
 #include <benchmark/benchmark.h>
 
-#include "eqhb/coulomb_1d.h"
-#include "eqhb/coulomb_2d.h"
-#include "eqhb/cubic_stiffness.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/signorini.h"
-#include "eqhb/stribeck.h"
+#include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/laws/coulomb_2d.h"
+#include "eqhb/laws/cubic_stiffness.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/signorini.h"
+#include "eqhb/laws/stribeck.h"
 #include "registry.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "eqhb/scene.h"
+#include "eqhb/scenes/scene.h"
 
 namespace eqhb::cli {
 

@@ -6,12 +6,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "eqhb/continuation.h"
+#include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
-#include "eqhb/hb_solution.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/invariants.h"
-#include "eqhb/scene.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/invariants.h"
+#include "eqhb/scenes/scene.h"
 #include "registry.h"
 
 namespace eqhb::cli {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "eqhb/hb_systems.h"
-#include "eqhb/solver.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/solvers/solver.h"
 #include "scene_arguments.h"
 
 namespace eqhb::cli {

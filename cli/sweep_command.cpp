@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "eqhb/continuation.h"
+#include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
 #include "registry.h"
 

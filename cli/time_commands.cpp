@@ -3,7 +3,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "eqhb/hb_solution.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
 
 namespace eqhb::cli {
 

@@ -4,7 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "eqhb/time_integrator.h"
+#include "eqhb/references/time_integrator.h"
 #include "solve_command.h"
 
 namespace eqhb::cli {

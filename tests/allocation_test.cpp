@@ -7,11 +7,11 @@
 #include <cstdlib>
 #include <new>
 
-#include "eqhb/coulomb_2d.h"
-#include "eqhb/cubic_stiffness.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/signorini.h"
-#include "eqhb/stribeck.h"
+#include "eqhb/laws/coulomb_2d.h"
+#include "eqhb/laws/cubic_stiffness.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/signorini.h"
+#include "eqhb/laws/stribeck.h"
 #include "test_support.h"
 
 namespace {

@@ -1,9 +1,9 @@
-#include "eqhb/continuation.h"
+#include "eqhb/continuation/continuation.h"
 
 #include <gtest/gtest.h>
 
 #include "eqhb/error.h"
-#include "eqhb/scene.h"
+#include "eqhb/scenes/scene.h"
 #include "registry.h"
 #include "test_support.h"
 

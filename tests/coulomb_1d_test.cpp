@@ -1,4 +1,4 @@
-#include "eqhb/coulomb_1d.h"
+#include "eqhb/laws/coulomb_1d.h"
 
 #include <gtest/gtest.h>
 

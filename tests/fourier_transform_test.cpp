@@ -1,4 +1,4 @@
-#include "eqhb/fourier_transform.h"
+#include "eqhb/harmonic_balance/fourier_transform.h"
 
 #include <gtest/gtest.h>
 

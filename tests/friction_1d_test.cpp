@@ -2,9 +2,9 @@
 // harmonics, from a zero initial guess.
 #include <gtest/gtest.h>
 
-#include "eqhb/hb_solution.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/scene.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
 #include "registry.h"
 #include "test_support.h"
 

@@ -1,4 +1,4 @@
-#include "eqhb/hb_systems.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-#include "eqhb/scene.h"
+#include "eqhb/scenes/scene.h"
 
 #include <gtest/gtest.h>
 
-#include "eqhb/coulomb_1d.h"
+#include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/error.h"
 #include "test_support.h"
 

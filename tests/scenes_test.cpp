@@ -7,10 +7,10 @@
 
 #include <map>
 
-#include "eqhb/fourier_transform.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/invariants.h"
-#include "eqhb/scene.h"
+#include "eqhb/harmonic_balance/fourier_transform.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/invariants.h"
+#include "eqhb/scenes/scene.h"
 #include "registry.h"
 #include "test_support.h"
 

@@ -1,4 +1,4 @@
-#include "eqhb/solver.h"
+#include "eqhb/solvers/solver.h"
 
 #include <gtest/gtest.h>
 

@@ -4,9 +4,9 @@
 #include <Eigen/Dense>
 #include <string>
 
-#include "eqhb/coulomb_1d.h"
-#include "eqhb/hb_model.h"
-#include "eqhb/square_system.h"
+#include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/solvers/square_system.h"
 #include "registry.h"
 
 namespace eqhb::test {

@@ -1,12 +1,12 @@
-#include "eqhb/time_integrator.h"
+#include "eqhb/references/time_integrator.h"
 
 #include <gtest/gtest.h>
 
 #include <complex>
 
 #include "eqhb/error.h"
-#include "eqhb/hb_systems.h"
-#include "eqhb/scene.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
 #include "registry.h"
 #include "test_support.h"
 

@@ -9,7 +9,7 @@
 // | sparse_normal_cholesky (SuiteSparse), threads >= 1 (default 1).
 #pragma once
 
-#include "eqhb/solver.h"
+#include "eqhb/solvers/solver.h"
 
 namespace eqhb {
 

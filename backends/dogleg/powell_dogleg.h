@@ -15,7 +15,7 @@
 //   scaling  "columns" (D from Jacobian column norms, MINPACK mode 1) or "none"
 #pragma once
 
-#include "eqhb/solver.h"
+#include "eqhb/solvers/solver.h"
 
 namespace eqhb {
 

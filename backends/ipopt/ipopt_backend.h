@@ -9,7 +9,7 @@
 // from the intermediate callback. The banner is off.
 #pragma once
 
-#include "eqhb/solver.h"
+#include "eqhb/solvers/solver.h"
 
 namespace eqhb {
 

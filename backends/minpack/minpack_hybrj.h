@@ -7,7 +7,7 @@
 // mode ("columns": internal column scaling, MINPACK mode 1; "none": unit D).
 #pragma once
 
-#include "eqhb/solver.h"
+#include "eqhb/solvers/solver.h"
 
 namespace eqhb {
 

@@ -6,7 +6,7 @@
 // Backend option: initial_step > 0 (derivative-free only, default 1).
 #pragma once
 
-#include "eqhb/solver.h"
+#include "eqhb/solvers/solver.h"
 
 namespace eqhb {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "eqhb/solver.h"
-#include "eqhb/square_system.h"
+#include "eqhb/solvers/solver.h"
+#include "eqhb/solvers/square_system.h"
 
 namespace eqhb::mgh {
 

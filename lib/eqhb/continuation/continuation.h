@@ -1,0 +1,83 @@
+// Frequency-response curves by continuation in ω, any backend as corrector.
+//
+//  sequential: ω on a grid from `from` to `to` (either direction), the
+//    previous solution as predictor; a failed corrector halves the step
+//    (intermediate points) down to min_step, then the curve stops and says
+//    where and why.
+//  arclength: pseudo-arclength in scaled unknowns ŷ = (z / s_z, ω / s_ω)
+//    (s_z = RMS of the first solution, s_ω = |to − from|): tangent predictor
+//    from the weak Jacobian bordered by the previous tangent, corrector on
+//    the bordered system [g(z, ω); τᵀ(ŷ − ŷ_pred)] = 0 by the chosen
+//    backend, step adapted to the corrector's effort; folds are where the
+//    ω-component of the tangent changes sign (and stays changed for three
+//    points: nonsmooth laws make it flicker at kinks). Passes turning points.
+//  harmonics: solve at H₀ and reuse the solution as the start at larger H.
+#pragma once
+
+#include <Eigen/Dense>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/solvers/solver.h"
+
+namespace eqhb {
+
+struct CurvePoint {
+  double omega = 0.0;
+  bool converged = false;
+  std::string termination;
+  int iterations = 0, residual_evaluations = 0, jacobian_evaluations = 0;
+  double seconds = 0.0;
+  double residual_norm = 0.0;
+  std::vector<double> max_abs;         // per DOF, over one period
+  std::vector<double> first_harmonic;  // per DOF, |(a₁, b₁)|
+  double energy = 0.0;                 // period mean of ½ẋᵀMẋ + ½xᵀKx
+  bool fold = false;                   // a turning point lies just before this point
+  Eigen::VectorXd full;                // [x; λ] coefficients
+};
+
+struct Curve {
+  std::vector<CurvePoint> points;
+  bool complete = false;        // reached the end of the range
+  std::string stop_reason;
+  std::vector<double> fold_omegas;
+  double seconds = 0.0;
+  int failed_points = 0;        // grid points that did not converge (sequential)
+};
+
+struct ContinuationOptions {
+  double from = 0.1, to = 0.8;
+  double step = 0.01;           // sequential: grid step; arclength: initial Δs (scaled)
+  double min_step = 1e-6;       // in ω (sequential) or scaled arclength
+  double max_step = 1.0;        // arclength, scaled
+  int max_points = 20000;
+  int target_iterations = 12;   // arclength step adaptation aims at this
+  bool condensed = true;
+  // Throws InputError naming the field.
+  void validate() const;
+};
+
+using Progress = std::function<void(const CurvePoint&, int index)>;
+
+Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
+                      const ContinuationOptions& options, const Progress& progress = nullptr);
+Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
+                     const ContinuationOptions& options, const Progress& progress = nullptr);
+
+// The curve as CSV: ω, converged, termination, counts, time, max|x_i|,
+// first-harmonic amplitude of x_i, energy, fold. Throws InputError if the
+// file cannot be written.
+void writeCurveCsv(const std::string& path, const Curve& curve, int dofs);
+
+// Physical summary of a solution (max|x|, first harmonic, energy).
+CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full);
+
+// Solves at `start_harmonics` then at each doubling up to the model's H,
+// each seeded with the previous solution. Returns the last result; its
+// solution is in the system's unknowns (condensed or full as requested).
+SolverResult solveByHarmonicContinuation(const HbModel& model, Solver& solver, const SolverOptions& options,
+                                         int start_harmonics, bool condensed, Eigen::VectorXd* full = nullptr);
+
+}  // namespace eqhb

@@ -1,0 +1,169 @@
+#include "eqhb/harmonic_balance/fourier_transform.h"
+
+#include <fftw3.h>
+
+#include <cstring>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+struct FourierTransform::Plans {
+  int n = 0;
+  double* real = nullptr;          // N samples
+  fftw_complex* spectrum = nullptr;  // N/2 + 1 bins
+  fftw_plan forward = nullptr;     // real -> spectrum
+  fftw_plan backward = nullptr;    // spectrum -> real (destroys spectrum)
+
+  explicit Plans(int samples) : n(samples) {
+    real = fftw_alloc_real(n);
+    spectrum = fftw_alloc_complex(n / 2 + 1);
+    forward = fftw_plan_dft_r2c_1d(n, real, spectrum, FFTW_ESTIMATE);
+    backward = fftw_plan_dft_c2r_1d(n, spectrum, real, FFTW_ESTIMATE);
+  }
+  ~Plans() {
+    fftw_destroy_plan(forward);
+    fftw_destroy_plan(backward);
+    fftw_free(real);
+    fftw_free(spectrum);
+  }
+  // Σ_i y_i cos(mθ_i) / N and Σ_i y_i sin(mθ_i) / N for any m >= 0, from the
+  // half spectrum of the last forward transform (X_m = Σ y e^{-imθ}).
+  void cosSinMoment(int m, double* c, double* s) const {
+    m %= n;
+    double sign = 1.0;
+    if (m > n / 2) {  // X_{N-m} = conj(X_m) for real input
+      m = n - m;
+      sign = -1.0;
+    }
+    *c = spectrum[m][0] / n;
+    *s = -sign * spectrum[m][1] / n;
+  }
+};
+
+FourierTransform::FourierTransform(const HarmonicSet& basis, int samples)
+    : basis_(basis), samples_(samples) {
+  if (samples < basis.minimumSamples())
+    throwInputError("samples", std::to_string(samples),
+                    "must be >= 2 k_max + 1 = " + std::to_string(basis.minimumSamples()) +
+                        " to resolve the highest harmonic k_max = " + std::to_string(basis.highest()));
+  plans_ = std::make_unique<Plans>(samples);
+}
+
+FourierTransform::~FourierTransform() = default;
+FourierTransform::FourierTransform(FourierTransform&&) noexcept = default;
+FourierTransform& FourierTransform::operator=(FourierTransform&&) noexcept = default;
+
+void FourierTransform::synthesize(const double* coefficients, double* samples) {
+  Plans& p = *plans_;
+  std::memset(p.spectrum, 0, sizeof(fftw_complex) * (p.n / 2 + 1));
+  const auto& ks = basis_.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int k = ks[h];
+    const double* c = coefficients + basis_.offset(static_cast<int>(h));
+    if (k == 0) {
+      p.spectrum[0][0] = c[0];
+    } else {  // a cos + b sin = Re((a − ib) e^{ikθ}); c2r doubles bins 0 < k < N/2
+      p.spectrum[k][0] = 0.5 * c[0];
+      p.spectrum[k][1] = -0.5 * c[1];
+    }
+  }
+  fftw_execute(p.backward);
+  std::memcpy(samples, p.real, sizeof(double) * p.n);
+}
+
+void FourierTransform::project(const double* samples, double* coefficients) {
+  Plans& p = *plans_;
+  std::memcpy(p.real, samples, sizeof(double) * p.n);
+  fftw_execute(p.forward);
+  const auto& ks = basis_.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int k = ks[h];
+    double* c = coefficients + basis_.offset(static_cast<int>(h));
+    double cm, sm;
+    p.cosSinMoment(k, &cm, &sm);
+    if (k == 0) {
+      c[0] = cm;
+    } else {
+      c[0] = 2.0 * cm;
+      c[1] = 2.0 * sm;
+    }
+  }
+}
+
+void FourierTransform::gram(const double* weights, Eigen::Ref<Eigen::MatrixXd> out) {
+  Plans& p = *plans_;
+  std::memcpy(p.real, weights, sizeof(double) * p.n);
+  fftw_execute(p.forward);
+  const auto& ks = basis_.harmonics();
+  const int count = static_cast<int>(ks.size());
+  // Row k of Q carries 2/N (1/N for k = 0); C_m, S_m below carry 1/N.
+  for (int hr = 0; hr < count; ++hr) {
+    const int k = ks[hr];
+    const int row = basis_.offset(hr);
+    const double rowScale = k == 0 ? 1.0 : 2.0;
+    for (int hc = 0; hc < count; ++hc) {
+      const int j = ks[hc];
+      const int col = basis_.offset(hc);
+      double cDiff, sDiff, cSum, sSum;  // moments at |k − j| and k + j
+      p.cosSinMoment(k >= j ? k - j : j - k, &cDiff, &sDiff);
+      if (k < j) sDiff = -sDiff;  // S_{k−j} is odd in k − j
+      p.cosSinMoment(k + j, &cSum, &sSum);
+      if (k == 0 && j == 0) {
+        out(row, col) = cDiff;
+        continue;
+      }
+      if (j == 0) {  // φ_j = 1
+        out(row, col) = rowScale * cDiff;
+        out(row + 1, col) = rowScale * sDiff;
+        continue;
+      }
+      if (k == 0) {
+        out(row, col) = cSum;      // mean of d cos jθ: C_j
+        out(row, col + 1) = sSum;  // mean of d sin jθ: S_j
+        continue;
+      }
+      const double h = 0.5 * rowScale;
+      out(row, col) = h * (cDiff + cSum);          // cos k · cos j
+      out(row, col + 1) = h * (sSum - sDiff);      // cos k · sin j
+      out(row + 1, col) = h * (sSum + sDiff);      // sin k · cos j
+      out(row + 1, col + 1) = h * (cDiff - cSum);  // sin k · sin j
+    }
+  }
+}
+
+void differentiateCoefficients(const HarmonicSet& basis, const double* in, double omega, double* out) {
+  const auto& ks = basis.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int k = ks[h];
+    const int o = basis.offset(static_cast<int>(h));
+    if (k == 0) {
+      out[o] = 0.0;
+    } else {
+      const double kw = k * omega;
+      out[o] = kw * in[o + 1];
+      out[o + 1] = -kw * in[o];
+    }
+  }
+}
+
+void FourierTransform::rightMultiplyDerivative(const Eigen::Ref<const Eigen::MatrixXd>& g,
+                                               double omega,
+                                               Eigen::Ref<Eigen::MatrixXd> out) const {
+  // Dω maps (a, b) -> (kω b, −kω a): column cos_k of G Dω is −kω G(:, sin_k),
+  // column sin_k is kω G(:, cos_k).
+  const auto& ks = basis_.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int k = ks[h];
+    const int o = basis_.offset(static_cast<int>(h));
+    if (k == 0) {
+      out.col(o).setZero();
+    } else {
+      const double kw = k * omega;
+      out.col(o) = -kw * g.col(o + 1);
+      out.col(o + 1) = kw * g.col(o);
+    }
+  }
+}
+
+}  // namespace eqhb

@@ -1,0 +1,64 @@
+// Time <-> frequency transforms of one channel on N equispaced samples
+// t_i = iT/N, with FFTW plans made once per (basis, N) (spec §3).
+//
+//  synthesize: coefficients -> samples   x(t_i) = a0 + Σ a_k cos kθ_i + b_k sin kθ_i
+//  project:    samples -> coefficients   the Galerkin projection with the
+//              trapezoidal rule: a0 = (1/N) Σ y_i, a_k = (2/N) Σ y_i cos kθ_i,
+//              b_k = (2/N) Σ y_i sin kθ_i; exact for trigonometric polynomials
+//              of degree < N - H, so project(synthesize(c)) = c.
+//  gram:       the weak-Jacobian block Q diag(d) P (Q the projection above, P
+//              the basis samples), from ONE real FFT of d and the product
+//              formulas cos·cos = ½[cos(k−j) + cos(k+j)] etc.: O(N log N + nb²)
+//              instead of the O(N nb²) dense product.
+//
+// All work buffers are owned; no call allocates. Not thread-safe (one
+// instance per thread).
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+
+#include "eqhb/harmonic_balance/harmonic_set.h"
+
+namespace eqhb {
+
+// Coefficients of d/dt of the series with coefficients `in` at frequency ω:
+// (a, b) of harmonic k -> (kω b, −kω a). A coefficient operation (no FFT);
+// `in` and `out` must not alias.
+void differentiateCoefficients(const HarmonicSet& basis, const double* in, double omega, double* out);
+
+class FourierTransform {
+ public:
+  // Throws InputError if samples < basis.minimumSamples().
+  FourierTransform(const HarmonicSet& basis, int samples);
+  ~FourierTransform();
+  FourierTransform(FourierTransform&&) noexcept;
+  FourierTransform& operator=(FourierTransform&&) noexcept;
+  FourierTransform(const FourierTransform&) = delete;
+  FourierTransform& operator=(const FourierTransform&) = delete;
+
+  const HarmonicSet& basis() const { return basis_; }
+  int samples() const { return samples_; }
+
+  void synthesize(const double* coefficients, double* samples);
+  void project(const double* samples, double* coefficients);
+  // out (basis.size() x basis.size()) = Q diag(weights) P.
+  void gram(const double* weights, Eigen::Ref<Eigen::MatrixXd> out);
+
+  // differentiateCoefficients on this transform's basis.
+  void differentiate(const double* in, double omega, double* out) const {
+    differentiateCoefficients(basis_, in, omega, out);
+  }
+  // out = G Dω for a square block G (columns mixed per harmonic); used to
+  // chain a weak-Jacobian block through the velocity. out must not alias g.
+  void rightMultiplyDerivative(const Eigen::Ref<const Eigen::MatrixXd>& g, double omega,
+                               Eigen::Ref<Eigen::MatrixXd> out) const;
+
+ private:
+  struct Plans;
+  HarmonicSet basis_;
+  int samples_;
+  std::unique_ptr<Plans> plans_;
+};
+
+}  // namespace eqhb

@@ -1,0 +1,63 @@
+#include "eqhb/harmonic_balance/hb_model.h"
+
+#include <cmath>
+#include <set>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+void HbModel::validate() const {
+  structure.validate();
+  if (!(omega > 0.0) || !std::isfinite(omega))
+    throwInputError("omega", formatNumber(omega), "must be finite and > 0");
+  if (samples < basis.minimumSamples())
+    throwInputError("samples", std::to_string(samples),
+                    "must be >= 2 k_max + 1 = " + std::to_string(basis.minimumSamples()) +
+                        " for the highest harmonic k_max = " + std::to_string(basis.highest()));
+  for (size_t i = 0; i < structure.loads.size(); ++i) {
+    const auto& load = structure.loads[i];
+    const std::string field = "forcing[" + std::to_string(i) + "].harmonic";
+    if (!basis.contains(load.harmonic))
+      throwInputError(field, std::to_string(load.harmonic),
+                      "not in the " + HarmonicSet::kindName(basis.kind()) +
+                          " harmonic set with H = " + std::to_string(basis.count()) +
+                          " (highest " + std::to_string(basis.highest()) + ")");
+    if (load.harmonic == 0 && load.sin_amplitude != 0.0)
+      throwInputError("forcing[" + std::to_string(i) + "].sin", formatNumber(load.sin_amplitude),
+                      "a static load (harmonic 0) has no sine part");
+  }
+  for (size_t l = 0; l < laws.size(); ++l) {
+    const auto& attached = laws[l];
+    const std::string field = "law[" + std::to_string(l) + "]";
+    if (!attached.law) throwInputError(field, "(null)", "no law given");
+    const int d = attached.law->dimension();
+    if (static_cast<int>(attached.dofs.size()) != d)
+      throwInputError(field + ".dofs", std::to_string(attached.dofs.size()) + " DOF(s)",
+                      "a " + attached.law->type() + " law acts on exactly " +
+                          std::to_string(d) + " DOF(s)");
+    std::set<int> distinct;
+    for (int dof : attached.dofs) {
+      if (dof < 0 || dof >= structure.dofs())
+        throwInputError(field + ".dofs", std::to_string(dof + 1),
+                        "no such DOF (the structure has " + std::to_string(structure.dofs()) +
+                            ", numbered from 1)");
+      if (!distinct.insert(dof).second)
+        throwInputError(field + ".dofs", std::to_string(dof + 1), "listed twice");
+    }
+  }
+}
+
+int HbModel::lawComponents() const {
+  int count = 0;
+  for (const auto& attached : laws) count += attached.law->dimension();
+  return count;
+}
+
+int HbModel::componentIndex(int l, int a) const {
+  int index = 0;
+  for (int i = 0; i < l; ++i) index += laws[i].law->dimension();
+  return index + a;
+}
+
+}  // namespace eqhb

@@ -1,0 +1,30 @@
+// Everything that defines one harmonic-balance problem: the linear structure,
+// the laws attached to it, the Fourier basis, the sample count N and ω.
+#pragma once
+
+#include <vector>
+
+#include "eqhb/harmonic_balance/harmonic_set.h"
+#include "eqhb/laws/law.h"
+#include "eqhb/structures/linear_structure.h"
+
+namespace eqhb {
+
+struct HbModel {
+  LinearStructure structure;
+  std::vector<AttachedLaw> laws;
+  HarmonicSet basis{HarmonicKind::kOdd, 1};
+  int samples = 64;
+  double omega = 1.0;
+
+  // Throws InputError naming the field: structure (see LinearStructure),
+  // ω finite and > 0, N >= 2H+1, every law on existing, distinct DOFs with
+  // one DOF per component, every load's harmonic inside the basis.
+  void validate() const;
+  // Total number of law force components (unknown force channels).
+  int lawComponents() const;
+  // Global component index of component `a` of law `l` (order of `laws`).
+  int componentIndex(int l, int a) const;
+};
+
+}  // namespace eqhb

@@ -1,0 +1,65 @@
+#include "eqhb/harmonic_balance/law_assembly.h"
+
+namespace eqhb {
+
+LawAssembly::LawAssembly(const HbModel& model)
+    : laws_(model.laws), transform_(model.basis, model.samples) {
+  const int nb = model.basis.size();
+  const int n = model.samples;
+  slots_.resize(laws_.size());
+  for (size_t l = 0; l < laws_.size(); ++l) {
+    const int d = laws_[l].law->dimension();
+    Slot& s = slots_[l];
+    s.displacement_coefficients.setZero(nb, d);
+    s.force_coefficients.setZero(nb, d);
+    s.psi_coefficients.setZero(nb, d);
+    s.velocity_coefficients.setZero(nb);
+    s.samples.resize(n, d);
+    s.displacement_blocks.assign(d * d, Eigen::MatrixXd::Zero(nb, nb));
+    s.force_blocks.assign(d * d, Eigen::MatrixXd::Zero(nb, nb));
+  }
+  gram_scratch_.setZero(nb, nb);
+  velocity_scratch_.setZero(nb, nb);
+}
+
+bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
+  Slot& s = slots_[l];
+  const Law& law = *laws_[l].law;
+  const int d = law.dimension();
+  for (int a = 0; a < d; ++a) {
+    if (law.usesDisplacement())
+      transform_.synthesize(s.displacement_coefficients.col(a).data(),
+                            s.samples.displacement.col(a).data());
+    if (law.usesVelocity()) {
+      transform_.differentiate(s.displacement_coefficients.col(a).data(), omega,
+                               s.velocity_coefficients.data());
+      transform_.synthesize(s.velocity_coefficients.data(), s.samples.velocity.col(a).data());
+    }
+    transform_.synthesize(s.force_coefficients.col(a).data(), s.samples.force.col(a).data());
+  }
+  law.evaluate(s.samples, with_jacobian);
+  if (!s.samples.psi.allFinite()) return false;
+  for (int a = 0; a < d; ++a)
+    transform_.project(s.samples.psi.col(a).data(), s.psi_coefficients.col(a).data());
+  if (!with_jacobian) return true;
+
+  for (int a = 0; a < d; ++a) {
+    for (int b = 0; b < d; ++b) {
+      const int ab = a * d + b;
+      transform_.gram(s.samples.dpsi_dforce.col(ab).data(), s.force_blocks[ab]);
+      Eigen::MatrixXd& block = s.displacement_blocks[ab];
+      if (law.usesDisplacement())
+        transform_.gram(s.samples.dpsi_ddisplacement.col(ab).data(), block);
+      else
+        block.setZero();
+      if (law.usesVelocity()) {
+        transform_.gram(s.samples.dpsi_dvelocity.col(ab).data(), gram_scratch_);
+        transform_.rightMultiplyDerivative(gram_scratch_, omega, velocity_scratch_);
+        block += velocity_scratch_;
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace eqhb

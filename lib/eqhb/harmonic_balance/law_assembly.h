@@ -1,0 +1,57 @@
+// The numerical Galerkin projection of the laws (spec §3), shared by the full
+// and the condensed systems: coefficients of x and λ at a law's DOFs ->
+// samples -> Ψ and its weak partials -> projected residual and Jacobian
+// blocks J = Q diag(∂Ψ/∂q) P (chained through Dω for the velocity).
+//
+// Callers fill displacement(l) and force(l) (nb x d, one column per
+// component), call evaluate(l, ...), then read residual(l) and the blocks.
+// All buffers are sized at construction; evaluate allocates nothing.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "eqhb/harmonic_balance/fourier_transform.h"
+#include "eqhb/harmonic_balance/hb_model.h"
+
+namespace eqhb {
+
+class LawAssembly {
+ public:
+  explicit LawAssembly(const HbModel& model);
+
+  int lawCount() const { return static_cast<int>(laws_.size()); }
+  int dimension(int l) const { return laws_[l].law->dimension(); }
+  const AttachedLaw& law(int l) const { return laws_[l]; }
+  FourierTransform& transform() { return transform_; }
+
+  Eigen::MatrixXd& displacement(int l) { return slots_[l].displacement_coefficients; }
+  Eigen::MatrixXd& force(int l) { return slots_[l].force_coefficients; }
+
+  // Returns false if Ψ is not finite at some sample.
+  bool evaluate(int l, double omega, bool with_jacobian);
+
+  const Eigen::MatrixXd& residual(int l) const { return slots_[l].psi_coefficients; }
+  // ∂(projected Ψ_a)/∂(coefficients of x at DOF b), velocity included.
+  const Eigen::MatrixXd& displacementBlock(int l, int a, int b) const {
+    return slots_[l].displacement_blocks[a * dimension(l) + b];
+  }
+  // ∂(projected Ψ_a)/∂(coefficients of λ_b).
+  const Eigen::MatrixXd& forceBlock(int l, int a, int b) const {
+    return slots_[l].force_blocks[a * dimension(l) + b];
+  }
+
+ private:
+  struct Slot {
+    Eigen::MatrixXd displacement_coefficients, force_coefficients, psi_coefficients;
+    Eigen::VectorXd velocity_coefficients;
+    LawSamples samples;
+    std::vector<Eigen::MatrixXd> displacement_blocks, force_blocks;
+  };
+  std::vector<AttachedLaw> laws_;
+  FourierTransform transform_;
+  std::vector<Slot> slots_;
+  Eigen::MatrixXd gram_scratch_, velocity_scratch_;
+};
+
+}  // namespace eqhb

@@ -1,0 +1,119 @@
+#include "eqhb/laws/coulomb_1d.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+CoulombForm parseCoulombForm(const std::string& name) {
+  if (name == "minmax") return CoulombForm::kMinMax;
+  if (name == "projection") return CoulombForm::kProjection;
+  if (name == "tanh") return CoulombForm::kTanh;
+  if (name == "piecewise") return CoulombForm::kPiecewise;
+  throwInputError("form", "\"" + name + "\"", "must be minmax, projection, tanh or piecewise");
+}
+
+std::string coulombFormName(CoulombForm form) {
+  switch (form) {
+    case CoulombForm::kMinMax: return "minmax";
+    case CoulombForm::kProjection: return "projection";
+    case CoulombForm::kTanh: return "tanh";
+    case CoulombForm::kPiecewise: return "piecewise";
+  }
+  return "?";
+}
+
+Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, double rho, double beta)
+    : mu_n_(mu_n), form_(form), rho_(rho), beta_(beta) {
+  if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
+    throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
+  if (!(rho > 0.0) || !std::isfinite(rho))
+    throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+  if (!(beta > 0.0) || !std::isfinite(beta))
+    throwInputError("beta", formatNumber(beta), "regularisation slope must be finite and > 0");
+}
+
+LocalVector Coulomb1D::solveStep(const StepProblem& step) const {
+  LocalVector force(1);
+  force[0] = std::clamp(-step.u_free[0] / step.delassus(0, 0), -mu_n_, mu_n_);
+  return force;
+}
+
+std::vector<std::pair<std::string, double>> Coulomb1D::violations(const LawSamples& s) const {
+  return frictionViolations(s.velocity.col(0), s.force.col(0),
+                            Eigen::VectorXd::Constant(s.force.rows(), mu_n_));
+}
+
+std::vector<std::pair<std::string, double>> frictionViolations(
+    const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r,
+    const Eigen::Ref<const Eigen::VectorXd>& limit) {
+  const double v_scale = v.cwiseAbs().maxCoeff();
+  double excess = 0.0, sliding = 0.0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (limit[i] <= 0.0) continue;
+    excess = std::max(excess, std::abs(r[i]) / limit[i] - 1.0);
+    if (std::abs(v[i]) > kSlidingFraction * v_scale)  // clearly sliding: r = −L sign(v)
+      sliding = std::max(sliding, std::abs(r[i] + std::copysign(limit[i], v[i])) / limit[i]);
+  }
+  return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
+}
+
+void Coulomb1D::evaluate(LawSamples& s, bool with_derivatives) const {
+  const Eigen::Index n = s.psi.rows();
+  const double* v = s.velocity.data();
+  const double* r = s.force.data();
+  double* psi = s.psi.data();
+  double* dv = s.dpsi_dvelocity.data();
+  double* dr = s.dpsi_dforce.data();
+  switch (form_) {
+    case CoulombForm::kMinMax:
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double a = rho_ * (r[i] + mu_n_) - v[i];
+        const double b = rho_ * (r[i] - mu_n_) - v[i];
+        psi[i] = v[i] + std::min(0.0, a) + std::max(0.0, b);
+        if (with_derivatives) {
+          const double lower = a < 0.0 ? 1.0 : 0.0;  // min branch active
+          const double upper = b > 0.0 ? 1.0 : 0.0;  // max branch active
+          dv[i] = 1.0 - lower - upper;               // H(a) − H(b)
+          dr[i] = rho_ * (lower + upper);            // ρ(1 − H(a) + H(b))
+        }
+      }
+      break;
+    case CoulombForm::kProjection:
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double trial = r[i] - rho_ * v[i];
+        const bool inside = std::abs(trial) <= mu_n_;
+        psi[i] = inside ? rho_ * v[i] : r[i] - std::copysign(mu_n_, trial);
+        if (with_derivatives) {
+          dv[i] = inside ? rho_ : 0.0;
+          dr[i] = inside ? 0.0 : 1.0;
+        }
+      }
+      break;
+    case CoulombForm::kTanh:
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double t = std::tanh(beta_ * v[i]);
+        psi[i] = r[i] + mu_n_ * t;
+        if (with_derivatives) {
+          dv[i] = mu_n_ * beta_ * (1.0 - t * t);
+          dr[i] = 1.0;
+        }
+      }
+      break;
+    case CoulombForm::kPiecewise:
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double bv = beta_ * v[i];
+        const bool linear = std::abs(bv) < 1.0;
+        psi[i] = r[i] + mu_n_ * (linear ? bv : std::copysign(1.0, bv));
+        if (with_derivatives) {
+          dv[i] = linear ? mu_n_ * beta_ : 0.0;
+          dr[i] = 1.0;
+        }
+      }
+      break;
+  }
+}
+
+}  // namespace eqhb

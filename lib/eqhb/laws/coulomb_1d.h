@@ -1,0 +1,61 @@
+// Coulomb friction on one DOF, r the friction force on the structure, v = ẋ
+// (spec §2, "Coulomb 1D"). Exact forms (zero set = the Coulomb graph):
+//   minmax:     Ψ = v + min(0, ρ(r+μN) − v) + max(0, ρ(r−μN) − v)
+//   projection: Ψ = r − proj_[−μN, μN](r − ρ v)
+// Regularised, single-valued forms (comparison only):
+//   tanh:       Ψ = r + μN tanh(β v)
+//   piecewise:  Ψ = r + μN clip(β v, −1, 1)
+// Weak derivatives take, at a tie (argument exactly on a kink), the branch
+// that is constant: min(0, a) and max(0, b) count as 0, the projection as
+// inside, clip as saturated.
+#pragma once
+
+#include <string>
+
+#include "eqhb/laws/law.h"
+
+namespace eqhb {
+
+enum class CoulombForm { kMinMax, kProjection, kTanh, kPiecewise };
+
+CoulombForm parseCoulombForm(const std::string& name);
+
+// Samples with |v| above this fraction of max|v| count as clearly sliding in
+// the physical checks (transitions are left out: a truncated series cannot
+// jump there).
+constexpr double kSlidingFraction = 0.05;
+
+// Checks shared by the 1D friction laws (limit per sample): see Coulomb1D.
+std::vector<std::pair<std::string, double>> frictionViolations(
+    const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r,
+    const Eigen::Ref<const Eigen::VectorXd>& limit);
+std::string coulombFormName(CoulombForm form);
+
+class Coulomb1D : public Law {
+ public:
+  // Throws InputError: μN >= 0, ρ > 0, β > 0, all finite.
+  Coulomb1D(double mu_n, CoulombForm form, double rho = 1.0, double beta = 100.0);
+
+  std::string type() const override { return "coulomb-1d"; }
+  int dimension() const override { return 1; }
+  bool usesDisplacement() const override { return false; }
+  bool usesVelocity() const override { return true; }
+  void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  // force_limit_excess: max(|r|/μN − 1, 0); sliding_force_error: max over
+  // clearly sliding samples of |r + μN sign(v)| / μN.
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  // λ = proj_[−μN, μN](−u_free / D): stick (u_end = 0) if that fits, else slide.
+  LocalVector solveStep(const StepProblem& step) const override;
+
+  CoulombForm form() const { return form_; }
+  double muN() const { return mu_n_; }
+  double rho() const { return rho_; }
+
+ private:
+  double mu_n_;
+  CoulombForm form_;
+  double rho_;
+  double beta_;
+};
+
+}  // namespace eqhb

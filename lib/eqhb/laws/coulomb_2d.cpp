@@ -1,0 +1,138 @@
+#include "eqhb/laws/coulomb_2d.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+Coulomb2DForm parseCoulomb2DForm(const std::string& name) {
+  if (name == "max") return Coulomb2DForm::kMax;
+  if (name == "projection") return Coulomb2DForm::kProjection;
+  if (name == "smoothed") return Coulomb2DForm::kSmoothed;
+  if (name == "tanh") return Coulomb2DForm::kTanh;
+  throwInputError("form", "\"" + name + "\"", "must be max, projection, smoothed or tanh");
+}
+
+std::string coulomb2DFormName(Coulomb2DForm form) {
+  switch (form) {
+    case Coulomb2DForm::kMax: return "max";
+    case Coulomb2DForm::kProjection: return "projection";
+    case Coulomb2DForm::kSmoothed: return "smoothed";
+    case Coulomb2DForm::kTanh: return "tanh";
+  }
+  return "?";
+}
+
+Coulomb2D::Coulomb2D(double mu_n, Coulomb2DForm form, double rho, double epsilon, double alpha)
+    : mu_n_(mu_n), form_(form), rho_(rho), epsilon_(epsilon), alpha_(alpha) {
+  if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
+    throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
+  if (!(rho > 0.0) || !std::isfinite(rho)) throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+  if (!(epsilon > 0.0) || !std::isfinite(epsilon))
+    throwInputError("epsilon", formatNumber(epsilon), "smoothing must be finite and > 0");
+  if (!(alpha > 0.0) || !std::isfinite(alpha))
+    throwInputError("alpha", formatNumber(alpha), "tanh slope must be finite and > 0");
+}
+
+void Coulomb2D::evaluate(LawSamples& s, bool with_derivatives) const {
+  const Eigen::Index n = s.psi.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector2d r(s.force(i, 0), s.force(i, 1));
+    const Eigen::Vector2d v(s.velocity(i, 0), s.velocity(i, 1));
+    const Eigen::Vector2d trial = r - rho_ * v;
+    Eigen::Vector2d psi;
+    Eigen::Matrix2d dr = Eigen::Matrix2d::Zero(), dv = Eigen::Matrix2d::Zero();
+    const Eigen::Matrix2d identity = Eigen::Matrix2d::Identity();
+    switch (form_) {
+      case Coulomb2DForm::kMax:
+      case Coulomb2DForm::kSmoothed: {
+        const double norm = form_ == Coulomb2DForm::kMax ? trial.norm()
+                                                         : std::sqrt(trial.squaredNorm() + epsilon_);
+        if (norm <= mu_n_) {  // sticking: Ψ = μN ρ v
+          psi = mu_n_ * rho_ * v;
+          dv = mu_n_ * rho_ * identity;
+        } else {  // sliding: Ψ = r ‖s‖ − μN s, ∂‖s‖/∂s = sᵀ/‖s‖
+          psi = r * norm - mu_n_ * trial;
+          dr = (norm - mu_n_) * identity + r * trial.transpose() / norm;
+          dv = mu_n_ * rho_ * identity - rho_ * r * trial.transpose() / norm;
+        }
+        break;
+      }
+      case Coulomb2DForm::kProjection: {
+        const double norm = trial.norm();
+        if (norm <= mu_n_) {  // Ψ = ρ v
+          psi = rho_ * v;
+          dv = rho_ * identity;
+        } else {  // Ψ = r − μN s/‖s‖
+          const Eigen::Matrix2d dproj =
+              (mu_n_ / norm) * (identity - trial * trial.transpose() / (norm * norm));
+          psi = r - mu_n_ * trial / norm;
+          dr = identity - dproj;
+          dv = rho_ * dproj;
+        }
+        break;
+      }
+      case Coulomb2DForm::kTanh: {
+        const double speed = v.norm();
+        const double t = std::tanh(alpha_ * speed);
+        psi = r * speed + mu_n_ * t * v;
+        dr = speed * identity;
+        if (speed > 0.0)
+          dv = r * v.transpose() / speed + mu_n_ * t * identity +
+               mu_n_ * alpha_ * (1.0 - t * t) * v * v.transpose() / speed;
+        break;
+      }
+    }
+    s.psi(i, 0) = psi[0];
+    s.psi(i, 1) = psi[1];
+    if (!with_derivatives) continue;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        s.dpsi_dforce(i, a * 2 + b) = dr(a, b);
+        s.dpsi_dvelocity(i, a * 2 + b) = dv(a, b);
+      }
+  }
+}
+
+namespace {
+Eigen::Vector2d projectOnDisc(const Eigen::Vector2d& x, double radius) {
+  const double norm = x.norm();
+  return norm <= radius ? x : Eigen::Vector2d(x * (radius / norm));
+}
+}  // namespace
+
+LocalVector Coulomb2D::solveStep(const StepProblem& step) const {
+  const Eigen::Matrix2d d = step.delassus;
+  const Eigen::Vector2d u_free = step.u_free;
+  // Step 1/L with L the largest eigenvalue of D: a contraction on the disc.
+  const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(d).eigenvalues().maxCoeff();
+  Eigen::Vector2d lambda = projectOnDisc(-u_free / largest, mu_n_);
+  for (int iteration = 0; iteration < 10000; ++iteration) {
+    const Eigen::Vector2d next = projectOnDisc(lambda - (d * lambda + u_free) / largest, mu_n_);
+    const double change = (next - lambda).norm();
+    lambda = next;
+    if (change <= 1e-15 * std::max(mu_n_, 1e-300)) break;
+  }
+  LocalVector force(2);
+  force << lambda[0], lambda[1];
+  return force;
+}
+
+std::vector<std::pair<std::string, double>> Coulomb2D::violations(const LawSamples& s) const {
+  double v_scale = 0.0;
+  for (Eigen::Index i = 0; i < s.velocity.rows(); ++i) v_scale = std::max(v_scale, s.velocity.row(i).norm());
+  double excess = 0.0, sliding = 0.0;
+  if (mu_n_ <= 0.0) return {{"force_limit_excess", 0.0}, {"sliding_force_error", 0.0}};
+  for (Eigen::Index i = 0; i < s.force.rows(); ++i) {
+    const Eigen::Vector2d r = s.force.row(i).transpose(), v = s.velocity.row(i).transpose();
+    excess = std::max(excess, r.norm() / mu_n_ - 1.0);
+    if (v.norm() > kSlidingFraction * v_scale)  // clearly sliding: r = −μN v/‖v‖
+      sliding = std::max(sliding, (r + mu_n_ * v / v.norm()).norm() / mu_n_);
+  }
+  return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
+}
+
+}  // namespace eqhb

@@ -1,0 +1,43 @@
+// Isotropic Coulomb friction in the plane (spec §2, "Coulomb 2D"), v = ẋ and
+// r in R², s = r − ρ v:
+//   max:        Ψ = r max(μN, ‖s‖) − μN s                      (exact)
+//   projection: Ψ = r − proj_D(μN)(s)                          (exact)
+//   smoothed:   the max form with ‖s‖ -> sqrt(‖s‖² + ε)        (ε > 0)
+//   tanh:       Ψ = r ‖v‖ + μN tanh(α‖v‖) v                   (classical, stiff; α > 0)
+// Ties (‖s‖ = μN) take the sticking branch.
+#pragma once
+
+#include "eqhb/laws/law.h"
+
+namespace eqhb {
+
+enum class Coulomb2DForm { kMax, kProjection, kSmoothed, kTanh };
+
+Coulomb2DForm parseCoulomb2DForm(const std::string& name);
+std::string coulomb2DFormName(Coulomb2DForm form);
+
+class Coulomb2D : public Law {
+ public:
+  // Throws InputError: μN >= 0, ρ > 0, ε > 0, α > 0, all finite.
+  Coulomb2D(double mu_n, Coulomb2DForm form, double rho = 1.0, double epsilon = 1e-4,
+            double alpha = 100.0);
+  std::string type() const override { return "coulomb-2d"; }
+  int dimension() const override { return 2; }
+  bool usesDisplacement() const override { return false; }
+  bool usesVelocity() const override { return true; }
+  void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  // force_limit_excess: max(‖r‖/μN − 1, 0); sliding_force_error: max over
+  // clearly sliding samples of ‖r + μN v/‖v‖‖ / μN.
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  // min over the disc ‖λ‖ <= μN of ½ λᵀDλ + λᵀu_free (maximal dissipation),
+  // by projected gradient to round-off (exact projection when D = d I).
+  LocalVector solveStep(const StepProblem& step) const override;
+  Coulomb2DForm form() const { return form_; }
+
+ private:
+  double mu_n_;
+  Coulomb2DForm form_;
+  double rho_, epsilon_, alpha_;
+};
+
+}  // namespace eqhb

@@ -1,0 +1,33 @@
+#include "eqhb/laws/invariants.h"
+
+#include "eqhb/harmonic_balance/fourier_transform.h"
+
+namespace eqhb {
+
+std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::VectorXd& full,
+                                           int samples) {
+  const int n = samples > 0 ? samples : 8 * model.samples;
+  FourierTransform transform(model.basis, n);
+  const int nb = model.basis.size();
+  const int base = model.structure.dofs() * nb;
+  Eigen::VectorXd rate(nb);
+  std::vector<LawInvariants> reports;
+  for (size_t l = 0; l < model.laws.size(); ++l) {
+    const AttachedLaw& attached = model.laws[l];
+    const int d = attached.law->dimension();
+    LawSamples s;
+    s.resize(n, d);
+    for (int a = 0; a < d; ++a) {
+      const double* x = full.data() + attached.dofs[a] * nb;
+      transform.synthesize(x, s.displacement.col(a).data());
+      transform.differentiate(x, model.omega, rate.data());
+      transform.synthesize(rate.data(), s.velocity.col(a).data());
+      const int q = model.componentIndex(static_cast<int>(l), a);
+      transform.synthesize(full.data() + base + q * nb, s.force.col(a).data());
+    }
+    reports.push_back({static_cast<int>(l), attached.law->type(), attached.law->violations(s)});
+  }
+  return reports;
+}
+
+}  // namespace eqhb

@@ -1,0 +1,15 @@
+#include "eqhb/laws/law.h"
+
+namespace eqhb {
+
+void LawSamples::resize(int samples, int dimension) {
+  displacement.setZero(samples, dimension);
+  velocity.setZero(samples, dimension);
+  force.setZero(samples, dimension);
+  psi.setZero(samples, dimension);
+  dpsi_ddisplacement.setZero(samples, dimension * dimension);
+  dpsi_dvelocity.setZero(samples, dimension * dimension);
+  dpsi_dforce.setZero(samples, dimension * dimension);
+}
+
+}  // namespace eqhb

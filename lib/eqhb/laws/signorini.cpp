@@ -1,0 +1,91 @@
+#include "eqhb/laws/signorini.h"
+
+#include <cmath>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+SignoriniForm parseSignoriniForm(const std::string& name) {
+  if (name == "min") return SignoriniForm::kMin;
+  if (name == "fischer-burmeister") return SignoriniForm::kFischerBurmeister;
+  if (name == "sign-square") return SignoriniForm::kSignSquare;
+  throwInputError("form", "\"" + name + "\"", "must be min, fischer-burmeister or sign-square");
+}
+
+std::string signoriniFormName(SignoriniForm form) {
+  switch (form) {
+    case SignoriniForm::kMin: return "min";
+    case SignoriniForm::kFischerBurmeister: return "fischer-burmeister";
+    case SignoriniForm::kSignSquare: return "sign-square";
+  }
+  return "?";
+}
+
+Signorini::Signorini(double gap, SignoriniForm form, double rho) : gap_(gap), form_(form), rho_(rho) {
+  if (!std::isfinite(gap)) throwInputError("gap", formatNumber(gap), "must be finite (no NaN or Inf)");
+  if (!(rho > 0.0) || !std::isfinite(rho)) throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+}
+
+void Signorini::evaluate(LawSamples& s, bool with_derivatives) const {
+  const Eigen::Index n = s.psi.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double a = rho_ * (gap_ - s.displacement(i, 0));  // ∂a/∂x = −ρ
+    const double p = s.force(i, 0);
+    double psi = 0.0, da = 0.0, dp = 0.0;
+    switch (form_) {
+      case SignoriniForm::kMin:
+        if (a < p) {
+          psi = a, da = 1.0, dp = 0.0;
+        } else {
+          psi = p, da = 0.0, dp = 1.0;
+        }
+        break;
+      case SignoriniForm::kFischerBurmeister: {
+        const double root = std::hypot(a, p);
+        psi = a + p - root;
+        if (root > 0.0) {
+          da = 1.0 - a / root;
+          dp = 1.0 - p / root;
+        } else {
+          da = dp = 1.0 - std::sqrt(0.5);
+        }
+        break;
+      }
+      case SignoriniForm::kSignSquare:
+        psi = -(a - p) * (a - p) + std::abs(a) * a + std::abs(p) * p;
+        da = -2.0 * (a - p) + 2.0 * std::abs(a);
+        dp = 2.0 * (a - p) + 2.0 * std::abs(p);
+        break;
+    }
+    s.psi(i, 0) = psi;
+    if (with_derivatives) {
+      s.dpsi_ddisplacement(i, 0) = -rho_ * da;
+      s.dpsi_dforce(i, 0) = dp;
+    }
+  }
+}
+
+LocalVector Signorini::solveStep(const StepProblem& step) const {
+  LocalVector pressure(1);
+  pressure[0] = 0.0;
+  const double gap = gap_ - step.x_start[0];
+  const double gap_rate = -step.v_start[0];  // ġ = −ẋ
+  if (gap + 0.5 * step.h * gap_rate > 0.0) return pressure;  // stays open
+  // ġ_end = −u_end = −u_free − D p, with D = −h G (force −p): ġ_end = −u_free + h G p.
+  const double stiffness = -step.delassus(0, 0);  // h G > 0
+  pressure[0] = std::max(0.0, (step.u_free[0] - step.restitution * gap_rate) / stiffness);
+  return pressure;
+}
+
+std::vector<std::pair<std::string, double>> Signorini::violations(const LawSamples& s) const {
+  const Eigen::ArrayXd g = gap_ - s.displacement.col(0).array();
+  const Eigen::ArrayXd p = s.force.col(0).array();
+  const double g_scale = g.abs().maxCoeff(), p_scale = p.abs().maxCoeff();
+  auto relative = [](double value, double scale) { return scale > 0.0 ? value / scale : 0.0; };
+  return {{"penetration", relative(std::max(0.0, -g.minCoeff()), g_scale)},
+          {"negative_pressure", relative(std::max(0.0, -p.minCoeff()), p_scale)},
+          {"complementarity", relative((g * p).abs().maxCoeff(), g_scale * p_scale)}};
+}
+
+}  // namespace eqhb

@@ -1,0 +1,67 @@
+#include "eqhb/laws/stribeck.h"
+
+#include <cmath>
+
+#include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+Stribeck::Stribeck(double mu_n_dynamic, double mu_n_static, double v_s, double rho)
+    : dynamic_(mu_n_dynamic), drop_(mu_n_static - mu_n_dynamic), v_s_(v_s), rho_(rho) {
+  if (!(mu_n_dynamic >= 0.0) || !std::isfinite(mu_n_dynamic))
+    throwInputError("muN_dynamic", formatNumber(mu_n_dynamic), "friction limit must be finite and >= 0");
+  if (!(mu_n_static >= mu_n_dynamic) || !std::isfinite(mu_n_static))
+    throwInputError("muN_static", formatNumber(mu_n_static), "must be finite and >= muN_dynamic");
+  if (!(v_s > 0.0) || !std::isfinite(v_s)) throwInputError("v_s", formatNumber(v_s), "must be finite and > 0");
+  if (!(rho > 0.0) || !std::isfinite(rho)) throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+}
+
+double Stribeck::limit(double v) const { return dynamic_ + drop_ * std::exp(-std::abs(v) / v_s_); }
+
+void Stribeck::evaluate(LawSamples& s, bool with_derivatives) const {
+  const Eigen::Index n = s.psi.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double v = s.velocity(i, 0), r = s.force(i, 0);
+    const double decay = drop_ * std::exp(-std::abs(v) / v_s_);
+    const double l = dynamic_ + decay;
+    const double dl = v > 0.0 ? -decay / v_s_ : v < 0.0 ? decay / v_s_ : 0.0;  // L'(v)
+    const double a = rho_ * (r + l) - v;
+    const double b = rho_ * (r - l) - v;
+    s.psi(i, 0) = v + std::min(0.0, a) + std::max(0.0, b);
+    if (with_derivatives) {
+      const double lower = a < 0.0 ? 1.0 : 0.0, upper = b > 0.0 ? 1.0 : 0.0;
+      s.dpsi_dvelocity(i, 0) = 1.0 + lower * (rho_ * dl - 1.0) + upper * (-rho_ * dl - 1.0);
+      s.dpsi_dforce(i, 0) = rho_ * (lower + upper);
+    }
+  }
+}
+
+LocalVector Stribeck::solveStep(const StepProblem& step) const {
+  LocalVector force(1);
+  const double d = step.delassus(0, 0), u_free = step.u_free[0];
+  if (std::abs(u_free) <= d * limit(0.0)) {
+    force[0] = -u_free / d;  // sticks: u_end = 0
+    return force;
+  }
+  // φ(w) = w − |u_free| + D L(w): φ(0) < 0 <= φ(|u_free|).
+  double low = 0.0, high = std::abs(u_free), w = high;
+  for (int iteration = 0; iteration < 200 && high - low > 1e-15 * std::abs(u_free); ++iteration) {
+    const double phi = w - std::abs(u_free) + d * limit(w);
+    if (phi > 0.0) high = w;
+    else low = w;
+    const double dphi = 1.0 - d * drop_ * std::exp(-w / v_s_) / v_s_;
+    const double newton = dphi > 0.0 ? w - phi / dphi : -1.0;
+    w = newton > low && newton < high ? newton : 0.5 * (low + high);
+  }
+  force[0] = -std::copysign(limit(w), u_free);
+  return force;
+}
+
+std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSamples& s) const {
+  Eigen::VectorXd limits(s.velocity.rows());
+  for (Eigen::Index i = 0; i < limits.size(); ++i) limits[i] = limit(s.velocity(i, 0));
+  return frictionViolations(s.velocity.col(0), s.force.col(0), limits);
+}
+
+}  // namespace eqhb

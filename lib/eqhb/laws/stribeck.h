@@ -1,0 +1,31 @@
+// Stribeck friction on one DOF (spec §2): velocity-weakening limit
+//   L(v) = μ_d N + (μ_s − μ_d) N exp(−|v| / v_s),
+//   Ψ = v + min(0, ρ(r + L(v)) − v) + max(0, ρ(r − L(v)) − v).
+// L is not differentiable at v = 0; its weak derivative there is taken as 0.
+#pragma once
+
+#include "eqhb/laws/law.h"
+
+namespace eqhb {
+
+class Stribeck : public Law {
+ public:
+  // Throws InputError: 0 <= μ_d N <= μ_s N, v_s > 0, ρ > 0, all finite.
+  Stribeck(double mu_n_dynamic, double mu_n_static, double v_s, double rho = 1.0);
+  std::string type() const override { return "stribeck"; }
+  int dimension() const override { return 1; }
+  bool usesDisplacement() const override { return false; }
+  bool usesVelocity() const override { return true; }
+  void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  // As Coulomb1D, with the limit L(v) of each sample.
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  // Stick if |u_free| <= D L(0); else slide with w = |u_end| > 0 solving
+  // w = |u_free| − D L(w) (bracketed bisection–Newton), λ = −L(w) sign(u_free).
+  LocalVector solveStep(const StepProblem& step) const override;
+  double limit(double v) const;
+
+ private:
+  double dynamic_, drop_, v_s_, rho_;
+};
+
+}  // namespace eqhb

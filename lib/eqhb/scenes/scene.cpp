@@ -1,0 +1,434 @@
+#include "eqhb/scenes/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <toml.hpp>
+
+#include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/laws/coulomb_2d.h"
+#include "eqhb/laws/cubic_stiffness.h"
+#include "eqhb/error.h"
+#include "eqhb/laws/signorini.h"
+#include "eqhb/laws/stribeck.h"
+
+namespace eqhb {
+
+namespace {
+
+std::string describe(const toml::value& v) {
+  std::ostringstream out;
+  out << v;
+  std::string text = out.str();
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+// Reads one TOML table, remembering which keys were used, so that unknown
+// keys (typos) are reported instead of silently ignored.
+class TableReader {
+ public:
+  TableReader(const toml::value& value, std::string field, std::string source)
+      : field_(std::move(field)), source_(std::move(source)) {
+    if (!value.is_table()) fail(field_, describe(value), "must be a table");
+    table_ = &value.as_table();
+  }
+
+  bool has(const std::string& key) const { return table_->count(key) > 0; }
+
+  const toml::value& raw(const std::string& key) {
+    used_.insert(key);
+    auto it = table_->find(key);
+    if (it == table_->end()) fail(path(key), "(missing)", "required");
+    return it->second;
+  }
+
+  double number(const std::string& key, std::optional<double> fallback = std::nullopt) {
+    if (!has(key) && fallback) return *fallback;
+    const toml::value& v = raw(key);
+    double x;
+    if (v.is_integer()) x = static_cast<double>(v.as_integer());
+    else if (v.is_floating()) x = v.as_floating();
+    else fail(path(key), describe(v), "must be a number");
+    if (!std::isfinite(x)) fail(path(key), describe(v), "must be finite (no NaN or Inf)");
+    return x;
+  }
+
+  int integer(const std::string& key, std::optional<int> fallback = std::nullopt) {
+    if (!has(key) && fallback) return *fallback;
+    const toml::value& v = raw(key);
+    if (!v.is_integer()) fail(path(key), describe(v), "must be an integer");
+    return static_cast<int>(v.as_integer());
+  }
+
+  std::string text(const std::string& key, std::optional<std::string> fallback = std::nullopt) {
+    if (!has(key) && fallback) return *fallback;
+    const toml::value& v = raw(key);
+    if (!v.is_string()) fail(path(key), describe(v), "must be a string");
+    return v.as_string().str;
+  }
+
+  Eigen::MatrixXd matrix(const std::string& key) {
+    const toml::value& v = raw(key);
+    if (!v.is_array() || v.as_array().empty())
+      fail(path(key), describe(v), "must be a non-empty array of rows");
+    const auto& rows = v.as_array();
+    Eigen::MatrixXd m(rows.size(), rows.size());
+    for (size_t i = 0; i < rows.size(); ++i) {
+      if (!rows[i].is_array() || rows[i].as_array().size() != rows.size())
+        fail(path(key) + "[" + std::to_string(i) + "]", describe(rows[i]),
+             "must be a row of " + std::to_string(rows.size()) + " numbers (square matrix)");
+      for (size_t j = 0; j < rows.size(); ++j) {
+        const toml::value& e = rows[i].as_array()[j];
+        double x;
+        if (e.is_integer()) x = static_cast<double>(e.as_integer());
+        else if (e.is_floating()) x = e.as_floating();
+        else fail(path(key), describe(e), "entries must be numbers");
+        if (!std::isfinite(x)) fail(path(key), describe(e), "entries must be finite");
+        m(i, j) = x;
+      }
+    }
+    return m;
+  }
+
+  void requireKnownKeys() const {
+    for (const auto& [key, value] : *table_)
+      if (!used_.count(key)) {
+        std::string known;
+        for (const auto& k : used_) known += (known.empty() ? "" : ", ") + k;
+        fail(path(key), describe(value), "unknown key (known here: " + known + ")");
+      }
+  }
+  // Marks keys as known without reading them (optional keys of another variant).
+  void allow(std::initializer_list<const char*> keys) {
+    for (const char* k : keys) used_.insert(k);
+  }
+
+  std::string path(const std::string& key) const {
+    return field_.empty() ? key : field_ + "." + key;
+  }
+  [[noreturn]] void fail(const std::string& field, const std::string& value,
+                         const std::string& rule) const {
+    throw InputError(source_ + ": " + field + " = " + value + ": " + rule);
+  }
+
+ private:
+  const toml::table* table_ = nullptr;
+  std::string field_, source_;
+  std::set<std::string> used_;
+};
+
+// T = tridiag(−1, 2, −1) with the last diagonal entry 1: a chain fixed at
+// DOF 1's left end and free after DOF n (spec §4: k [[2, −1], [−1, 1]]).
+Eigen::MatrixXd chainPattern(int n) {
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    t(i, i) = i + 1 < n ? 2.0 : 1.0;
+    if (i + 1 < n) t(i, i + 1) = t(i + 1, i) = -1.0;
+  }
+  return t;
+}
+
+LinearStructure readStructure(TableReader& top, const std::string& source) {
+  TableReader s(top.raw("structure"), "structure", source);
+  LinearStructure structure;
+  const std::string type = s.text("type");
+  if (type == "chain") {
+    const int n = s.integer("dofs", 2);
+    if (n < 1) s.fail("structure.dofs", std::to_string(n), "must be >= 1");
+    const double m = s.number("m"), k = s.number("k"), d = s.number("d");
+    if (!(m > 0.0)) s.fail("structure.m", formatNumber(m), "mass must be > 0");
+    if (k < 0.0) s.fail("structure.k", formatNumber(k), "stiffness must be >= 0");
+    if (d < 0.0) s.fail("structure.d", formatNumber(d), "damping must be >= 0");
+    const Eigen::MatrixXd t = chainPattern(n);
+    structure.mass = m * Eigen::MatrixXd::Identity(n, n);
+    structure.stiffness = k * t;
+    structure.damping = d * t;
+  } else if (type == "matrices") {
+    structure.mass = s.matrix("mass");
+    structure.damping = s.matrix("damping");
+    structure.stiffness = s.matrix("stiffness");
+  } else {
+    s.fail("structure.type", "\"" + type + "\"", "must be \"chain\" or \"matrices\"");
+  }
+  s.requireKnownKeys();
+  return structure;
+}
+
+const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
+  const toml::value& v = top.raw(key);
+  if (!v.is_array()) top.fail(key, describe(v), "must be an array of tables ([[" + key + "]])");
+  return v.as_array();
+}
+
+AttachedLaw readLaw(const toml::value& value, const std::string& field, const std::string& source,
+                    int dofs) {
+  TableReader t(value, field, source);
+  const std::string type = t.text("type");
+  AttachedLaw attached;
+  const toml::value& list = t.raw("dofs");
+  if (!list.is_array() || list.as_array().empty())
+    t.fail(field + ".dofs", describe(list), "must be a non-empty array of DOF numbers");
+  for (const auto& e : list.as_array()) {
+    if (!e.is_integer()) t.fail(field + ".dofs", describe(list), "DOF numbers must be integers");
+    const auto dof = e.as_integer();
+    if (dof < 1 || dof > dofs)
+      t.fail(field + ".dofs", std::to_string(dof),
+             "no such DOF (the structure has " + std::to_string(dofs) + ", numbered from 1)");
+    attached.dofs.push_back(static_cast<int>(dof) - 1);
+  }
+  // Positive-parameter reader with the field in the message.
+  auto positive = [&](const char* key, std::optional<double> fallback) {
+    const double x = t.number(key, fallback);
+    if (!(x > 0.0)) t.fail(field + "." + key, formatNumber(x), "must be > 0");
+    return x;
+  };
+  auto form = [&](const std::string& fallback) {
+    const std::string name = t.text("form", fallback);
+    const auto& known = lawForms(type);
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const auto& f : known) list += (list.empty() ? "" : ", ") + f;
+      t.fail(field + ".form", "\"" + name + "\"", "a " + type + " law has forms " + list);
+    }
+    return name;
+  };
+  if (type == "coulomb-1d") {
+    const double mu_n = t.number("muN");
+    if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
+    const double rho = positive("rho", 1.0);
+    const double beta = positive("beta", 100.0);
+    attached.law = std::make_shared<Coulomb1D>(mu_n, parseCoulombForm(form("minmax")), rho, beta);
+  } else if (type == "coulomb-2d") {
+    const double mu_n = t.number("muN");
+    if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
+    const double rho = positive("rho", 1.0);
+    const double epsilon = positive("epsilon", 1e-4);
+    const double alpha = positive("alpha", 100.0);
+    attached.law = std::make_shared<Coulomb2D>(mu_n, parseCoulomb2DForm(form("max")), rho, epsilon, alpha);
+  } else if (type == "signorini") {
+    const double gap = t.number("gap");
+    const double rho = positive("rho", 1.0);
+    attached.law = std::make_shared<Signorini>(gap, parseSignoriniForm(form("min")), rho);
+  } else if (type == "stribeck") {
+    const double dynamic = t.number("muN_dynamic");
+    if (dynamic < 0.0) t.fail(field + ".muN_dynamic", formatNumber(dynamic), "friction limit must be >= 0");
+    const double stat = t.number("muN_static");
+    if (stat < dynamic)
+      t.fail(field + ".muN_static", formatNumber(stat), "must be >= muN_dynamic = " + formatNumber(dynamic));
+    const double v_s = positive("v_s", std::nullopt);
+    const double rho = positive("rho", 1.0);
+    form("minmax");
+    attached.law = std::make_shared<Stribeck>(dynamic, stat, v_s, rho);
+  } else if (type == "cubic") {
+    attached.law = std::make_shared<CubicStiffness>(t.number("epsilon"));
+  } else {
+    t.fail(field + ".type", "\"" + type + "\"",
+           "unknown law (known: coulomb-1d, coulomb-2d, signorini, stribeck, cubic)");
+  }
+  if (static_cast<int>(attached.dofs.size()) != attached.law->dimension())
+    t.fail(field + ".dofs", describe(list),
+           "a " + type + " law acts on exactly " + std::to_string(attached.law->dimension()) +
+               " DOF(s)");
+  t.requireKnownKeys();
+  return attached;
+}
+
+// ------------------------------------------------------------ overrides
+
+toml::value parseOverrideValue(const std::string& text) {
+  try {
+    std::istringstream in("v = " + text);
+    return toml::find(toml::parse(in, "--set"), "v");
+  } catch (const std::exception&) {
+    return toml::value(text);  // a bare word: take it as a string
+  }
+}
+
+void applyOverride(toml::value& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throwInputError("--set", "\"" + assignment + "\"", "must be PATH=VALUE, e.g. law[0].muN=5");
+  const std::string path = assignment.substr(0, eq);
+  const toml::value value = parseOverrideValue(assignment.substr(eq + 1));
+  toml::value* node = &root;
+  std::istringstream segments(path);
+  std::string segment;
+  std::vector<std::string> parts;
+  while (std::getline(segments, segment, '.')) parts.push_back(segment);
+  for (size_t p = 0; p < parts.size(); ++p) {
+    std::string key = parts[p];
+    std::optional<size_t> index;
+    const auto bracket = key.find('[');
+    if (bracket != std::string::npos) {
+      if (key.back() != ']') throwInputError("--set", path, "malformed index in \"" + key + "\"");
+      try {
+        index = std::stoul(key.substr(bracket + 1, key.size() - bracket - 2));
+      } catch (...) {
+        throwInputError("--set", path, "malformed index in \"" + key + "\"");
+      }
+      key = key.substr(0, bracket);
+    }
+    if (!node->is_table()) throwInputError("--set", path, "\"" + key + "\" is not inside a table");
+    auto& table = node->as_table();
+    const bool last = p + 1 == parts.size();
+    if (last && !index) {
+      table[key] = value;
+      return;
+    }
+    auto it = table.find(key);
+    if (it == table.end()) {
+      if (index) throwInputError("--set", path, "no array \"" + key + "\" to index");
+      table[key] = toml::table{};
+      it = table.find(key);
+    }
+    node = &it->second;
+    if (node->is_array()) {
+      auto& array = node->as_array();
+      if (!index && array.size() == 1) index = 0;
+      if (!index)
+        throwInputError("--set", path, "\"" + key + "\" has " + std::to_string(array.size()) +
+                                           " entries: give an index, e.g. " + key + "[0]");
+      if (*index >= array.size())
+        throwInputError("--set", path, "index " + std::to_string(*index) + " out of range (" +
+                                           std::to_string(array.size()) + " entries)");
+      node = &array[*index];
+      if (last) {
+        *node = value;
+        return;
+      }
+    } else if (index) {
+      throwInputError("--set", path, "\"" + key + "\" is not an array");
+    }
+  }
+}
+
+Scene buildScene(toml::value root, const std::string& source,
+                 const std::vector<std::string>& overrides) {
+  for (const auto& assignment : overrides) applyOverride(root, assignment);
+  TableReader top(root, "", source);
+  Scene scene;
+  scene.source = source;
+  scene.name = top.text("name");
+  scene.description = top.text("description", std::string());
+  scene.model.structure = readStructure(top, source);
+  const int dofs = scene.model.structure.dofs();
+
+  if (top.has("forcing")) {
+    const auto& loads = arrayOfTables(top, "forcing");
+    for (size_t i = 0; i < loads.size(); ++i) {
+      const std::string field = "forcing[" + std::to_string(i) + "]";
+      TableReader f(loads[i], field, source);
+      HarmonicLoad load;
+      const int dof = f.integer("dof");
+      if (dof < 1 || dof > dofs)
+        f.fail(field + ".dof", std::to_string(dof),
+               "no such DOF (the structure has " + std::to_string(dofs) + ", numbered from 1)");
+      load.dof = dof - 1;
+      load.harmonic = f.integer("harmonic", 1);
+      if (load.harmonic < 0) f.fail(field + ".harmonic", std::to_string(load.harmonic), "must be >= 0");
+      load.cos_amplitude = f.number("cos", 0.0);
+      load.sin_amplitude = f.number("sin", 0.0);
+      f.requireKnownKeys();
+      scene.model.structure.loads.push_back(load);
+    }
+  }
+  if (top.has("law")) {
+    const auto& laws = arrayOfTables(top, "law");
+    for (size_t i = 0; i < laws.size(); ++i)
+      scene.model.laws.push_back(readLaw(laws[i], "law[" + std::to_string(i) + "]", source, dofs));
+  }
+
+  TableReader hb(top.raw("harmonic_balance"), "harmonic_balance", source);
+  const int harmonics = hb.integer("harmonics");
+  const std::string set = hb.text("set", std::string("odd"));
+  if (set != "odd" && set != "all")
+    hb.fail("harmonic_balance.set", "\"" + set + "\"", "must be \"odd\" or \"all\"");
+  if (set == "odd" && harmonics < 1)
+    hb.fail("harmonic_balance.harmonics", std::to_string(harmonics),
+            "must be >= 1 for set = \"odd\"");
+  if (harmonics < 0) hb.fail("harmonic_balance.harmonics", std::to_string(harmonics), "must be >= 0");
+  scene.model.basis = HarmonicSet(HarmonicSet::parseKind(set), harmonics);
+  scene.model.samples = hb.integer("samples");
+  if (scene.model.samples < scene.model.basis.minimumSamples())
+    hb.fail("harmonic_balance.samples", std::to_string(scene.model.samples),
+            "must be >= 2 k_max + 1 = " + std::to_string(scene.model.basis.minimumSamples()) +
+                " (highest harmonic k_max = " + std::to_string(scene.model.basis.highest()) + ")");
+  scene.model.omega = hb.number("omega");
+  if (!(scene.model.omega > 0.0))
+    hb.fail("harmonic_balance.omega", formatNumber(scene.model.omega), "must be > 0");
+  hb.requireKnownKeys();
+
+  if (top.has("sweep")) {
+    TableReader sweep(top.raw("sweep"), "sweep", source);
+    scene.sweep_from = sweep.number("from");
+    scene.sweep_to = sweep.number("to");
+    if (!(*scene.sweep_from > 0.0) || !(*scene.sweep_to > *scene.sweep_from))
+      sweep.fail("sweep", formatNumber(*scene.sweep_from) + ".." + formatNumber(*scene.sweep_to),
+                 "need 0 < from < to");
+    sweep.requireKnownKeys();
+  }
+  top.allow({"forcing", "law"});
+  top.requireKnownKeys();
+  try {
+    scene.model.validate();
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+  return scene;
+}
+
+}  // namespace
+
+const std::vector<std::string>& lawForms(const std::string& type) {
+  static const std::map<std::string, std::vector<std::string>> forms = {
+      {"coulomb-1d", {"minmax", "projection", "tanh", "piecewise"}},
+      {"coulomb-2d", {"max", "projection", "smoothed", "tanh"}},
+      {"signorini", {"min", "fischer-burmeister", "sign-square"}},
+      {"stribeck", {"minmax"}},
+      {"cubic", {}}};
+  static const std::vector<std::string> none;
+  const auto it = forms.find(type);
+  return it == forms.end() ? none : it->second;
+}
+
+bool lawTakesRho(const std::string& type) { return type != "cubic"; }
+
+std::vector<std::string> lawOverrides(const HbModel& model, const std::string& key, const std::string& value) {
+  std::vector<std::string> out;
+  for (size_t l = 0; l < model.laws.size(); ++l) {
+    const std::string type = model.laws[l].law->type();
+    const auto& forms = lawForms(type);
+    const bool takes = key == "form" ? std::find(forms.begin(), forms.end(), value) != forms.end()
+                                     : key == "rho" && lawTakesRho(type);
+    if (!takes) continue;
+    const std::string quoted = key == "form" ? "\"" + value + "\"" : value;
+    out.push_back("law[" + std::to_string(l) + "]." + key + "=" + quoted);
+  }
+  return out;
+}
+
+Scene parseScene(const std::string& text, const std::string& source_name,
+                 const std::vector<std::string>& overrides) {
+  toml::value root;
+  try {
+    std::istringstream in(text);
+    root = toml::parse(in, source_name);
+  } catch (const std::exception& e) {
+    throw InputError(std::string("malformed scene file: ") + e.what());
+  }
+  return buildScene(std::move(root), source_name, overrides);
+}
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream file(path);
+  if (!file) throw InputError(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parseScene(text.str(), path, overrides);
+}
+
+}  // namespace eqhb

@@ -1,0 +1,60 @@
+// Scene files (problems/*.toml): a small, readable TOML description of one
+// test problem — structure, loads, laws, default harmonic-balance settings —
+// loaded with strict validation (unknown keys, missing keys, wrong types,
+// non-physical or non-finite values are errors naming the field).
+//
+// Format (DOFs are numbered from 1, as in the spec):
+//   name, description                          strings
+//   [structure] type = "chain"                 dofs (default 2), m > 0, k >= 0, d >= 0:
+//                                              M = m I, K = k T, C = d T,
+//                                              T = tridiag(−1, 2, −1) with T_nn = 1
+//   [structure] type = "matrices"              mass, damping, stiffness (arrays of rows)
+//   [[forcing]] dof, harmonic (1), cos (0), sin (0)
+//   [[law]]     type, dofs (one per component) and, by type (defaults in brackets):
+//     coulomb-1d  muN >= 0, form = minmax|projection|tanh|piecewise [minmax],
+//                 rho > 0 [1], beta > 0 [100] (slope of the regularised forms)
+//     coulomb-2d  two dofs, muN >= 0, form = max|projection|smoothed|tanh [max],
+//                 rho [1], epsilon > 0 [1e-4] (smoothed), alpha > 0 [100] (tanh)
+//     signorini   gap g0 (wall at x = g0, approached from below),
+//                 form = min|fischer-burmeister|sign-square [min], rho [1]
+//     stribeck    muN_dynamic >= 0, muN_static >= muN_dynamic, v_s > 0, rho [1]
+//     cubic       epsilon (force −ε x³ as the DAE f + ε x³ = 0)
+//   [harmonic_balance] harmonics, set = odd|all, samples, omega
+//   [sweep]     from, to  (optional)
+//
+// Overrides "path=value" change the document before validation: the path is
+// dotted, array elements by index ("law[0].muN", or "law.muN" when there is
+// one law), the value is TOML ("1.5", "\"projection\"", or a bare word taken
+// as a string).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eqhb/harmonic_balance/hb_model.h"
+
+namespace eqhb {
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string source;  // file path
+  HbModel model;
+  std::optional<double> sweep_from, sweep_to;
+};
+
+// Throws InputError with the file name and the field.
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+// The forms a law type accepts, in scene files and for --form.
+const std::vector<std::string>& lawForms(const std::string& type);
+// Whether a law type has the scaling ρ.
+bool lawTakesRho(const std::string& type);
+// Overrides "law[i].KEY=VALUE" for every law of the model that takes them:
+// KEY "form" (laws having that form) or "rho" (laws having ρ).
+std::vector<std::string> lawOverrides(const HbModel& model, const std::string& key, const std::string& value);
+
+Scene parseScene(const std::string& text, const std::string& source_name,
+                 const std::vector<std::string>& overrides = {});
+
+}  // namespace eqhb

@@ -1,0 +1,179 @@
+#include "eqhb/solvers/solver.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+const char* terminationName(Termination termination) {
+  switch (termination) {
+    case Termination::kConverged: return "converged";
+    case Termination::kIterationLimit: return "iteration_limit";
+    case Termination::kEvaluationLimit: return "evaluation_limit";
+    case Termination::kTimeLimit: return "time_limit";
+    case Termination::kStepTolerance: return "step_tolerance";
+    case Termination::kNotProgressing: return "not_progressing";
+    case Termination::kEvaluationFailed: return "evaluation_failed";
+    case Termination::kInvalidOptions: return "invalid_options";
+    case Termination::kBackendError: return "backend_error";
+  }
+  return "unknown";
+}
+
+bool SolverOptions::isValid(std::string* why) const {
+  auto fail = [why](const std::string& field, const std::string& value, const std::string& rule) {
+    if (why) *why = field + " = " + value + ": " + rule;
+    return false;
+  };
+  if (!(residual_tolerance >= 0.0) || !std::isfinite(residual_tolerance))
+    return fail("residual_tolerance", formatNumber(residual_tolerance), "must be finite and >= 0");
+  if (max_iterations < 1)
+    return fail("max_iterations", std::to_string(max_iterations), "must be >= 1");
+  if (max_evaluations < 1)
+    return fail("max_evaluations", std::to_string(max_evaluations), "must be >= 1");
+  if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
+    return fail("time_limit", formatNumber(time_limit), "must be finite and >= 0 (0: none)");
+  return true;
+}
+
+std::string SolverResult::summary() const {
+  std::ostringstream out;
+  out << solver << ": " << terminationName(termination) << ", |g| " << initial_norm << " -> "
+      << final_norm << ", " << iterations << " iterations, " << residual_evaluations
+      << " residual and " << jacobian_evaluations << " Jacobian evaluations, " << seconds << " s";
+  if (!native_message.empty()) out << " [" << native_message << "]";
+  return out.str();
+}
+
+MonitoredSystem::MonitoredSystem(SquareSystem& inner, const SolverOptions& options)
+    : inner_(inner), options_(options), start_(std::chrono::steady_clock::now()) {}
+
+void MonitoredSystem::record(const Eigen::Ref<Eigen::VectorXd>& g, bool ok) {
+  ++residual_evaluations_;
+  if (!ok) ++failed_evaluations_;
+  if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
+}
+
+bool MonitoredSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z,
+                               Eigen::Ref<Eigen::VectorXd> g) {
+  bool ok = false;
+  try {
+    ok = inner_.residual(z, g) && g.allFinite();
+  } catch (const std::exception& e) {
+    failure_ = e.what();
+  } catch (...) {
+    failure_ = "unknown exception in residual evaluation";
+  }
+  record(g, ok);
+  return ok;
+}
+
+bool MonitoredSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                          Eigen::Ref<Eigen::VectorXd> g,
+                                          Eigen::Ref<Eigen::MatrixXd> jacobian) {
+  bool ok = false;
+  try {
+    ok = inner_.residualAndJacobian(z, g, jacobian) && g.allFinite() && jacobian.allFinite();
+  } catch (const std::exception& e) {
+    failure_ = e.what();
+  } catch (...) {
+    failure_ = "unknown exception in Jacobian evaluation";
+  }
+  ++jacobian_evaluations_;
+  if (!ok) ++failed_evaluations_;
+  if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
+  return ok;
+}
+
+double MonitoredSystem::elapsedSeconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+bool MonitoredSystem::evaluationLimitReached() const {
+  return residual_evaluations_ >= options_.max_evaluations;
+}
+
+bool MonitoredSystem::timeLimitReached() const {
+  return options_.time_limit > 0.0 && elapsedSeconds() >= options_.time_limit;
+}
+
+SolverResult Solver::solve(SquareSystem& system, const Eigen::VectorXd& z0,
+                           const SolverOptions& options) {
+  SolverResult result;
+  result.solver = name();
+  result.solution = z0;
+  std::string why;
+  if (!options.isValid(&why) || z0.size() != system.size()) {
+    result.termination = Termination::kInvalidOptions;
+    result.native_message = why.empty() ? "initial guess has size " + std::to_string(z0.size()) +
+                                              ", the system " + std::to_string(system.size())
+                                        : why;
+    return result;
+  }
+  if (!z0.allFinite()) {
+    result.termination = Termination::kInvalidOptions;
+    result.native_message = "initial guess contains NaN or Inf";
+    return result;
+  }
+  MonitoredSystem monitored(system, options);
+  try {
+    run(monitored, z0, options, result);
+  } catch (const std::exception& e) {
+    result.termination = Termination::kBackendError;
+    result.native_message = e.what();
+  }
+  result.seconds = monitored.elapsedSeconds();
+  result.residual_evaluations = monitored.residualEvaluations();
+  result.jacobian_evaluations = monitored.jacobianEvaluations();
+  result.initial_norm = monitored.firstNorm();
+  if (!monitored.failure().empty())
+    result.native_message += (result.native_message.empty() ? "" : "; ") +
+                             std::string("evaluation threw: ") + monitored.failure();
+
+  // The verdict: re-evaluate at the returned point, outside the counts.
+  Eigen::VectorXd g(system.size());
+  bool finite = false;
+  try {
+    finite = result.solution.size() == system.size() && system.residual(result.solution, g) &&
+             g.allFinite();
+  } catch (...) {
+    finite = false;
+  }
+  result.final_norm = finite ? g.norm() : std::numeric_limits<double>::quiet_NaN();
+  const bool within = finite && result.final_norm <= options.residual_tolerance;
+  if (within && result.termination != Termination::kInvalidOptions) {
+    result.termination = Termination::kConverged;
+  } else if (!within && result.termination == Termination::kConverged) {
+    result.termination = Termination::kNotProgressing;
+    result.native_message += (result.native_message.empty() ? "" : "; ") +
+                             std::string("backend reported success above the tolerance");
+  }
+  // Backends that survive a failed trial evaluation (shrinking their step)
+  // may end for another reason; a failed solve that met a failed
+  // evaluation reports it, as the backends that stop at once do.
+  if (!within && monitored.failedEvaluations() > 0 &&
+      result.termination != Termination::kInvalidOptions) {
+    if (result.termination != Termination::kEvaluationFailed)
+      result.native_message += (result.native_message.empty() ? "" : "; ") +
+                               std::to_string(monitored.failedEvaluations()) +
+                               " evaluation(s) failed (non-finite residual or Jacobian)";
+    result.termination = Termination::kEvaluationFailed;
+  }
+  return result;
+}
+
+bool parseBackendNumber(const std::string& name, const std::string& text, double* value,
+                        std::string* why) {
+  try {
+    size_t used = 0;
+    *value = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(*value)) return true;
+  } catch (...) {
+  }
+  if (why) *why = name + " = \"" + text + "\": must be a finite number";
+  return false;
+}
+
+}  // namespace eqhb

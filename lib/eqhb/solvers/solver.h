@@ -1,0 +1,122 @@
+// One result type and one option set for every nonlinear solver backend.
+//
+// A backend implements Solver::run against a MonitoredSystem, which counts
+// evaluations, enforces the evaluation and time limits and turns exceptions
+// into failed evaluations. Solver::solve then re-checks the returned point:
+// "converged" is reported only when ‖g(z)‖₂ <= residual_tolerance, whatever
+// the backend said.
+#pragma once
+
+#include <Eigen/Dense>
+#include <chrono>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "eqhb/solvers/square_system.h"
+
+namespace eqhb {
+
+enum class Termination {
+  kConverged,         // ‖g‖ <= residual_tolerance at the returned point
+  kIterationLimit,    // max_iterations reached
+  kEvaluationLimit,   // max_evaluations residual evaluations reached
+  kTimeLimit,         // time_limit seconds reached
+  kStepTolerance,     // steps became too small while ‖g‖ > tolerance
+  kNotProgressing,    // no sufficient decrease over several iterations
+  kEvaluationFailed,  // the residual or Jacobian was not finite / threw
+  kInvalidOptions,    // options rejected before any evaluation
+  kBackendError,      // the backend failed for another reason
+};
+
+const char* terminationName(Termination termination);
+
+struct SolverOptions {
+  // Accept z when ‖g(z)‖₂ <= residual_tolerance (absolute). >= 0.
+  double residual_tolerance = 1e-10;
+  // Most iterations (trial steps or major iterations of the backend). >= 1.
+  int max_iterations = 1000;
+  // Most residual evaluations (Jacobian-only calls not counted). >= 1.
+  int max_evaluations = 10000;
+  // Wall-clock limit in seconds; 0 means none. >= 0.
+  double time_limit = 0.0;
+  // Backend-specific settings, "name" -> "value", passed through unchanged;
+  // a backend rejects names it does not know (kInvalidOptions).
+  std::map<std::string, std::string> backend;
+
+  // False with a message naming the field, its value and the rule.
+  bool isValid(std::string* why) const;
+};
+
+struct SolverResult {
+  std::string solver;
+  Termination termination = Termination::kBackendError;
+  int native_code = 0;           // the backend's own status code
+  std::string native_message;    // and its text
+  double initial_norm = std::numeric_limits<double>::quiet_NaN();
+  double final_norm = std::numeric_limits<double>::quiet_NaN();
+  int iterations = 0;
+  int residual_evaluations = 0;
+  int jacobian_evaluations = 0;
+  double seconds = 0.0;
+  Eigen::VectorXd solution;  // the last accepted point
+
+  bool converged() const { return termination == Termination::kConverged; }
+  std::string summary() const;  // one line
+};
+
+// Counts and guards evaluations of a wrapped system for one solve.
+class MonitoredSystem : public SquareSystem {
+ public:
+  MonitoredSystem(SquareSystem& inner, const SolverOptions& options);
+  int size() const override { return inner_.size(); }
+  bool residual(const Eigen::Ref<const Eigen::VectorXd>& z,
+                Eigen::Ref<Eigen::VectorXd> g) override;
+  bool residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
+                           Eigen::Ref<Eigen::VectorXd> g,
+                           Eigen::Ref<Eigen::MatrixXd> jacobian) override;
+
+  int residualEvaluations() const { return residual_evaluations_; }
+  int jacobianEvaluations() const { return jacobian_evaluations_; }
+  double firstNorm() const { return first_norm_; }
+  double elapsedSeconds() const;
+  bool evaluationLimitReached() const;
+  bool timeLimitReached() const;
+  // Evaluations (residual or Jacobian) that failed: non-finite or threw.
+  int failedEvaluations() const { return failed_evaluations_; }
+  // Set when an evaluation threw; the evaluation then reported failure.
+  const std::string& failure() const { return failure_; }
+
+ private:
+  void record(const Eigen::Ref<Eigen::VectorXd>& g, bool ok);
+  SquareSystem& inner_;
+  const SolverOptions& options_;
+  std::chrono::steady_clock::time_point start_;
+  int residual_evaluations_ = 0;
+  int jacobian_evaluations_ = 0;
+  double first_norm_ = std::numeric_limits<double>::quiet_NaN();
+  int failed_evaluations_ = 0;
+  std::string failure_;
+};
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  virtual std::string name() const = 0;
+  virtual std::string description() const = 0;
+  // Solves system(z) = 0 from z0. Never throws for numerical trouble.
+  SolverResult solve(SquareSystem& system, const Eigen::VectorXd& z0,
+                     const SolverOptions& options);
+
+ protected:
+  // Fills termination, native code/message, iterations and solution (the
+  // last accepted point). Counts and timing are filled in by solve().
+  virtual void run(MonitoredSystem& system, const Eigen::VectorXd& z0,
+                   const SolverOptions& options, SolverResult& result) = 0;
+};
+
+// Parses a backend option value; false (with why) if it is not a number.
+bool parseBackendNumber(const std::string& name, const std::string& text, double* value,
+                        std::string* why);
+
+}  // namespace eqhb
