@@ -20,7 +20,7 @@
 #include "eqhb/references/time_integrator.h"
 #include "failure_maps.h"
 #include "mgh/mgh_problems.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 namespace fs = std::filesystem;
 using namespace eqhb;

@@ -15,7 +15,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/references/time_integrator.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 using namespace eqhb;
 

@@ -7,7 +7,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/scenes/scene.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 namespace eqhb::bench {
 

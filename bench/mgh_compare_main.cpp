@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "mgh/mgh_problems.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 int main() {
   auto own = eqhb::makeSolver("dogleg");

@@ -10,7 +10,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "eqhb/error.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 #include "solve_command.h"
 #include "sweep_command.h"
 #include "time_commands.h"

@@ -12,7 +12,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/invariants.h"
 #include "eqhb/scenes/scene.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 namespace eqhb::cli {
 

@@ -7,7 +7,7 @@
 
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 namespace eqhb::cli {
 

@@ -3,7 +3,7 @@
 
 #include <ceres/types.h>
 
-#include "ceres/ceres_backend.h"
+#include "eqhb/backends/ceres/ceres_backend.h"
 
 namespace eqhb {
 namespace {

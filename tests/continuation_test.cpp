@@ -4,7 +4,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 #include "test_support.h"
 
 namespace eqhb {

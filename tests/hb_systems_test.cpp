@@ -5,7 +5,7 @@
 #include <complex>
 
 #include "eqhb/error.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 #include "test_support.h"
 
 namespace eqhb {

@@ -3,7 +3,7 @@
 
 #include <IpAlgTypes.hpp>
 
-#include "ipopt/ipopt_backend.h"
+#include "eqhb/backends/ipopt/ipopt_backend.h"
 
 namespace eqhb {
 namespace {

@@ -1,7 +1,7 @@
 // Every hybrj info code maps to one common termination.
 #include <gtest/gtest.h>
 
-#include "minpack/minpack_hybrj.h"
+#include "eqhb/backends/minpack/minpack_hybrj.h"
 
 namespace eqhb {
 namespace {

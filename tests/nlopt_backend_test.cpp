@@ -3,7 +3,7 @@
 
 #include <nlopt.h>
 
-#include "nlopt/nlopt_backend.h"
+#include "eqhb/backends/nlopt/nlopt_backend.h"
 
 namespace eqhb {
 namespace {

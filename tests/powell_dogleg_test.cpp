@@ -1,9 +1,9 @@
-#include "dogleg/powell_dogleg.h"
+#include "eqhb/backends/dogleg/powell_dogleg.h"
 
 #include <gtest/gtest.h>
 
 #include "mgh/mgh_problems.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 #include "test_support.h"
 
 namespace eqhb {

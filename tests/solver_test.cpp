@@ -5,7 +5,7 @@
 #include <cmath>
 
 
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 namespace eqhb {
 namespace {

@@ -7,7 +7,7 @@
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/solvers/square_system.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 namespace eqhb::test {
 

@@ -1,4 +1,4 @@
-#include "nlopt_backend.h"
+#include "eqhb/backends/nlopt/nlopt_backend.h"
 
 #include <nlopt.h>
 

@@ -1,20 +1,20 @@
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 #include <functional>
 
-#include "dogleg/powell_dogleg.h"
+#include "eqhb/backends/dogleg/powell_dogleg.h"
 #include "eqhb/error.h"
 #ifdef EQHB_WITH_MINPACK
-#include "minpack/minpack_hybrj.h"
+#include "eqhb/backends/minpack/minpack_hybrj.h"
 #endif
 #ifdef EQHB_WITH_CERES
-#include "ceres/ceres_backend.h"
+#include "eqhb/backends/ceres/ceres_backend.h"
 #endif
 #ifdef EQHB_WITH_IPOPT
-#include "ipopt/ipopt_backend.h"
+#include "eqhb/backends/ipopt/ipopt_backend.h"
 #endif
 #ifdef EQHB_WITH_NLOPT
-#include "nlopt/nlopt_backend.h"
+#include "eqhb/backends/nlopt/nlopt_backend.h"
 #endif
 
 namespace eqhb {

@@ -1,4 +1,4 @@
-#include "powell_dogleg.h"
+#include "eqhb/backends/dogleg/powell_dogleg.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "ceres_backend.h"
+#include "eqhb/backends/ceres/ceres_backend.h"
 
 #include <ceres/ceres.h>
 

@@ -1,4 +1,4 @@
-#include "ipopt_backend.h"
+#include "eqhb/backends/ipopt/ipopt_backend.h"
 
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>

@@ -1,4 +1,4 @@
-#include "minpack_hybrj.h"
+#include "eqhb/backends/minpack/minpack_hybrj.h"
 
 #include <cminpack.h>
 
