@@ -14,6 +14,9 @@
 #include "eqhb/error.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
+#include "eqhb/structures/beam.h"
+#include "eqhb/structures/matrix_market.h"
+#include "eqhb/structures/structure_matrices.h"
 
 namespace eqhb {
 
@@ -132,9 +135,52 @@ Eigen::MatrixXd chainPattern(int n) {
   return t;
 }
 
-LinearStructure readStructure(TableReader& top, const std::string& source) {
-  TableReader s(top.raw("structure"), "structure", source);
+// A path in a scene file is relative to the scene file's folder.
+std::string relativeToScene(const std::string& source, const std::string& path) {
+  if (!path.empty() && path[0] == '/') return path;
+  const auto slash = source.find_last_of('/');
+  return slash == std::string::npos ? path : source.substr(0, slash + 1) + path;
+}
+
+// The structure and how its nodes map to DOFs (beams: node i's transverse
+// displacement is DOF 2(i−1); other structures have no nodes).
+struct ReadStructure {
   LinearStructure structure;
+  int nodes = 0;
+};
+
+// C from the damping keys shared by the matrix-market and beam types:
+// rayleigh = [alpha, beta] or modal_damping = zeta (none: C = 0).
+void readDampingModel(TableReader& s, StructureMatrices& matrices) {
+  const bool rayleigh = s.has("rayleigh"), modal = s.has("modal_damping");
+  if (rayleigh && modal)
+    s.fail("structure.rayleigh", "(and modal_damping)", "give one damping model, not both");
+  if (rayleigh) {
+    const toml::value& v = s.raw("rayleigh");
+    if (!v.is_array() || v.as_array().size() != 2)
+      s.fail("structure.rayleigh", describe(v), "must be [alpha, beta] (C = alpha M + beta K)");
+    double ab[2];
+    for (int i = 0; i < 2; ++i) {
+      const toml::value& e = v.as_array()[i];
+      if (!e.is_floating() && !e.is_integer()) s.fail("structure.rayleigh", describe(v), "entries must be numbers");
+      ab[i] = e.is_integer() ? static_cast<double>(e.as_integer()) : e.as_floating();
+      if (!std::isfinite(ab[i]) || ab[i] < 0.0)
+        s.fail("structure.rayleigh", describe(v), "alpha and beta must be finite and >= 0");
+    }
+    matrices.damping = rayleighDamping(matrices, ab[0], ab[1]);
+  } else if (modal) {
+    const double zeta = s.number("modal_damping");
+    if (zeta < 0.0) s.fail("structure.modal_damping", formatNumber(zeta), "damping ratio must be >= 0");
+    matrices.damping = modalDamping(matrices, zeta, "structure.modal_damping");
+  } else if (matrices.damping.rows() == 0) {
+    matrices.damping.resize(matrices.mass.rows(), matrices.mass.cols());
+  }
+}
+
+ReadStructure readStructure(TableReader& top, const std::string& source) {
+  TableReader s(top.raw("structure"), "structure", source);
+  ReadStructure read;
+  LinearStructure& structure = read.structure;
   const std::string type = s.text("type");
   if (type == "chain") {
     const int n = s.integer("dofs", 2);
@@ -151,11 +197,53 @@ LinearStructure readStructure(TableReader& top, const std::string& source) {
     structure.mass = s.matrix("mass");
     structure.damping = s.matrix("damping");
     structure.stiffness = s.matrix("stiffness");
+    StructureMatrices matrices{structure.mass.sparseView(), structure.damping.sparseView(),
+                               structure.stiffness.sparseView()};
+    MatrixNames names{"structure.mass", "structure.damping", "structure.stiffness"};
+    checkStructureMatrices(matrices, 1e-12, names);
+  } else if (type == "matrix-market") {
+    const double tolerance = s.number("symmetry_tolerance", 1e-8);
+    if (!(tolerance >= 0.0)) s.fail("structure.symmetry_tolerance", formatNumber(tolerance), "must be >= 0");
+    MatrixNames names;
+    names.mass = relativeToScene(source, s.text("mass"));
+    names.stiffness = relativeToScene(source, s.text("stiffness"));
+    StructureMatrices matrices;
+    matrices.mass = readMatrixMarket(names.mass);
+    matrices.stiffness = readMatrixMarket(names.stiffness);
+    if (s.has("damping")) {
+      if (s.has("rayleigh") || s.has("modal_damping"))
+        s.fail("structure.damping", describe(s.raw("damping")),
+               "give one damping model: a damping file, rayleigh or modal_damping");
+      names.damping = relativeToScene(source, s.text("damping"));
+      matrices.damping = readMatrixMarket(names.damping);
+    }
+    // Sizes and symmetry of M and K first: the damping models build on them.
+    names.damping = s.has("damping") ? names.damping : "structure.damping (from M and K)";
+    {
+      StructureMatrices mk = matrices;
+      mk.damping = matrices.mass;
+      checkStructureMatrices(mk, tolerance, names);
+    }
+    readDampingModel(s, matrices);
+    checkStructureMatrices(matrices, tolerance, names);
+    structure = toLinearStructure(matrices);
+  } else if (type == "beam") {
+    BeamParameters beam;
+    beam.elements = s.integer("elements");
+    beam.youngs_modulus = s.number("E");
+    beam.second_moment = s.number("I");
+    beam.mass_per_length = s.number("rhoA");
+    beam.length = s.number("L");
+    StructureMatrices matrices = cantileverBeam(beam);
+    readDampingModel(s, matrices);
+    structure = toLinearStructure(matrices);
+    read.nodes = beam.elements;
   } else {
-    s.fail("structure.type", "\"" + type + "\"", "must be \"chain\" or \"matrices\"");
+    s.fail("structure.type", "\"" + type + "\"",
+           "must be \"chain\", \"matrices\", \"matrix-market\" or \"beam\"");
   }
   s.requireKnownKeys();
-  return structure;
+  return read;
 }
 
 const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
@@ -165,20 +253,28 @@ const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
 }
 
 AttachedLaw readLaw(const toml::value& value, const std::string& field, const std::string& source,
-                    int dofs) {
+                    int dofs, int nodes) {
   TableReader t(value, field, source);
   const std::string type = t.text("type");
   AttachedLaw attached;
-  const toml::value& list = t.raw("dofs");
+  // `dofs` (numbered from 1) or, on a structure with nodes, `nodes`.
+  const bool by_node = t.has("nodes");
+  if (by_node && t.has("dofs")) t.fail(field + ".nodes", "(and dofs)", "give dofs or nodes, not both");
+  if (by_node && nodes == 0)
+    t.fail(field + ".nodes", describe(t.raw("nodes")), "this structure has no nodes (only beams have): use dofs");
+  const std::string key = by_node ? "nodes" : "dofs";
+  const int count = by_node ? nodes : dofs;
+  const toml::value& list = t.raw(key);
   if (!list.is_array() || list.as_array().empty())
-    t.fail(field + ".dofs", describe(list), "must be a non-empty array of DOF numbers");
+    t.fail(field + "." + key, describe(list), "must be a non-empty array of " + key + " numbers");
   for (const auto& e : list.as_array()) {
-    if (!e.is_integer()) t.fail(field + ".dofs", describe(list), "DOF numbers must be integers");
-    const auto dof = e.as_integer();
-    if (dof < 1 || dof > dofs)
-      t.fail(field + ".dofs", std::to_string(dof),
-             "no such DOF (the structure has " + std::to_string(dofs) + ", numbered from 1)");
-    attached.dofs.push_back(static_cast<int>(dof) - 1);
+    if (!e.is_integer()) t.fail(field + "." + key, describe(list), "numbers must be integers");
+    const auto number = e.as_integer();
+    if (number < 1 || number > count)
+      t.fail(field + "." + key, std::to_string(number),
+             std::string(by_node ? "no such node" : "no such DOF") + " (the structure has " +
+                 std::to_string(count) + ", numbered from 1)");
+    attached.dofs.push_back(by_node ? beamTransverseDof(static_cast<int>(number)) : static_cast<int>(number) - 1);
   }
   // Positive-parameter reader with the field in the message.
   auto positive = [&](const char* key, std::optional<double> fallback) {
@@ -314,7 +410,8 @@ Scene buildScene(toml::value root, const std::string& source,
   scene.source = source;
   scene.name = top.text("name");
   scene.description = top.text("description", std::string());
-  scene.model.structure = readStructure(top, source);
+  const ReadStructure structure = readStructure(top, source);
+  scene.model.structure = structure.structure;
   const int dofs = scene.model.structure.dofs();
 
   if (top.has("forcing")) {
@@ -323,13 +420,39 @@ Scene buildScene(toml::value root, const std::string& source,
       const std::string field = "forcing[" + std::to_string(i) + "]";
       TableReader f(loads[i], field, source);
       HarmonicLoad load;
-      const int dof = f.integer("dof");
-      if (dof < 1 || dof > dofs)
-        f.fail(field + ".dof", std::to_string(dof),
-               "no such DOF (the structure has " + std::to_string(dofs) + ", numbered from 1)");
-      load.dof = dof - 1;
       load.harmonic = f.integer("harmonic", 1);
       if (load.harmonic < 0) f.fail(field + ".harmonic", std::to_string(load.harmonic), "must be >= 0");
+      const int given = int(f.has("dof")) + int(f.has("node")) + int(f.has("file"));
+      if (given != 1) f.fail(field, "(" + std::to_string(given) + " of dof, node, file)", "give exactly one of dof, node or file");
+      if (f.has("file")) {
+        // A load vector (Matrix Market, n x 1) scaled by cos and sin.
+        const std::string path = relativeToScene(source, f.text("file"));
+        const Eigen::VectorXd shape = readMatrixMarketVector(path);
+        if (shape.size() != dofs)
+          f.fail(field + ".file", "\"" + path + "\"",
+                 "has " + std::to_string(shape.size()) + " entries, the structure has " + std::to_string(dofs) + " DOFs");
+        const double c = f.number("cos", 1.0), s_ = f.number("sin", 0.0);
+        f.requireKnownKeys();
+        for (int i = 0; i < dofs; ++i) {
+          if (shape[i] == 0.0) continue;
+          HarmonicLoad entry = load;
+          entry.dof = i;
+          entry.cos_amplitude = c * shape[i];
+          entry.sin_amplitude = s_ * shape[i];
+          scene.model.structure.loads.push_back(entry);
+        }
+        continue;
+      }
+      const bool by_node = f.has("node");
+      const int number = f.integer(by_node ? "node" : "dof");
+      const int count = by_node ? structure.nodes : dofs;
+      if (by_node && count == 0)
+        f.fail(field + ".node", std::to_string(number), "this structure has no nodes (only beams have): use dof");
+      if (number < 1 || number > count)
+        f.fail(field + (by_node ? ".node" : ".dof"), std::to_string(number),
+               std::string(by_node ? "no such node" : "no such DOF") + " (the structure has " +
+                   std::to_string(count) + ", numbered from 1)");
+      load.dof = by_node ? beamTransverseDof(number) : number - 1;
       load.cos_amplitude = f.number("cos", 0.0);
       load.sin_amplitude = f.number("sin", 0.0);
       f.requireKnownKeys();
@@ -339,7 +462,7 @@ Scene buildScene(toml::value root, const std::string& source,
   if (top.has("law")) {
     const auto& laws = arrayOfTables(top, "law");
     for (size_t i = 0; i < laws.size(); ++i)
-      scene.model.laws.push_back(readLaw(laws[i], "law[" + std::to_string(i) + "]", source, dofs));
+      scene.model.laws.push_back(readLaw(laws[i], "law[" + std::to_string(i) + "]", source, dofs, structure.nodes));
   }
 
   TableReader hb(top.raw("harmonic_balance"), "harmonic_balance", source);

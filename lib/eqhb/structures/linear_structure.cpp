@@ -21,9 +21,14 @@ void LinearStructure::validate() const {
   checkMatrix("mass", mass, n);
   checkMatrix("damping", damping, n);
   checkMatrix("stiffness", stiffness, n);
-  Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (mass + mass.transpose()));
-  if (llt.info() != Eigen::Success || (mass - mass.transpose()).norm() > 1e-12 * mass.norm())
-    throwInputError("mass", "(matrix)", "must be symmetric positive definite (m > 0)");
+  // Positive semidefinite: massless DOFs (zero rows, e.g. contact nodes) are
+  // allowed; whether K holds them is checked where the matrices are read.
+  Eigen::LDLT<Eigen::MatrixXd> ldlt(0.5 * (mass + mass.transpose()));
+  const double scale = mass.cwiseAbs().maxCoeff();
+  if (ldlt.info() != Eigen::Success || !(scale > 0.0) ||
+      (ldlt.vectorD().array() < -1e-12 * scale).any() ||
+      (mass - mass.transpose()).norm() > 1e-12 * mass.norm())
+    throwInputError("mass", "(matrix)", "must be symmetric positive semidefinite and not zero");
   for (size_t i = 0; i < loads.size(); ++i) {
     const auto& load = loads[i];
     const std::string field = "forcing[" + std::to_string(i) + "]";

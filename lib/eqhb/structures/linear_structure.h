@@ -25,7 +25,7 @@ struct LinearStructure {
 
   int dofs() const { return static_cast<int>(mass.rows()); }
   // Throws InputError naming the matrix and the rule (square, same size,
-  // finite, symmetric positive definite mass) or the load.
+  // finite, symmetric positive semidefinite mass) or the load.
   void validate() const;
   // A_k for harmonic k at frequency omega (k = 0: the n x n block K).
   Eigen::MatrixXd harmonicOperator(int k, double omega) const;

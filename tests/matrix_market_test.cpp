@@ -1,0 +1,206 @@
+#include "eqhb/structures/matrix_market.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
+#include "eqhb/structures/structure_matrices.h"
+#include "registry.h"
+
+namespace eqhb {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MatrixMarketFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("eqhb_mm_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  // Expects an InputError containing every needle.
+  template <typename F>
+  void expectError(F&& f, std::initializer_list<std::string> needles) {
+    try {
+      f();
+      FAIL() << "accepted";
+    } catch (const InputError& e) {
+      for (const auto& needle : needles) EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
+  fs::path dir_;
+};
+
+const char* kStiffness =
+    "%%MatrixMarket matrix coordinate real symmetric\n% 3-DOF chain\n3 3 5\n1 1 2\n2 1 -1\n2 2 2\n3 2 -1\n3 3 1\n";
+
+TEST_F(MatrixMarketFiles, SymmetricStorageIsExpandedAndGeneralIsKept) {
+  const auto k = readMatrixMarket(write("k.mtx", kStiffness));
+  ASSERT_EQ(k.rows(), 3);
+  EXPECT_DOUBLE_EQ(k.coeff(0, 1), -1.0);
+  EXPECT_DOUBLE_EQ(k.coeff(1, 0), -1.0);
+  EXPECT_DOUBLE_EQ(k.coeff(2, 2), 1.0);
+  EXPECT_EQ(k.nonZeros(), 7);
+  const auto g = readMatrixMarket(write("g.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 3\n1 2 5\n1 2 1\n2 1 6\n"));
+  EXPECT_DOUBLE_EQ(g.coeff(0, 1), 6.0);  // duplicates summed
+  EXPECT_DOUBLE_EQ(g.coeff(1, 0), 6.0);
+  EXPECT_DOUBLE_EQ(g.coeff(0, 0), 0.0);
+}
+
+TEST_F(MatrixMarketFiles, ArrayLayoutIsColumnMajorAndSymmetricArrayIsTheLowerTriangle) {
+  const auto a = readMatrixMarket(write("a.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n"));
+  EXPECT_DOUBLE_EQ(a.coeff(1, 0), 2.0);
+  EXPECT_DOUBLE_EQ(a.coeff(0, 1), 3.0);
+  const auto s = readMatrixMarket(write("s.mtx", "%%MatrixMarket matrix array real symmetric\n3 3\n1\n2\n3\n4\n5\n6\n"));
+  EXPECT_DOUBLE_EQ(s.coeff(2, 0), 3.0);
+  EXPECT_DOUBLE_EQ(s.coeff(0, 2), 3.0);
+  EXPECT_DOUBLE_EQ(s.coeff(1, 1), 4.0);
+  EXPECT_DOUBLE_EQ(s.coeff(2, 1), 5.0);
+  EXPECT_DOUBLE_EQ(s.coeff(2, 2), 6.0);
+}
+
+TEST_F(MatrixMarketFiles, WriteThenReadRestoresTheMatrixExactly) {
+  Eigen::MatrixXd d(3, 3);
+  d << 4, 1.0 / 3.0, 0, 1.0 / 3.0, 5, -2e-17, 0, -2e-17, 6;
+  const Eigen::SparseMatrix<double> m = d.sparseView();
+  for (bool symmetric : {false, true}) {
+    const std::string path = (dir_ / "w.mtx").string();
+    writeMatrixMarket(path, m, symmetric);
+    EXPECT_EQ(Eigen::MatrixXd(readMatrixMarket(path)), d);
+  }
+}
+
+TEST_F(MatrixMarketFiles, BadFilesNameTheFileAndTheLine) {
+  const std::string missing = (dir_ / "none.mtx").string();
+  expectError([&] { readMatrixMarket(missing); }, {missing, "cannot open"});
+  const auto header = write("h.mtx", "3 3 1\n1 1 1\n");
+  expectError([&] { readMatrixMarket(header); }, {header + ":1:", "header"});
+  const auto complex = write("c.mtx", "%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n");
+  expectError([&] { readMatrixMarket(complex); }, {":1:", "complex"});
+  const auto nan = write("n.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n2 2 nan\n");
+  expectError([&] { readMatrixMarket(nan); }, {nan + ":4:", "NaN"});
+  const auto outside = write("o.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n3 1 1\n");
+  expectError([&] { readMatrixMarket(outside); }, {":3:", "outside the 2 x 2"});
+  const auto few = write("f.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 1\n");
+  expectError([&] { readMatrixMarket(few); }, {few, "announces 3 entries, the file has 1"});
+  const auto many = write("m.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n1 1 1\n2 2 1\n");
+  expectError([&] { readMatrixMarket(many); }, {":4:", "more entries"});
+  const auto garbled = write("g.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n1 x 1\n");
+  expectError([&] { readMatrixMarket(garbled); }, {":3:", "column index"});
+  const auto upper = write("u.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 1\n1 2 1\n");
+  expectError([&] { readMatrixMarket(upper); }, {":3:", "above the diagonal"});
+}
+
+// A 3-DOF chain from files: M, K (and C or a damping model), friction on DOF 3.
+std::string scene(const std::string& structure_keys, const std::string& law_dof = "3") {
+  return "name = \"mm\"\n[structure]\ntype = \"matrix-market\"\n" + structure_keys +
+         "\n[[forcing]]\ndof = 1\ncos = 2.0\n[[law]]\ntype = \"coulomb-1d\"\ndofs = [" + law_dof +
+         "]\nmuN = 0.5\n[harmonic_balance]\nharmonics = 3\nsamples = 64\nomega = 0.5\n";
+}
+
+TEST_F(MatrixMarketFiles, SceneReadsPathsRelativeToTheSceneFileAndBuildsRayleighDamping) {
+  write("k.mtx", kStiffness);
+  write("m.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 2\n3 3 3\n");
+  const auto path = write("s.toml", scene("mass = \"m.mtx\"\nstiffness = \"k.mtx\"\nrayleigh = [0.1, 0.02]"));
+  const Scene s = loadScene(path);
+  ASSERT_EQ(s.model.structure.dofs(), 3);
+  EXPECT_DOUBLE_EQ(s.model.structure.mass(2, 2), 3.0);
+  EXPECT_DOUBLE_EQ(s.model.structure.damping(1, 1), 0.1 * 2 + 0.02 * 2);
+  EXPECT_DOUBLE_EQ(s.model.structure.damping(0, 1), 0.02 * -1);
+}
+
+TEST_F(MatrixMarketFiles, ModalDampingGivesEveryModeTheRatio) {
+  write("k.mtx", kStiffness);
+  write("m.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 2\n3 3 3\n");
+  const Scene s = loadScene(write("s.toml", scene("mass = \"m.mtx\"\nstiffness = \"k.mtx\"\nmodal_damping = 0.03")));
+  const auto& st = s.model.structure;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(st.stiffness, st.mass);
+  const Eigen::MatrixXd modal = modes.eigenvectors().transpose() * st.damping * modes.eigenvectors();
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(modal(i, i), 2 * 0.03 * std::sqrt(modes.eigenvalues()[i]), 1e-12);
+    for (int j = 0; j < 3; ++j)
+      if (j != i) {
+        EXPECT_NEAR(modal(i, j), 0.0, 1e-12);
+      }
+  }
+}
+
+TEST_F(MatrixMarketFiles, ForcingFromAVectorFileScalesItsEntries) {
+  write("k.mtx", kStiffness);
+  write("m.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 2\n3 3 3\n");
+  write("f.mtx", "%%MatrixMarket matrix array real general\n3 1\n0\n2\n-1\n");
+  std::string text = scene("mass = \"m.mtx\"\nstiffness = \"k.mtx\"");
+  text.replace(text.find("dof = 1\ncos = 2.0"), 17, "file = \"f.mtx\"\ncos = 3.0\nsin = 1.0");
+  const Scene s = loadScene(write("s.toml", text));
+  const auto& loads = s.model.structure.loads;
+  ASSERT_EQ(loads.size(), 2u);
+  EXPECT_EQ(loads[0].dof, 1);
+  EXPECT_DOUBLE_EQ(loads[0].cos_amplitude, 6.0);
+  EXPECT_DOUBLE_EQ(loads[1].sin_amplitude, -1.0);
+  write("f4.mtx", "%%MatrixMarket matrix array real general\n4 1\n0\n2\n-1\n1\n");
+  text.replace(text.find("f.mtx"), 5, "f4.mtx");
+  expectError([&] { loadScene(write("s4.toml", text)); }, {"forcing[0].file", "4 entries, the structure has 3"});
+}
+
+TEST_F(MatrixMarketFiles, SceneErrorsNameTheFileOrTheField) {
+  write("k.mtx", kStiffness);
+  write("m.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 2\n3 3 3\n");
+  write("m2.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n2 2 2\n");
+  const std::string k_asym =
+      write("ka.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 4\n1 1 2\n2 1 -1\n1 2 -1.001\n3 3 1\n");
+  expectError([&] { loadScene(write("a.toml", scene("mass = \"m.mtx\"\nstiffness = \"nope.mtx\""))); },
+              {"nope.mtx", "cannot open"});
+  expectError([&] { loadScene(write("b.toml", scene("mass = \"m2.mtx\"\nstiffness = \"k.mtx\""))); },
+              {"k.mtx", "is 3 x 3, the mass matrix is 2 x 2"});
+  expectError([&] { loadScene(write("c.toml", scene("mass = \"m.mtx\"\nstiffness = \"ka.mtx\""))); },
+              {k_asym, "not symmetric", "= 0.0005", "relative tolerance 1e-08"});
+  // The same file passes with a looser tolerance.
+  EXPECT_NO_THROW(loadScene(write("c2.toml", scene("mass = \"m.mtx\"\nstiffness = \"ka.mtx\"\nsymmetry_tolerance = 1e-3"))));
+  expectError([&] { loadScene(write("d.toml", scene("mass = \"m.mtx\"\nstiffness = \"k.mtx\"", "4"))); },
+              {"law[0].dofs = 4", "no such DOF (the structure has 3"});
+  expectError([&] {
+    loadScene(write("e.toml", scene("mass = \"m.mtx\"\nstiffness = \"k.mtx\"\ndamping = \"k.mtx\"\nrayleigh = [0, 1]")));
+  }, {"structure.damping", "one damping model"});
+}
+
+TEST_F(MatrixMarketFiles, MasslessContactDofHeldByAStiffnessSolvesInBothSystems) {
+  write("k.mtx", kStiffness);
+  // DOF 3 carries no mass (a contact node on a spring): allowed.
+  write("m.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 2\n1 1 1\n2 2 1\n");
+  const Scene s = loadScene(write("s.toml", scene("mass = \"m.mtx\"\nstiffness = \"k.mtx\"\nrayleigh = [0.02, 0.0]")));
+  // Condensed and full systems converge to the same solution.
+  CondensedSystem condensed(s.model);
+  FullSystem full(s.model);
+  EXPECT_EQ(condensed.size(), 6);
+  EXPECT_EQ(full.size(), 24);
+  const auto rc = makeSolver("dogleg")->solve(condensed, Eigen::VectorXd::Zero(6), SolverOptions());
+  const auto rf = makeSolver("dogleg")->solve(full, Eigen::VectorXd::Zero(24), SolverOptions());
+  ASSERT_TRUE(rc.converged()) << rc.summary();
+  ASSERT_TRUE(rf.converged()) << rf.summary();
+  const Eigen::VectorXd zc = condensed.fullCoefficients(rc.solution);
+  EXPECT_LT((zc - rf.solution).norm(), 1e-8 * zc.norm());
+  // Friction sticks part of the period: the force is not zero and |λ| <= μN.
+  EXPECT_GT(rc.solution.norm(), 0.1);
+  // A massless DOF not held by the stiffness makes the system singular: refused.
+  write("k0.mtx", "%%MatrixMarket matrix coordinate real symmetric\n3 3 3\n1 1 2\n2 1 -1\n2 2 1\n");
+  expectError([&] { loadScene(write("t.toml", scene("mass = \"m.mtx\"\nstiffness = \"k0.mtx\""))); },
+              {"k0.mtx", "massless DOF", "first DOF 3", "not regular"});
+  write("mn.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 -1\n3 3 1\n");
+  expectError([&] { loadScene(write("u.toml", scene("mass = \"mn.mtx\"\nstiffness = \"k.mtx\""))); },
+              {"mn.mtx", "negative mass direction"});
+}
+
+}  // namespace
+}  // namespace eqhb
