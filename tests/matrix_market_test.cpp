@@ -10,7 +10,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/structures/structure_matrices.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 
 namespace eqhb {
 namespace {
