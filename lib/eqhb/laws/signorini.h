@@ -33,6 +33,7 @@ class Signorini : public Law {
   // Moreau's velocity-level contact with Newton's impact law: when the gap
   // predicted at mid-step is closed, 0 <= ġ_end + e ġ_start ⊥ p >= 0.
   LocalVector solveStep(const StepProblem& step) const override;
+  double gap() const { return gap_; }
 
  private:
   double gap_;

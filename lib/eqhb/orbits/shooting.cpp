@@ -1,0 +1,146 @@
+#include "eqhb/orbits/shooting.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "eqhb/error.h"
+#include "eqhb/laws/signorini.h"
+
+namespace eqhb::orbits {
+
+void ShootingOptions::validate() const {
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    throwInputError("shooting tolerance", formatNumber(tolerance), "must be finite and > 0");
+  if (max_iterations < 1) throwInputError("shooting iterations", std::to_string(max_iterations), "must be >= 1");
+}
+
+namespace {
+
+double relativeResidual(const Eigen::VectorXd& y, const Eigen::VectorXd& end) {
+  const double scale = std::max(y.cwiseAbs().maxCoeff(), end.cwiseAbs().maxCoeff());
+  const double r = (end - y).cwiseAbs().maxCoeff();
+  return scale > 0.0 ? r / scale : r;
+}
+
+}  // namespace
+
+ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start, double start_time,
+                                  const ShootingOptions& options) {
+  options.validate();
+  const auto clock = std::chrono::steady_clock::now;
+  const auto begin = clock();
+  ShootingResult out;
+  out.start_time = start_time;
+  const double period = flow.period();
+  const int size = flow.stateSize();
+  Eigen::VectorXd y = start;
+  double jacobian_seconds = 0.0;
+  int jacobian_runs = 0;
+  auto evaluate = [&](const Eigen::VectorXd& state, bool with_jacobian) {
+    const auto t = clock();
+    FlowResult r = flow.integrate(state, start_time, period, with_jacobian);
+    ++out.flow_evaluations;
+    if (with_jacobian) {
+      jacobian_seconds += std::chrono::duration<double>(clock() - t).count();
+      ++jacobian_runs;
+    }
+    return r;
+  };
+  FlowResult current = evaluate(y, true);
+  if (!current.ok) {
+    out.failure = "the period map failed at the start: " + current.failure;
+    out.state = y;
+    return out;
+  }
+  double residual = relativeResidual(y, current.end);
+  while (residual > options.tolerance && out.iterations < options.max_iterations) {
+    const Eigen::MatrixXd newton = current.jacobian - Eigen::MatrixXd::Identity(size, size);
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(newton);
+    if (lu.rank() < size) {
+      out.failure = "singular Newton matrix Φ − I (a multiplier equals 1)";
+      break;
+    }
+    const Eigen::VectorXd step = lu.solve(-(current.end - y));
+    ++out.iterations;
+    // Backtracking: the period map is only piecewise smooth, a full step may
+    // cross into another event sequence.
+    bool accepted = false;
+    for (double fraction = 1.0; fraction > 1e-6; fraction *= 0.5) {
+      const Eigen::VectorXd trial = y + fraction * step;
+      FlowResult r = evaluate(trial, true);
+      if (!r.ok) continue;
+      const double trial_residual = relativeResidual(trial, r.end);
+      if (trial_residual < residual || (fraction == 1.0 && trial_residual < 2.0 * residual)) {
+        y = trial;
+        current = std::move(r);
+        residual = trial_residual;
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      out.failure = "not progressing: no step along the Newton direction lowers the period residual";
+      break;
+    }
+  }
+  out.state = y;
+  out.period_residual = residual;
+  out.converged = residual <= options.tolerance;
+  if (!out.converged && out.failure.empty())
+    out.failure = "iteration limit (" + std::to_string(options.max_iterations) + ") reached";
+  out.monodromy = current.jacobian;
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(current.jacobian, false);
+  out.multipliers = eig.eigenvalues();
+  std::sort(out.multipliers.data(), out.multipliers.data() + out.multipliers.size(),
+            [](const std::complex<double>& a, const std::complex<double>& b) { return std::abs(a) > std::abs(b); });
+  out.spectral_radius = out.multipliers.size() ? std::abs(out.multipliers[0]) : 0.0;
+  out.stable = out.spectral_radius < 1.0;
+  out.events = current.events;
+  out.max_abs = current.max_abs;
+  out.seconds = std::chrono::duration<double>(clock() - begin).count();
+  out.seconds_per_orbit = jacobian_runs ? jacobian_seconds / jacobian_runs : 0.0;
+  return out;
+}
+
+Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full, double t) {
+  const int n = model.structure.dofs(), nb = model.basis.size();
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+  for (int i = 0; i < n; ++i)
+    for (size_t h = 0; h < model.basis.harmonics().size(); ++h) {
+      const int k = model.basis.harmonics()[h], o = i * nb + model.basis.offset(static_cast<int>(h));
+      if (k == 0) {
+        y[i] += full[o];
+        continue;
+      }
+      const double kw = k * model.omega, c = std::cos(kw * t), s = std::sin(kw * t);
+      y[i] += full[o] * c + full[o + 1] * s;
+      y[n + i] += kw * (-full[o] * s + full[o + 1] * c);
+    }
+  return y;
+}
+
+double quietStartTime(const HbModel& model, const Eigen::VectorXd& full) {
+  const int samples = std::max(64, model.samples);
+  const double period = 2.0 * M_PI / model.omega;
+  const int n = model.structure.dofs();
+  std::vector<Eigen::VectorXd> states(samples);
+  for (int s = 0; s < samples; ++s) states[s] = harmonicState(model, full, period * s / samples);
+  std::vector<double> score(samples, 1.0);
+  for (const auto& attached : model.laws) {
+    const int dof = attached.dofs[0];
+    const auto* contact = dynamic_cast<const Signorini*>(attached.law.get());
+    std::vector<double> distance(samples);
+    double largest = 0.0;
+    for (int s = 0; s < samples; ++s) {
+      distance[s] = contact ? std::max(0.0, contact->gap() - states[s][dof]) : std::abs(states[s][n + dof]);
+      largest = std::max(largest, distance[s]);
+    }
+    if (largest > 0.0)
+      for (int s = 0; s < samples; ++s) score[s] = std::min(score[s], distance[s] / largest);
+  }
+  const auto best = std::max_element(score.begin(), score.end()) - score.begin();
+  return period * best / samples;
+}
+
+}  // namespace eqhb::orbits

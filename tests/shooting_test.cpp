@@ -1,0 +1,221 @@
+#include "eqhb/orbits/shooting.h"
+
+#include <gtest/gtest.h>
+
+#include <complex>
+
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/signorini.h"
+#include "eqhb/scenes/scene.h"
+#include "registry.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+using orbits::PiecewiseLinearFlow;
+using orbits::ShootingOptions;
+using orbits::shootPeriodicOrbit;
+
+// m ẍ + k x + F sgn(ẋ) = P cos ωt with m = k = P = 1 (no damping).
+HbModel denHartog(double omega, double friction) {
+  HbModel model;
+  model.structure.mass = Eigen::MatrixXd::Identity(1, 1);
+  model.structure.stiffness = Eigen::MatrixXd::Identity(1, 1);
+  model.structure.damping = Eigen::MatrixXd::Zero(1, 1);
+  model.structure.loads.push_back({0, 1, 1.0, 0.0});
+  model.laws.push_back({{0}, std::make_shared<Coulomb1D>(friction, CoulombForm::kMinMax)});
+  model.basis = HarmonicSet(HarmonicKind::kOdd, 5);
+  model.samples = 64;
+  model.omega = omega;
+  return model;
+}
+
+// Den Hartog (1931): X / x_st = sqrt(V² − β² U²), V = 1/(1 − r²), U = tan(π/(2r))/r.
+double denHartogAmplitude(double r, double beta) {
+  const double v = 1.0 / (1.0 - r * r), u = std::tan(M_PI / (2.0 * r)) / r;
+  return std::sqrt(v * v - beta * beta * u * u);
+}
+
+TEST(Shooting, DenHartogNonStopAmplitude) {
+  for (const auto& [r, beta] : {std::pair{1.5, 0.3}, std::pair{0.8, 0.3}, std::pair{2.5, 0.5}}) {
+    const HbModel model = denHartog(r, beta);
+    const PiecewiseLinearFlow flow(model, 0.0);
+    Eigen::VectorXd start(2);
+    start << 1.0 / (1.0 - r * r), 0.0;  // frictionless response at t = 0
+    const auto orbit = shootPeriodicOrbit(flow, start, 0.0, ShootingOptions());
+    ASSERT_TRUE(orbit.converged) << orbit.failure;
+    const double exact = denHartogAmplitude(r, beta);
+    EXPECT_NEAR(orbit.max_abs[0] / exact, 1.0, 1e-9) << "r = " << r;
+    // Non-stop: two reversals per period, no stick.
+    EXPECT_EQ(orbit.events.count("stick"), 0u);
+    EXPECT_EQ(orbit.events.at("reversal"), 2);
+  }
+}
+
+// The chain of the scenes without any law, or with a friction limit of 0.
+HbModel linearChain(bool with_zero_friction) {
+  HbModel model = test::chainWithFriction(0.0, CoulombForm::kMinMax, 1, 0.5);
+  if (!with_zero_friction) model.laws.clear();
+  return model;
+}
+
+TEST(Shooting, LinearOrbitIsTheExactResponseAndMultipliersAreExpLambdaT) {
+  for (bool zero_friction : {false, true}) {
+    const HbModel model = linearChain(zero_friction);
+    const PiecewiseLinearFlow flow(model, 0.0);
+    const auto orbit = shootPeriodicOrbit(flow, Eigen::VectorXd::Zero(4), 0.3, ShootingOptions());
+    ASSERT_TRUE(orbit.converged) << orbit.failure;
+    // Exact response x = Re(X e^{iωt}), (K − ω²M + iωC) X = F.
+    const std::complex<double> i(0.0, 1.0);
+    const double w = model.omega;
+    const Eigen::MatrixXcd a = model.structure.stiffness.cast<std::complex<double>>() -
+                               w * w * model.structure.mass.cast<std::complex<double>>() +
+                               i * w * model.structure.damping.cast<std::complex<double>>();
+    Eigen::VectorXcd f = Eigen::VectorXcd::Zero(2);
+    f[0] = 20.0;
+    const Eigen::VectorXcd x = a.lu().solve(f);
+    orbits::FlowSamples samples;
+    for (int s = 0; s < 50; ++s) samples.times.push_back(0.3 + flow.period() * s / 50.0);
+    const auto run = flow.integrate(orbit.state, 0.3, flow.period(), false, &samples);
+    ASSERT_TRUE(run.ok);
+    double worst = 0.0, scale = 0.0;
+    for (int s = 0; s < 50; ++s)
+      for (int d = 0; d < 2; ++d) {
+        const std::complex<double> e = std::exp(i * w * samples.times[s]);
+        const double exact = (x[d] * e).real(), rate = (i * w * x[d] * e).real();
+        worst = std::max({worst, std::abs(samples.displacement(s, d) - exact), std::abs(samples.velocity(s, d) - rate)});
+        scale = std::max(scale, std::abs(exact));
+      }
+    EXPECT_LT(worst / scale, 1e-12) << "zero friction law: " << zero_friction;
+    EXPECT_NEAR(orbit.max_abs[1] / std::abs(x[1]), 1.0, 1e-12);
+    // Multipliers exp(λ_i T), λ_i the eigenvalues of the first-order system.
+    Eigen::MatrixXd state = Eigen::MatrixXd::Zero(4, 4);
+    state.topRightCorner(2, 2).setIdentity();
+    state.bottomLeftCorner(2, 2) = -model.structure.stiffness;
+    state.bottomRightCorner(2, 2) = -model.structure.damping;
+    Eigen::VectorXcd expected = (state.eigenvalues() * flow.period()).array().exp();
+    std::sort(expected.data(), expected.data() + 4, [](auto p, auto q) { return std::abs(p) > std::abs(q); });
+    for (int k = 0; k < 4; ++k) {
+      // Conjugate pairs: compare modulus and |arg|.
+      EXPECT_NEAR(std::abs(orbit.multipliers[k]), std::abs(expected[k]), 1e-12);
+      EXPECT_NEAR(std::abs(std::arg(orbit.multipliers[k])), std::abs(std::arg(expected[k])), 1e-10);
+    }
+    EXPECT_TRUE(orbit.stable);
+  }
+}
+
+// A harmonic-balance solution of a scene (own dogleg, condensed).
+Eigen::VectorXd harmonicBalance(const HbModel& model) {
+  auto system = makeHbSystem(model, true);
+  SolverOptions options;
+  options.residual_tolerance = 1e-10;
+  const auto result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), options);
+  EXPECT_TRUE(result.converged());
+  return system->fullCoefficients(result.solution);
+}
+
+TEST(Shooting, PeriodMapJacobianMatchesFiniteDifferences) {
+  for (double omega : {0.4, 0.55, 0.308}) {
+    HbModel model = loadScene(test::problem("friction-1d.toml")).model;
+    model.omega = omega;
+    const PiecewiseLinearFlow flow(model, 0.0);
+    const Eigen::VectorXd hb = harmonicBalance(model);
+    const double t0 = orbits::quietStartTime(model, hb);
+    const Eigen::VectorXd y0 = orbits::harmonicState(model, hb, t0);
+    const auto exact = flow.integrate(y0, t0, flow.period(), true);
+    ASSERT_TRUE(exact.ok) << exact.failure;
+    EXPECT_GT(exact.events.size(), 0u);
+    Eigen::MatrixXd fd(4, 4);
+    for (int c = 0; c < 4; ++c) {
+      const double h = 1e-6 * std::max(1.0, std::abs(y0[c]));
+      Eigen::VectorXd plus = y0, minus = y0;
+      plus[c] += h;
+      minus[c] -= h;
+      const auto p = flow.integrate(plus, t0, flow.period(), false), m = flow.integrate(minus, t0, flow.period(), false);
+      ASSERT_TRUE(p.ok && m.ok);
+      ASSERT_EQ(p.events, exact.events);  // same event sequence: away from a switch
+      fd.col(c) = (p.end - m.end) / (2 * h);
+    }
+    EXPECT_LT((fd - exact.jacobian).norm(), 1e-6 * std::max(1.0, exact.jacobian.norm())) << "omega " << omega;
+  }
+}
+
+TEST(Shooting, FrictionChainFromHarmonicBalanceConvergesNearIt) {
+  const HbModel model = loadScene(test::problem("friction-1d.toml")).model;
+  const PiecewiseLinearFlow flow(model, 0.0);
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  const double t0 = orbits::quietStartTime(model, hb);
+  const auto orbit = shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
+  ASSERT_TRUE(orbit.converged) << orbit.failure;
+  EXPECT_LE(orbit.period_residual, 1e-11);
+  EXPECT_LE(orbit.iterations, 12);
+  // A periodic orbit: integrating once more returns to the start.
+  const auto again = flow.integrate(orbit.state, t0, flow.period(), false);
+  EXPECT_LT((again.end - orbit.state).cwiseAbs().maxCoeff(), 1e-10 * orbit.state.cwiseAbs().maxCoeff());
+  // Harmonic balance with H = 10 odd harmonics is within a few per cent of it.
+  const auto summary = orbits::harmonicState(model, hb, t0);
+  EXPECT_NEAR(summary[1], orbit.state[1], 0.05 * orbit.max_abs[1]);
+  EXPECT_TRUE(orbit.stable);
+}
+
+// Central differences of the period map from y0 at t0, with the event
+// sequence checked to be the same on both sides.
+Eigen::MatrixXd finiteDifferenceMonodromy(const orbits::Flow& flow, const Eigen::VectorXd& y0, double t0,
+                                          const std::map<std::string, int>& events) {
+  const int size = flow.stateSize();
+  Eigen::MatrixXd fd(size, size);
+  for (int c = 0; c < size; ++c) {
+    const double h = 1e-6 * std::max(1.0, std::abs(y0[c]));
+    Eigen::VectorXd plus = y0, minus = y0;
+    plus[c] += h;
+    minus[c] -= h;
+    const auto p = flow.integrate(plus, t0, flow.period(), false), m = flow.integrate(minus, t0, flow.period(), false);
+    EXPECT_TRUE(p.ok && m.ok);
+    EXPECT_EQ(p.events, events);
+    EXPECT_EQ(m.events, events);
+    fd.col(c) = (p.end - m.end) / (2 * h);
+  }
+  return fd;
+}
+
+TEST(Shooting, ContactOrbitsWithRestitutionZeroAndOne) {
+  const HbModel model = loadScene(test::problem("contact.toml")).model;
+  const double gap = 2.0;
+  Eigen::VectorXd start(4);
+  start << 0.5, 1.0, 0.0, 0.0;
+  for (double e : {0.0, 1.0}) {
+    const PiecewiseLinearFlow flow(model, e);
+    const auto orbit = shootPeriodicOrbit(flow, start, 0.0, ShootingOptions());
+    ASSERT_TRUE(orbit.converged) << "e = " << e << ": " << orbit.failure;
+    EXPECT_GE(orbit.events.at("impact"), 1);
+    // Never through the wall, and on it at the impact.
+    orbits::FlowSamples samples;
+    for (int s = 0; s < 400; ++s) samples.times.push_back(flow.period() * s / 400.0);
+    const auto run = flow.integrate(orbit.state, 0.0, flow.period(), true, &samples);
+    ASSERT_TRUE(run.ok);
+    EXPECT_LE(samples.displacement.col(1).maxCoeff(), gap + 1e-12);
+    EXPECT_GE(samples.force.col(0).minCoeff(), 0.0);  // pressure >= 0
+    // Monodromy with the impact saltation against finite differences.
+    const Eigen::MatrixXd fd = finiteDifferenceMonodromy(flow, orbit.state, 0.0, run.events);
+    EXPECT_LT((fd - run.jacobian).norm(), 1e-5 * std::max(1.0, run.jacobian.norm())) << "e = " << e;
+    if (e == 1.0) {
+      // Elastic impacts: the T-periodic orbit of the contact scene is unstable.
+      EXPECT_FALSE(orbit.stable);
+      EXPECT_GT(orbit.spectral_radius, 1.0);
+    } else {
+      EXPECT_TRUE(orbit.stable);
+    }
+  }
+}
+
+TEST(Shooting, RejectsLawsItCannotIntegrate) {
+  const HbModel model = loadScene(test::problem("cubic.toml")).model;
+  EXPECT_FALSE(PiecewiseLinearFlow::supports(model));
+  EXPECT_THROW(PiecewiseLinearFlow flow(model, 0.0), InputError);
+  EXPECT_THROW(PiecewiseLinearFlow flow(linearChain(false), 1.5), InputError);
+}
+
+}  // namespace
+}  // namespace eqhb
