@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
@@ -21,6 +22,8 @@
 #include "failure_maps.h"
 #include "mgh/mgh_problems.h"
 #include "eqhb/backends/registry.h"
+#include "terminal/progress.h"
+#include "terminal/verbosity.h"
 
 namespace fs = std::filesystem;
 using namespace eqhb;
@@ -178,6 +181,14 @@ std::string table(const std::vector<Case>& cases, const std::string& study) {
   return t.str();
 }
 
+// Its arguments printed one after the other.
+template <class... Args>
+std::string cat(const Args&... args) {
+  std::ostringstream text;
+  (text << ... << args);
+  return text.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -192,7 +203,17 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats, "Solves per case for the median time (capped at ~1 s per case)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--reference-step", reference_step, "Time step of the time-domain references");
+  eqhb::cli::addVerbosityOptions(app);
   CLI11_PARSE(app, argc, argv);
+  // Progress per study on stderr (elapsed, ETA); each case's line with --verbose.
+  using eqhb::cli::ProgressLine;
+  const auto& verbosity = eqhb::cli::verbosity();
+  auto note = [&](ProgressLine& line, const std::string& text) {
+    if (verbosity.verbose) line.message(text);
+  };
+  auto count = [](const char* what, size_t done, size_t total) {
+    return std::string(what) + " " + std::to_string(done) + "/" + std::to_string(total);
+  };
   if (quick) repeats = std::min(repeats, 3);
   fs::create_directories(out);
 
@@ -218,19 +239,29 @@ int main(int argc, char** argv) {
   std::vector<TruthStatus> truths;
   // 1. Backends on friction-1d (exact min/max form), H = 10 and 40.
   const fs::path friction = fs::path(problems) / "friction-1d.toml";
-  if (fs::exists(friction))
-    for (int h : quick ? std::vector<int>{10} : std::vector<int>{10, 40})
+  if (fs::exists(friction)) {
+    const std::vector<int> hs = quick ? std::vector<int>{10} : std::vector<int>{10, 40};
+    ProgressLine line(verbosity.progress, "bench 1/4 backends");
+    const size_t total = hs.size() * 2 * all_backends.size();
+    for (int h : hs)
       for (bool condensed : {true, false})
         for (const auto& name : all_backends) {
           Case c = runCase("backends", friction, {"harmonic_balance.harmonics=" + std::to_string(h)}, name, condensed,
                            repeats, 5.0, nullptr);
           c.form = "minmax";
-          std::cerr << "  backends H=" << h << " " << c.system << " " << name << ": " << c.termination << "\n";
           cases.push_back(c);
+          note(line, cat("  backends H=", h, " ", c.system, " ", name, ": ", c.termination));
+          line.update(static_cast<double>(cases.size()) / total, count("case", cases.size(), total));
         }
+    line.finish();
+  }
 
   // 2. Every scene x form x system x backend at the scene's harmonics.
+  ProgressLine scenes_line(verbosity.progress, "bench 2/4 scenes");
   for (const auto& path : scenes) {
+    const size_t scene_index = &path - scenes.data();
+    scenes_line.update(static_cast<double>(scene_index) / scenes.size(), count("scene", scene_index + 1, scenes.size()),
+                       path.stem().string());
     const Scene base = loadScene(path.string());
     const Truth truth = buildTruth(path, reference_step, quick ? 40 : 200);
     truths.push_back({truth.scene, truth.reference.periodic, truth.reference.periods,
@@ -248,8 +279,10 @@ int main(int argc, char** argv) {
               form.empty() ? std::vector<std::string>{} : lawOverrides(base.model, "form", form);
           Case c = runCase("scenes", path, set, name, condensed, repeats, 2.0, &truth);
           c.form = form.empty() ? "-" : form;
-          std::cerr << "  " << c.scene << " " << c.form << " " << c.system << " " << name << ": " << c.termination
-                    << " " << c.median_seconds << " s\n";
+          note(scenes_line, cat("  ", c.scene, " ", c.form, " ", c.system, " ", name, ": ", c.termination, " ",
+                                c.median_seconds, " s"));
+          scenes_line.update(static_cast<double>(scene_index) / scenes.size(),
+                             count("scene", scene_index + 1, scenes.size()), c.scene + " " + c.form + " " + name);
           cases.push_back(c);
         }
     // Variants of the default formulation: ρ an order of magnitude off its
@@ -270,11 +303,14 @@ int main(int argc, char** argv) {
           if (std::find(all_backends.begin(), all_backends.end(), name) == all_backends.end()) continue;
           Case c = runCase("variants", path, set, name, condensed, repeats, 2.0, &truth);
           c.form = label;
-          std::cerr << "  " << c.scene << " H=" << c.harmonics << " " << c.form << " " << c.system << " " << name
-                    << ": " << c.termination << "\n";
+          note(scenes_line,
+               cat("  ", c.scene, " H=", c.harmonics, " ", c.form, " ", c.system, " ", name, ": ", c.termination));
+          scenes_line.update(static_cast<double>(scene_index) / scenes.size(),
+                             count("scene", scene_index + 1, scenes.size()), c.scene + " " + c.form + " " + name);
           cases.push_back(c);
         }
   }
+  scenes_line.finish(std::to_string(cases.size()) + " cases");
 
   for (Case& c : cases)
     for (const Case& d : cases)
@@ -309,8 +345,12 @@ int main(int argc, char** argv) {
       quick ? std::vector<std::string>{"dogleg", "dogleg-newton", "ceres-dogleg"}
             : std::vector<std::string>{"dogleg", "dogleg-newton", "minpack", "ceres-lm", "ceres-dogleg", "ipopt-ls",
                                        "nlopt-slsqp"};
+  ProgressLine maps_line(verbosity.progress, "bench 3/4 failure maps");
   for (const auto& path : scenes) {
     const std::string stem = path.stem().string();
+    const size_t scene_index = &path - scenes.data();
+    maps_line.update(static_cast<double>(scene_index) / scenes.size(), count("scene", scene_index + 1, scenes.size()),
+                     stem);
     if (quick ? stem != "friction-1d" : (stem != "friction-1d" && stem != "friction-2d" && stem != "contact" && stem != "cubic"))
       continue;
     std::vector<std::string> available;
@@ -319,6 +359,7 @@ int main(int argc, char** argv) {
     const auto rows = bench::failureMaps(path, available, quick);
     failures.insert(failures.end(), rows.begin(), rows.end());
   }
+  maps_line.finish(std::to_string(failures.size()) + " solves");
   {
     std::ofstream f(out + "/failure_maps.csv");
     f << "scene,grid,solver,value,seed,converged,termination,iterations,seconds\n";
@@ -342,8 +383,12 @@ int main(int argc, char** argv) {
 
   // 4. Frequency-response curves of every scene with a [sweep].
   std::ostringstream curves;
+  ProgressLine curves_line(verbosity.progress, "bench 4/4 curves");
   for (const auto& path : scenes) {
     const Scene scene = loadScene(path.string());
+    const size_t scene_index = &path - scenes.data();
+    curves_line.update(static_cast<double>(scene_index) / scenes.size(), count("scene", scene_index + 1, scenes.size()),
+                       scene.name);
     if (!scene.sweep_from) continue;
     auto solver = makeSolver("dogleg");
     ContinuationOptions options;
@@ -362,9 +407,10 @@ int main(int argc, char** argv) {
     curves << "| " << scene.name << " | " << sequential.points.size() << " | " << sequential.failed_points << " | "
            << number(sequential.seconds) << " | " << arclength.points.size() << " | " << arclength.fold_omegas.size()
            << " | " << arclength.stop_reason << " | " << number(arclength.seconds) << " |\n";
-    std::cerr << "  curves " << scene.name << ": sequential " << sequential.failed_points << " failed, arclength "
-              << arclength.stop_reason << "\n";
+    note(curves_line, cat("  curves ", scene.name, ": sequential ", sequential.failed_points, " failed, arclength ",
+                          arclength.stop_reason));
   }
+  curves_line.finish();
 
   std::string mgh_table = "(MINPACK backend not built)\n";
   if (std::find(all_backends.begin(), all_backends.end(), "minpack") != all_backends.end()) {

@@ -4,13 +4,19 @@
 
 #include "eqhb/error.h"
 #include "eqhb/backends/registry.h"
+#include "eqhb/version.h"
 #include "solve_command.h"
 #include "sweep_command.h"
+#include "terminal/verbosity.h"
 #include "time_commands.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"eqhb: periodic vibrations with dry friction and contact by equality-based harmonic balance"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("eqhb ") + EQHB_VERSION);
+  // Global switches are also accepted after the subcommand.
+  app.fallthrough();
+  eqhb::cli::addVerbosityOptions(app);
   eqhb::cli::SolveArguments solve;
   eqhb::cli::addSolveCommand(app, solve);
   auto* solvers = app.add_subcommand("solvers", "List the registered solver backends");

@@ -39,8 +39,6 @@ void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
   cmd->add_option("--time-limit", a.time_limit, "Seconds per solve, 0 = none")->capture_default_str();
 }
 
-namespace {
-
 nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd& c) {
   nlohmann::json harmonics = nlohmann::json::array(), cos = nlohmann::json::array(),
                  sin = nlohmann::json::array();
@@ -53,7 +51,29 @@ nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd&
   return {{"harmonics", harmonics}, {"cos", cos}, {"sin", sin}};
 }
 
-}  // namespace
+nlohmann::json solutionJson(const HbModel& model, const HbSolution& solution) {
+  nlohmann::json dofs = nlohmann::json::array();
+  for (size_t i = 0; i < solution.displacements.size(); ++i) {
+    const auto& c = solution.displacements[i];
+    dofs.push_back({{"dof", i + 1}, {"max_abs", c.max_abs}, {"max_abs_velocity", c.max_abs_rate},
+                    {"coefficients", coefficientsJson(model.basis, c.coefficients)}});
+  }
+  nlohmann::json laws = nlohmann::json::array();
+  size_t q = 0;
+  for (size_t l = 0; l < model.laws.size(); ++l) {
+    nlohmann::json components = nlohmann::json::array();
+    double max_abs = 0.0;
+    for (int a = 0; a < model.laws[l].law->dimension(); ++a, ++q) {
+      const auto& c = solution.forces[q];
+      components.push_back({{"dof", model.laws[l].dofs[a] + 1}, {"max_abs", c.max_abs},
+                            {"coefficients", coefficientsJson(model.basis, c.coefficients)}});
+      max_abs = std::max(max_abs, c.max_abs);
+    }
+    laws.push_back({{"law", l + 1}, {"type", model.laws[l].law->type()}, {"max_abs", max_abs},
+                    {"components", components}});
+  }
+  return {{"dofs", dofs}, {"laws", laws}};
+}
 
 SolverOptions solverOptions(const SolveArguments& a) {
   SolverOptions options;
@@ -147,31 +167,9 @@ int runSolve(const SolveArguments& a) {
     out["repeats"] = a.repeat;
     out["seconds_min"] = times.front();
     out["seconds_max"] = times.back();
-    nlohmann::json dofs = nlohmann::json::array();
-    for (size_t i = 0; i < solution.displacements.size(); ++i) {
-      const auto& c = solution.displacements[i];
-      dofs.push_back({{"dof", i + 1}, {"max_abs", c.max_abs}, {"max_abs_velocity", c.max_abs_rate},
-                      {"coefficients", coefficientsJson(model.basis, c.coefficients)}});
-    }
-    out["dofs"] = dofs;
-    nlohmann::json laws = nlohmann::json::array();
-    size_t q = 0;
-    for (size_t l = 0; l < model.laws.size(); ++l) {
-      nlohmann::json components = nlohmann::json::array();
-      for (int a2 = 0; a2 < model.laws[l].law->dimension(); ++a2, ++q) {
-        const auto& c = solution.forces[q];
-        components.push_back({{"dof", model.laws[l].dofs[a2] + 1}, {"max_abs", c.max_abs},
-                              {"coefficients", coefficientsJson(model.basis, c.coefficients)}});
-      }
-      const double max_abs = std::max_element(components.begin(), components.end(),
-                                              [](const auto& x, const auto& y) {
-                                                return x["max_abs"].template get<double>() <
-                                                       y["max_abs"].template get<double>();
-                                              })->at("max_abs").get<double>();
-      laws.push_back({{"law", l + 1}, {"type", model.laws[l].law->type()}, {"max_abs", max_abs},
-                      {"components", components}});
-    }
-    out["laws"] = laws;
+    const nlohmann::json channels = solutionJson(model, solution);
+    out["dofs"] = channels["dofs"];
+    out["laws"] = channels["laws"];
     nlohmann::json invariants = nlohmann::json::array();
     for (const auto& report : checkInvariants(model, system->fullCoefficients(result.solution))) {
       nlohmann::json measures;

@@ -4,10 +4,12 @@
 #include <CLI/CLI.hpp>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/solvers/solver.h"
 #include "scene_arguments.h"
@@ -40,6 +42,12 @@ struct HbRun {
 HbRun solveHarmonicBalance(const SolveArguments& args);
 // The common solver options and the --option pass-through; throws InputError.
 SolverOptions solverOptions(const SolveArguments& args);
+
+// One channel's Fourier coefficients as {"harmonics", "cos", "sin"}.
+nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd& coefficients);
+// Every DOF and law component of a solution [x; λ]: "dofs" and "laws" arrays
+// with coefficients and the largest magnitude over one period.
+nlohmann::json solutionJson(const HbModel& model, const HbSolution& solution);
 
 void addSolveCommand(CLI::App& app, SolveArguments& args);
 // Solver options and the backend's pass-through options from the flags;

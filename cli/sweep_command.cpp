@@ -1,13 +1,18 @@
 #include "sweep_command.h"
 
-#include <unistd.h>
-
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/backends/registry.h"
+#include "terminal/progress.h"
+#include "terminal/run_program.h"
+#include "terminal/verbosity.h"
 
 namespace eqhb::cli {
 
@@ -24,8 +29,59 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
   cmd->add_option("--max-points", w.max_points, "Most points on the curve")->capture_default_str();
   cmd->add_option("--out", w.out, "Write the curve as CSV");
   cmd->add_option("--chart", w.chart, "Write a chart of the curve: PREFIX.png and PREFIX.svg (matplotlib)");
+  cmd->add_flag("--log-amplitude", w.log_amplitude, "Chart: logarithmic amplitude axis");
+  cmd->add_flag("--json", w.json,
+                "Print the curve as one JSON object: settings, stop reason, folds, and per point the counts, "
+                "amplitudes and Fourier coefficients of every DOF and law force");
 }
 
+namespace {
+
+nlohmann::json curveJson(const Scene& scene, const Solver& solver, const ContinuationOptions& options,
+                         bool arclength, const Curve& curve) {
+  const HbModel& model = scene.model;
+  nlohmann::json points = nlohmann::json::array();
+  for (const CurvePoint& p : curve.points) {
+    nlohmann::json point = {{"omega", p.omega},
+                            {"converged", p.converged},
+                            {"termination", p.termination},
+                            {"iterations", p.iterations},
+                            {"residual_evaluations", p.residual_evaluations},
+                            {"jacobian_evaluations", p.jacobian_evaluations},
+                            {"residual_norm", p.residual_norm},
+                            {"seconds", p.seconds},
+                            {"fold", p.fold},
+                            {"energy", p.energy},
+                            {"max_abs", p.max_abs},
+                            {"first_harmonic", p.first_harmonic}};
+    if (p.full.size() > 0) {
+      HbModel at = model;
+      at.omega = p.omega;
+      const nlohmann::json channels = solutionJson(at, summarize(at, p.full));
+      point["dofs"] = channels["dofs"];
+      point["laws"] = channels["laws"];
+    }
+    points.push_back(point);
+  }
+  return {{"scene", scene.name},
+          {"solver", solver.name()},
+          {"method", arclength ? "arclength" : "sequential"},
+          {"from", options.from},
+          {"to", options.to},
+          {"step", options.step},
+          {"system", options.condensed ? "condensed" : "full"},
+          {"harmonics", model.basis.count()},
+          {"harmonic_set", HarmonicSet::kindName(model.basis.kind())},
+          {"samples", model.samples},
+          {"complete", curve.complete},
+          {"stop_reason", curve.stop_reason},
+          {"folds", curve.fold_omegas},
+          {"failed_points", curve.failed_points},
+          {"seconds", curve.seconds},
+          {"points", points}};
+}
+
+}  // namespace
 
 int runSweep(const SolveArguments& s, const SweepArguments& w) {
   const Scene scene = loadSceneWith(s.scene);
@@ -41,43 +97,63 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   const SolverOptions solver_options = solverOptions(s);
   auto solver = makeSolver(s.solver);
   const int dofs = scene.model.structure.dofs();
-  const bool terminal = isatty(STDERR_FILENO);
   const int expected = w.arclength ? 0 : static_cast<int>(std::abs(options.to - options.from) / options.step) + 1;
+  ProgressLine line(verbosity().progress, scene.name + " sweep");
+  const bool verbose = verbosity().verbose;
+  if (verbose)
+    std::cerr << "eqhb: sweep " << scene.source << ": omega " << options.from << " -> " << options.to << ", "
+              << (w.arclength ? "arclength" : "sequential") << ", step " << options.step << ", "
+              << solver->name() << ", H = " << scene.model.basis.count() << ", N = " << scene.model.samples
+              << ", " << (options.condensed ? "condensed" : "full") << " system\n";
+  int failed = 0;
   Progress progress = [&](const CurvePoint& p, int index) {
-    if (!terminal) return;
-    std::fprintf(stderr, "\r  point %d%s%s  omega = %.5f  %s  max|x%d| = %-10.5g", index + 1,
-                 expected ? "/" : "", expected ? std::to_string(expected).c_str() : "", p.omega,
-                 p.converged ? "ok    " : "FAILED", dofs, p.converged ? p.max_abs[dofs - 1] : NAN);
-    std::fflush(stderr);
+    if (!p.converged) ++failed;
+    if (verbose) {
+      std::ostringstream text;
+      text << "eqhb: point " << index + 1 << " omega = " << p.omega << ": " << p.termination << ", "
+           << p.iterations << " iterations, |g| = " << p.residual_norm << ", " << p.seconds << " s";
+      line.message(text.str());
+    }
+    // The ETA follows the distance covered in omega (exact on a grid, an
+    // estimate along an arclength curve that may turn back).
+    const double fraction = std::clamp((p.omega - options.from) / (options.to - options.from), 0.0, 1.0);
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "omega = %.5f  max|x%d| = %.5g%s", p.omega, dofs,
+                  p.converged ? p.max_abs[dofs - 1] : NAN, failed ? ("  " + std::to_string(failed) + " failed").c_str() : "");
+    line.update(fraction, "point " + std::to_string(index + 1) + (expected ? "/" + std::to_string(expected) : ""),
+                detail);
   };
   const Curve curve = w.arclength ? sweepArclength(scene.model, *solver, solver_options, options, progress)
                                   : sweepSequential(scene.model, *solver, solver_options, options, progress);
-  if (terminal) std::fprintf(stderr, "\n");
+  line.finish(std::to_string(curve.points.size()) + " points, " + std::to_string(curve.failed_points) + " failed");
 
+  if (w.json) std::cout << curveJson(scene, *solver, options, w.arclength, curve).dump(2) << "\n";
+  // With --json, stdout is the JSON object alone; the summary goes to stderr.
+  std::ostream& summary = w.json ? std::cerr : std::cout;
   const CurvePoint* peak = nullptr;
   for (const auto& p : curve.points)
     if (p.converged && (!peak || p.max_abs[dofs - 1] > peak->max_abs[dofs - 1])) peak = &p;
-  std::cout << scene.name << ": " << (w.arclength ? "arclength" : "sequential") << " sweep " << options.from
-            << " -> " << options.to << " with " << solver->name() << ", H = " << scene.model.basis.count() << ": "
-            << curve.points.size() << " points, " << curve.failed_points << " failed, " << curve.seconds << " s\n"
-            << "  stop: " << curve.stop_reason << "\n";
+  summary << scene.name << ": " << (w.arclength ? "arclength" : "sequential") << " sweep " << options.from
+          << " -> " << options.to << " with " << solver->name() << ", H = " << scene.model.basis.count() << ": "
+          << curve.points.size() << " points, " << curve.failed_points << " failed, " << curve.seconds << " s\n"
+          << "  stop: " << curve.stop_reason << "\n";
   if (peak)
-    std::cout << "  peak: omega = " << peak->omega << ", max|x" << dofs << "| = " << peak->max_abs[dofs - 1] << "\n";
+    summary << "  peak: omega = " << peak->omega << ", max|x" << dofs << "| = " << peak->max_abs[dofs - 1] << "\n";
   if (!curve.fold_omegas.empty()) {
-    std::cout << "  folds at omega =";
-    for (double f : curve.fold_omegas) std::cout << " " << f;
-    std::cout << "\n";
+    summary << "  folds at omega =";
+    for (double f : curve.fold_omegas) summary << " " << f;
+    summary << "\n";
   } else if (w.arclength) {
-    std::cout << "  no fold\n";
+    summary << "  no fold\n";
   }
   if (!w.out.empty()) writeCurveCsv(w.out, curve, dofs);
   if (!w.chart.empty()) {
     const std::string csv = w.out.empty() ? w.chart + ".csv" : w.out;
     if (w.out.empty()) writeCurveCsv(csv, curve, dofs);
-    const std::string command = std::string("/usr/bin/python3 ") + EQHB_PLOT_CURVE + " '" + csv + "' '" + w.chart +
-                                "' '" + scene.name + "'";
-    if (std::system(command.c_str()) != 0)
-      throw std::runtime_error("--chart: plotting failed (needs /usr/bin/python3 with matplotlib)");
+    std::vector<std::string> command = {python3(), findDataFile("plot_curve.py"), csv, w.chart, scene.name};
+    if (w.log_amplitude) command.push_back("--log-amplitude");
+    if (runProgram(command) != 0)
+      throw std::runtime_error("--chart: plotting failed (needs " + command[0] + " with matplotlib)");
   }
   return curve.failed_points == 0 && !curve.points.empty() ? 0 : 1;
 }

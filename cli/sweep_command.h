@@ -16,6 +16,8 @@ struct SweepArguments {
   int max_points = 20000;
   std::string out;    // CSV file
   std::string chart;  // PNG/SVG prefix
+  bool json = false;  // the curve as one JSON object on stdout, with each point's coefficients
+  bool log_amplitude = false;  // chart: logarithmic amplitude axis
 };
 
 void addSweepCommand(CLI::App& app, SolveArguments& solve, SweepArguments& sweep);

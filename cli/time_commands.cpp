@@ -1,5 +1,6 @@
 #include "time_commands.h"
 
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -43,6 +44,26 @@ nlohmann::json referenceJson(const HbModel& model, const TimeReference& ref) {
   return out;
 }
 
+// The last period, sample i at t = iT/steps_per_period: "t", then per DOF
+// "x<i>" and "v<i>", per law component the label of `eqhb solve`.
+nlohmann::json trajectoryJson(const HbModel& model, const TimeReference& ref) {
+  const int samples = static_cast<int>(ref.displacement.rows());
+  std::vector<double> t(samples);
+  for (int i = 0; i < samples; ++i) t[i] = 2 * M_PI / model.omega * i / ref.steps_per_period;
+  auto column = [](const Eigen::MatrixXd& m, int j) {
+    const Eigen::VectorXd c = m.col(j);
+    return std::vector<double>(c.data(), c.data() + c.size());
+  };
+  nlohmann::json out = {{"t", t}};
+  for (int i = 0; i < model.structure.dofs(); ++i) {
+    out["x" + std::to_string(i + 1)] = column(ref.displacement, i);
+    out["v" + std::to_string(i + 1)] = column(ref.velocity, i);
+  }
+  const HbSolution labels = summarize(model, ref.coefficients);
+  for (int q = 0; q < ref.force.cols(); ++q) out[labels.forces[q].label] = column(ref.force, q);
+  return out;
+}
+
 void printReference(const HbModel& model, const TimeReference& ref) {
   std::cout << "time reference: " << (ref.periodic ? "periodic" : "NOT periodic") << " after " << ref.periods
             << " periods (change " << ref.periodicity_error << "), h = " << ref.step << " ("
@@ -62,6 +83,8 @@ void addSimulateCommand(CLI::App& app, SolveArguments& s, TimeArguments& t) {
   cmd->add_flag("--from-hb", t.from_hb, "Start from the harmonic-balance solution instead of rest");
   cmd->add_option("--solver", s.solver, "Backend for --from-hb");
   cmd->add_flag("--json", s.json, "Print one JSON object");
+  cmd->add_flag("--trajectory", s.trajectory,
+                "With --json: add the last period's samples of x, dx/dt and the law forces");
 }
 
 void addCompareCommand(CLI::App& app, SolveArguments& s, TimeArguments& t) {
@@ -88,6 +111,7 @@ int runSimulate(const SolveArguments& s, const TimeArguments& t) {
     nlohmann::json out = referenceJson(scene.model, ref);
     out["scene"] = scene.name;
     out["omega"] = scene.model.omega;
+    if (s.trajectory) out["trajectory"] = trajectoryJson(scene.model, ref);
     std::cout << out.dump(2) << "\n";
   } else {
     std::cout << scene.name << " at omega = " << scene.model.omega << "\n";
