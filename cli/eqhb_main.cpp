@@ -5,6 +5,7 @@
 #include "eqhb/error.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/version.h"
+#include "generate_command.h"
 #include "solve_command.h"
 #include "sweep_command.h"
 #include "terminal/verbosity.h"
@@ -27,6 +28,8 @@ int main(int argc, char** argv) {
   eqhb::cli::SolveArguments sweep_hb;
   eqhb::cli::SweepArguments sweep;
   eqhb::cli::addSweepCommand(app, sweep_hb, sweep);
+  eqhb::cli::GenerateArguments generate;
+  eqhb::cli::addGenerateCommand(app, generate);
   CLI11_PARSE(app, argc, argv);
   try {
     if (solvers->parsed()) {
@@ -35,6 +38,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (app.got_subcommand("simulate")) return eqhb::cli::runSimulate(simulate_hb, simulate_time);
+    if (app.got_subcommand("generate")) return eqhb::cli::runGenerate(generate);
     if (app.got_subcommand("sweep")) return eqhb::cli::runSweep(sweep_hb, sweep);
     if (app.got_subcommand("compare")) return eqhb::cli::runCompare(compare_hb, compare_time);
     return eqhb::cli::runSolve(solve);

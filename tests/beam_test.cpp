@@ -107,3 +107,24 @@ omega = 3.0
 
 }  // namespace
 }  // namespace eqhb
+
+namespace eqhb {
+namespace {
+
+TEST(Beam, ShippedBeamScenesHaveTheirSizesAndSitNearTheFirstMode) {
+  const Scene damper = loadScene(test::problem("beam-damper.toml"));
+  EXPECT_GE(damper.model.structure.dofs(), 100);
+  EXPECT_GE(damper.model.laws.size(), 5u);
+  const Scene joint = loadScene(test::problem("beam-joint-large.toml"));
+  EXPECT_GE(joint.model.structure.dofs(), 2000);
+  EXPECT_GE(joint.model.laws.size(), 50u);
+  for (const Scene* s : {&damper, &joint}) {
+    BeamParameters unit;  // both scenes use E I = ρA = L = 1
+    const double omega_1 = cantileverFrequencies(unit, 1)[0];
+    EXPECT_NEAR(s->model.omega / omega_1, 1.0, 0.1) << s->name;
+    for (const auto& law : s->model.laws) EXPECT_EQ(law.dofs[0] % 2, 0) << "transverse DOF";
+  }
+}
+
+}  // namespace
+}  // namespace eqhb
