@@ -6,6 +6,7 @@
 #include "eqhb/backends/registry.h"
 #include "eqhb/version.h"
 #include "generate_command.h"
+#include "shoot_command.h"
 #include "solve_command.h"
 #include "sweep_command.h"
 #include "terminal/verbosity.h"
@@ -30,6 +31,8 @@ int main(int argc, char** argv) {
   eqhb::cli::addSweepCommand(app, sweep_hb, sweep);
   eqhb::cli::GenerateArguments generate;
   eqhb::cli::addGenerateCommand(app, generate);
+  eqhb::cli::ShootArguments shoot;
+  eqhb::cli::addShootCommand(app, shoot);
   CLI11_PARSE(app, argc, argv);
   try {
     if (solvers->parsed()) {
@@ -40,6 +43,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("simulate")) return eqhb::cli::runSimulate(simulate_hb, simulate_time);
     if (app.got_subcommand("generate")) return eqhb::cli::runGenerate(generate);
     if (app.got_subcommand("sweep")) return eqhb::cli::runSweep(sweep_hb, sweep);
+    if (app.got_subcommand("shoot")) return eqhb::cli::runShoot(shoot);
     if (app.got_subcommand("compare")) return eqhb::cli::runCompare(compare_hb, compare_time);
     return eqhb::cli::runSolve(solve);
   } catch (const eqhb::InputError& e) {

@@ -8,7 +8,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/scenes/scene.h"
-#include "registry.h"
+#include "eqhb/backends/registry.h"
 #include "test_support.h"
 
 namespace eqhb {
