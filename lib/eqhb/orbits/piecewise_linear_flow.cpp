@@ -70,7 +70,11 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
   const LinearStructure& s = model.structure;
   n_ = s.dofs();
   omega_ = model.omega;
-  mass_inverse_ = s.mass.inverse();
+  // Massless DOFs would make the phases differential-algebraic.
+  const Eigen::LLT<Eigen::MatrixXd> mass_factor(s.mass);
+  if (mass_factor.info() != Eigen::Success || mass_factor.matrixL().toDenseMatrix().diagonal().minCoeff() <= 0.0)
+    throwInputError("structure.mass", "singular", "exact orbits need a positive definite mass (no massless DOFs)");
+  mass_inverse_ = mass_factor.solve(Eigen::MatrixXd::Identity(n_, n_));
   damping_ = s.damping;
   stiffness_ = s.stiffness;
   constant_load_ = Eigen::VectorXd::Zero(n_);
