@@ -9,16 +9,23 @@ namespace {
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
-// Rotation (c, s) with [c s; −s c] (a, b)ᵀ = (hypot(a, b), 0)ᵀ.
-void givens(double a, double b, double* c, double* s) {
+// Rotation (c, s) with [c s; −s c] (a, b)ᵀ = (h, 0)ᵀ, h = √(a² + b²) > 0,
+// returned. The ratio of the smaller to the larger magnitude keeps the
+// square free of overflow and underflow; std::hypot's correctly rounded
+// result is not needed here and costs several times more.
+double givens(double a, double b, double* c, double* s) {
   if (b == 0.0) {
     *c = 1.0;
     *s = 0.0;
-    return;
+    return a;
   }
-  const double h = std::hypot(a, b);
+  const double abs_a = std::abs(a), abs_b = std::abs(b);
+  const double large = std::max(abs_a, abs_b), small = std::min(abs_a, abs_b);
+  const double t = small / large;
+  const double h = large * std::sqrt(1.0 + t * t);
   *c = a / h;
   *s = b / h;
+  return h;
 }
 
 template <typename X, typename Y>
@@ -145,12 +152,12 @@ void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
                    Eigen::VectorXd& u, const Eigen::VectorXd& v) {
   const Eigen::Index n = r.rows();
   // 1. Rotate u onto e₁ from the bottom up; R becomes upper Hessenberg.
+  // Rows i−1 and i of R are zero left of column i−1: rotate the rest only.
   for (Eigen::Index i = n - 1; i > 0; --i) {
     double c, s;
-    givens(u[i - 1], u[i], &c, &s);
-    u[i - 1] = std::hypot(u[i - 1], u[i]);
+    u[i - 1] = givens(u[i - 1], u[i], &c, &s);
     u[i] = 0.0;
-    rotate(r.row(i - 1), r.row(i), c, s);
+    rotate(r.row(i - 1).tail(n - i + 1), r.row(i).tail(n - i + 1), c, s);
     rotate(q.col(i - 1), q.col(i), c, s);
     double a = qtf[i - 1], b = qtf[i];
     qtf[i - 1] = c * a + s * b;
@@ -158,11 +165,11 @@ void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
   }
   // 2. Add the rank-one term, now confined to the first row.
   r.row(0) += u[0] * v.transpose();
-  // 3. Chase the subdiagonal away.
+  // 3. Chase the subdiagonal away (rows i and i+1 start at column i).
   for (Eigen::Index i = 0; i + 1 < n; ++i) {
     double c, s;
     givens(r(i, i), r(i + 1, i), &c, &s);
-    rotate(r.row(i), r.row(i + 1), c, s);
+    rotate(r.row(i).tail(n - i), r.row(i + 1).tail(n - i), c, s);
     r(i + 1, i) = 0.0;
     rotate(q.col(i), q.col(i + 1), c, s);
     double a = qtf[i], b = qtf[i + 1];
