@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs an eqhb build tree into a fresh prefix, then builds and runs this
 # consumer project against it twice: through find_package(eqhb) and through
-# pkg-config; finally configures it with eqhb as a subproject.
+# pkg-config; imports the installed Python package; finally configures it
+# with eqhb as a subproject.
 # Usage: tests/consumer/check.sh BUILD_DIR
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -29,6 +30,14 @@ echo "pkg-config eqhb $(pkg-config --modversion eqhb)"
 c++ -O2 -o "$work/consumer_pc" "$here/main.cpp" $(pkg-config --cflags --libs eqhb)
 "$work/consumer_pc" "$scene" dogleg-newton >/dev/null
 echo "consumer built with pkg-config: ok"
+
+# The installed Python package, imported from the prefix (when it was built).
+site="$(find "$work/prefix" -path '*-packages/eqhb/__init__.py' | head -1)"
+if [ -n "$site" ]; then
+  PYTHONPATH="$(dirname "$(dirname "$site")")" /usr/bin/python3 -c \
+    "import sys, eqhb; r = eqhb.solve(eqhb.load_scene(sys.argv[1])); assert r['converged']; print('python from the prefix:', eqhb.__file__, eqhb.__version__)" \
+    "$scene"
+fi
 
 # As a subproject (configure only): no build type forced, no programs built.
 cmake -S "$here" -B "$work/subproject" -DEQHB_SOURCE_DIR="$here/../.." | grep -E "^-- eqhb "

@@ -1,0 +1,161 @@
+"""eqhb: periodic vibrations of structures with dry friction and unilateral
+contact by an equality-based harmonic balance.
+
+    import eqhb
+    model = eqhb.load_scene("problems/friction-1d.toml")
+    result = eqhb.solve(model, omega=0.4, solver="dogleg")
+    curve = eqhb.sweep(model, 0.1, 0.8, step=0.005)
+    reference = eqhb.simulate(model, omega=0.3, step=1e-3)
+
+A model comes from a scene file (`load_scene`) or from arrays (`model`: numpy
+or scipy.sparse M, C, K, laws and loads as dicts with the scene file's keys).
+Results are plain dicts of numpy arrays and numbers. Bad input raises
+`eqhb.InputError` (a ValueError) whose message names the field.
+"""
+import math
+import numbers
+
+from ._eqhb import InputError, Model, __version__, solvers
+from ._eqhb import _simulate, _solve, _sweep
+
+__all__ = ["InputError", "Model", "__version__", "load_scene", "model", "simulate", "solve", "solvers", "sweep"]
+
+
+def load_scene(path, overrides=None):
+    """The model of a scene file (problems/*.toml). `overrides` maps a dotted
+    path to a value, as `eqhb --set`: {"law[0].muN": 5, "harmonic_balance.omega": 0.3}."""
+    return Model.from_scene(str(path), [f"{k}={_toml_value(v, k)}" for k, v in (overrides or {}).items()])
+
+
+def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, harmonic_set="odd",
+          samples=None, omega=1.0, sweep=None, name="model"):
+    """A model from arrays.
+
+    mass, stiffness, damping: n x n numpy arrays or scipy.sparse matrices
+        (damping None: no damping).
+    laws: dicts with the scene file's keys, DOFs numbered from 1, e.g.
+        {"type": "coulomb-1d", "dofs": [2], "muN": 7.2}.
+    forcing: dicts {"dof": 1, "harmonic": 1, "cos": 20.0, "sin": 0.0}.
+    harmonics, harmonic_set ("odd" or "all"), samples (default: a power of
+    two >= 4 (2 k_max + 1), at least 64), omega: the harmonic-balance settings.
+    sweep: an optional (start, stop) frequency range used by `sweep`.
+    """
+    dofs = _square_size(mass, "mass")
+    if isinstance(harmonics, bool) or not isinstance(harmonics, numbers.Integral):
+        raise InputError(f"harmonics = {harmonics!r}: must be an integer")
+    if samples is None:
+        k_max = 2 * int(harmonics) - 1 if harmonic_set == "odd" else int(harmonics)
+        samples = max(64, 1 << math.ceil(math.log2(4 * (2 * max(k_max, 0) + 1))))
+    lines = [f"name = {_toml_value(name, 'name')}", "", "[structure]", 'type = "chain"', f"dofs = {dofs}",
+             "m = 1.0", "k = 1.0", "d = 0.0"]
+    for i, load in enumerate(forcing):
+        lines += ["", "[[forcing]]"] + _toml_table(load, f"forcing[{i}]")
+    for i, law in enumerate(laws):
+        lines += ["", "[[law]]"] + _toml_table(law, f"law[{i}]")
+    settings = {"harmonics": harmonics, "set": harmonic_set, "samples": samples, "omega": omega}
+    lines += ["", "[harmonic_balance]"] + _toml_table(settings, "harmonic_balance")
+    if sweep is not None:
+        try:
+            start, stop = sweep
+        except (TypeError, ValueError):
+            raise InputError(f"sweep = {sweep!r}: must be a pair (start, stop)") from None
+        lines += ["", "[sweep]"] + _toml_table({"from": start, "to": stop}, "sweep")
+    return Model._from_arrays("\n".join(lines) + "\n", mass, damping, stiffness)
+
+
+def solve(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", system="condensed",
+          tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
+          initial=None):
+    """One harmonic-balance solve. Returns a dict: converged, termination,
+    iterations, residual/jacobian evaluations, residual_norm, seconds, and
+    "solution" (harmonics, x_cos/x_sin and lambda_cos/lambda_sin per channel,
+    one period sampled: t, x, lambda; max_abs_x, invariants, and "full", the
+    coefficient vector to pass as `initial` to a later solve)."""
+    return _solve(model, omega, harmonics, samples, solver, system, tolerance, max_iterations, max_evaluations,
+                  time_limit, _options(options), _vector(initial, "initial"))
+
+
+def sweep(model, start=None, stop=None, *, step=0.01, method="sequential", harmonics=None, samples=None,
+          solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
+          time_limit=0.0, options=None, max_points=20000):
+    """A frequency-response curve by continuation in omega ("sequential" on a
+    grid of `step`, or "arclength", which passes turning points). Returns a
+    dict of arrays over the points: omega, converged, max_abs (points x dofs),
+    first_harmonic, energy, fold, x_cos/x_sin (points x dofs x harmonics), and
+    folds, stop_reason, complete, failed_points, seconds."""
+    return _sweep(model, start, stop, step, method, harmonics, samples, solver, system, tolerance, max_iterations,
+                  max_evaluations, time_limit, _options(options), max_points)
+
+
+def simulate(model, omega=None, *, step=1e-4, periods=5000, theta=0.5, periodic_tolerance=1e-9, restitution=0.0,
+             initial=None):
+    """The time-domain reference: Moreau-Jean integration to the periodic
+    steady state. Returns periodic, periods, step, steps_per_period,
+    periodicity_error, seconds, the last period (t, x, v, lambda: one row per
+    DOF or law component), max_abs_x and its Fourier "coefficients"."""
+    return _simulate(model, omega, step, periods, theta, periodic_tolerance, restitution,
+                     _vector(initial, "initial"))
+
+
+def _square_size(matrix, field):
+    shape = getattr(matrix, "shape", None)
+    if shape is None or len(shape) != 2:
+        raise InputError(f"{field}: must be a 2-D numpy array or a scipy.sparse matrix")
+    if shape[0] != shape[1] or shape[0] < 1:
+        raise InputError(f"{field}: must be square and non-empty (got {shape[0]} x {shape[1]})")
+    return int(shape[0])
+
+
+def _options(options):
+    if options is None:
+        return {}
+    if not isinstance(options, dict):
+        raise InputError(f"options = {options!r}: must be a dict NAME -> value")
+    return {str(k): str(v) for k, v in options.items()}
+
+
+def _vector(values, field):
+    if values is None:
+        return None
+    import numpy
+
+    array = numpy.asarray(values, dtype=float)
+    if array.ndim != 1:
+        raise InputError(f"{field}: must be a 1-D array (got {array.ndim}-D)")
+    return array
+
+
+def _toml_table(entries, field):
+    if not isinstance(entries, dict):
+        raise InputError(f"{field} = {entries!r}: must be a dict")
+    lines = []
+    for key, value in entries.items():
+        if not isinstance(key, str) or not key.replace("_", "").isalnum():
+            raise InputError(f"{field}: key {key!r} must be a name of letters, digits and '_'")
+        lines.append(f"{key} = {_toml_value(value, f'{field}.{key}')}")
+    return lines
+
+
+def _toml_value(value, field):
+    """One value in TOML; numpy scalars and arrays are accepted."""
+    if hasattr(value, "tolist"):
+        value = value.tolist()
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        v = float(value)
+        if math.isnan(v):
+            return "nan"
+        if math.isinf(v):
+            return "inf" if v > 0 else "-inf"
+        return repr(v)
+    if isinstance(value, str):
+        escaped = value.replace("\\", "\\\\").replace('"', '\\"')
+        if any(ord(c) < 32 for c in escaped):
+            raise InputError(f"{field} = {value!r}: control characters are not allowed")
+        return f'"{escaped}"'
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v, f"{field}[{i}]") for i, v in enumerate(value)) + "]"
+    raise InputError(f"{field} = {value!r}: must be a number, a string, a boolean or a list of them")

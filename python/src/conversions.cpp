@@ -1,0 +1,188 @@
+#include "conversions.h"
+
+#include <cmath>
+
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/laws/invariants.h"
+
+namespace eqhb::python {
+
+py::array_t<double> toArray(const Eigen::VectorXd& v) {
+  py::array_t<double> a(v.size());
+  std::copy(v.data(), v.data() + v.size(), a.mutable_data());
+  return a;
+}
+
+py::array_t<double> toArray(const Eigen::MatrixXd& m) {
+  py::array_t<double> a({m.rows(), m.cols()});
+  auto view = a.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) view(i, j) = m(i, j);
+  return a;
+}
+
+namespace {
+
+// cos and sin coefficients of every channel, one row per channel.
+void splitCoefficients(const HarmonicSet& basis, const std::vector<ChannelSummary>& channels,
+                       Eigen::MatrixXd& cos, Eigen::MatrixXd& sin) {
+  const int h = static_cast<int>(basis.harmonics().size());
+  cos.setZero(static_cast<Eigen::Index>(channels.size()), h);
+  sin.setZero(static_cast<Eigen::Index>(channels.size()), h);
+  for (size_t c = 0; c < channels.size(); ++c)
+    for (int j = 0; j < h; ++j) {
+      const int o = basis.offset(j);
+      cos(c, j) = channels[c].coefficients[o];
+      if (basis.harmonics()[j] != 0) sin(c, j) = channels[c].coefficients[o + 1];
+    }
+}
+
+Eigen::MatrixXd samples(const std::vector<ChannelSummary>& channels, int n) {
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(channels.size()), n);
+  for (size_t c = 0; c < channels.size(); ++c) m.row(c) = channels[c].samples.transpose();
+  return m;
+}
+
+}  // namespace
+
+py::dict solutionDict(const HbModel& model, const Eigen::VectorXd& full) {
+  const HbSolution s = summarize(model, full);
+  py::dict d;
+  d["harmonics"] = py::array_t<int>(model.basis.harmonics().size(), model.basis.harmonics().data());
+  Eigen::MatrixXd cos, sin;
+  splitCoefficients(model.basis, s.displacements, cos, sin);
+  d["x_cos"] = toArray(cos);
+  d["x_sin"] = toArray(sin);
+  splitCoefficients(model.basis, s.forces, cos, sin);
+  d["lambda_cos"] = toArray(cos);
+  d["lambda_sin"] = toArray(sin);
+  Eigen::VectorXd t(model.samples);
+  for (int i = 0; i < model.samples; ++i) t[i] = 2 * M_PI / model.omega * i / model.samples;
+  d["t"] = toArray(t);
+  d["x"] = toArray(samples(s.displacements, model.samples));
+  d["lambda"] = toArray(samples(s.forces, model.samples));
+  Eigen::VectorXd max_x(s.displacements.size()), max_v(s.displacements.size()), max_l(s.forces.size());
+  py::list labels;
+  for (size_t i = 0; i < s.displacements.size(); ++i) {
+    max_x[i] = s.displacements[i].max_abs;
+    max_v[i] = s.displacements[i].max_abs_rate;
+  }
+  for (size_t q = 0; q < s.forces.size(); ++q) {
+    max_l[q] = s.forces[q].max_abs;
+    labels.append(s.forces[q].label);
+  }
+  d["max_abs_x"] = toArray(max_x);
+  d["max_abs_velocity"] = toArray(max_v);
+  d["max_abs_lambda"] = toArray(max_l);
+  d["lambda_labels"] = labels;
+  py::list invariants;
+  for (const auto& report : checkInvariants(model, full)) {
+    py::dict violations;
+    for (const auto& [name, value] : report.violations) violations[py::str(name)] = value;
+    invariants.append(py::dict(py::arg("law") = report.law + 1, py::arg("type") = report.type,
+                               py::arg("violations") = violations));
+  }
+  d["invariants"] = invariants;
+  d["full"] = toArray(full);
+  return d;
+}
+
+py::dict resultDict(const SolverResult& r) {
+  py::dict d;
+  d["solver"] = r.solver;
+  d["converged"] = r.converged();
+  d["termination"] = terminationName(r.termination);
+  d["native_code"] = r.native_code;
+  d["native_message"] = r.native_message;
+  d["iterations"] = r.iterations;
+  d["residual_evaluations"] = r.residual_evaluations;
+  d["jacobian_evaluations"] = r.jacobian_evaluations;
+  d["initial_residual_norm"] = r.initial_norm;
+  d["residual_norm"] = r.final_norm;
+  d["seconds"] = r.seconds;
+  return d;
+}
+
+py::dict curveDict(const HbModel& model, const Curve& curve) {
+  const Eigen::Index points = static_cast<Eigen::Index>(curve.points.size());
+  const int dofs = model.structure.dofs();
+  const int h = static_cast<int>(model.basis.harmonics().size());
+  Eigen::VectorXd omega(points), residual(points), seconds(points), energy(points);
+  Eigen::MatrixXd max_abs(points, dofs), first(points, dofs);
+  py::array_t<bool> converged(points), fold(points);
+  py::array_t<int> iterations(points), evaluations(points);
+  py::array_t<double> x_cos({static_cast<py::ssize_t>(points), static_cast<py::ssize_t>(dofs),
+                             static_cast<py::ssize_t>(h)});
+  py::array_t<double> x_sin({static_cast<py::ssize_t>(points), static_cast<py::ssize_t>(dofs),
+                             static_cast<py::ssize_t>(h)});
+  auto cos_view = x_cos.mutable_unchecked<3>();
+  auto sin_view = x_sin.mutable_unchecked<3>();
+  py::list terminations;
+  const int nb = model.basis.size();
+  for (Eigen::Index p = 0; p < points; ++p) {
+    const CurvePoint& c = curve.points[p];
+    omega[p] = c.omega;
+    residual[p] = c.residual_norm;
+    seconds[p] = c.seconds;
+    energy[p] = c.energy;
+    converged.mutable_at(p) = c.converged;
+    fold.mutable_at(p) = c.fold;
+    iterations.mutable_at(p) = c.iterations;
+    evaluations.mutable_at(p) = c.residual_evaluations;
+    terminations.append(c.termination);
+    for (int i = 0; i < dofs; ++i) {
+      max_abs(p, i) = i < static_cast<int>(c.max_abs.size()) ? c.max_abs[i] : NAN;
+      first(p, i) = i < static_cast<int>(c.first_harmonic.size()) ? c.first_harmonic[i] : NAN;
+      for (int j = 0; j < h; ++j) {
+        const int o = i * nb + model.basis.offset(j);
+        const bool known = c.full.size() >= (i + 1) * nb;
+        cos_view(p, i, j) = known ? c.full[o] : NAN;
+        sin_view(p, i, j) = known && model.basis.harmonics()[j] != 0 ? c.full[o + 1] : (known ? 0.0 : NAN);
+      }
+    }
+  }
+  py::dict d;
+  d["omega"] = toArray(omega);
+  d["converged"] = converged;
+  d["termination"] = terminations;
+  d["iterations"] = iterations;
+  d["residual_evaluations"] = evaluations;
+  d["residual_norm"] = toArray(residual);
+  d["seconds_per_point"] = toArray(seconds);
+  d["max_abs"] = toArray(max_abs);
+  d["first_harmonic"] = toArray(first);
+  d["energy"] = toArray(energy);
+  d["fold"] = fold;
+  d["harmonics"] = py::array_t<int>(model.basis.harmonics().size(), model.basis.harmonics().data());
+  d["x_cos"] = x_cos;
+  d["x_sin"] = x_sin;
+  d["folds"] = curve.fold_omegas;
+  d["complete"] = curve.complete;
+  d["stop_reason"] = curve.stop_reason;
+  d["failed_points"] = curve.failed_points;
+  d["seconds"] = curve.seconds;
+  return d;
+}
+
+py::dict referenceDict(const HbModel& model, const TimeReference& ref) {
+  py::dict d;
+  d["periodic"] = ref.periodic;
+  d["periods"] = ref.periods;
+  d["step"] = ref.step;
+  d["steps_per_period"] = ref.steps_per_period;
+  d["periodicity_error"] = ref.periodicity_error;
+  d["seconds"] = ref.seconds;
+  const Eigen::Index n = ref.displacement.rows();
+  Eigen::VectorXd t(n);
+  for (Eigen::Index i = 0; i < n; ++i) t[i] = 2 * M_PI / model.omega * i / ref.steps_per_period;
+  d["t"] = toArray(t);
+  // One row per DOF / law component, as in the harmonic-balance solutions.
+  d["x"] = toArray(Eigen::MatrixXd(ref.displacement.transpose()));
+  d["v"] = toArray(Eigen::MatrixXd(ref.velocity.transpose()));
+  d["lambda"] = toArray(Eigen::MatrixXd(ref.force.transpose()));
+  d["max_abs_x"] = toArray(Eigen::VectorXd(ref.displacement.cwiseAbs().colwise().maxCoeff().transpose()));
+  d["coefficients"] = solutionDict(model, ref.coefficients);
+  return d;
+}
+
+}  // namespace eqhb::python

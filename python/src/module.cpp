@@ -1,0 +1,285 @@
+// The Python module eqhb._eqhb (wrapped by the package eqhb): models from
+// scene files or arrays, backends by name, solve, sweep, simulate. Bad input
+// raises eqhb.InputError (a ValueError) whose message names the field.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+
+#include "conversions.h"
+#include "eqhb/backends/registry.h"
+#include "eqhb/continuation/continuation.h"
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
+#include "eqhb/structures/structure_matrices.h"
+#include "eqhb/version.h"
+
+namespace py = pybind11;
+using namespace eqhb;
+using python::curveDict;
+using python::referenceDict;
+using python::resultDict;
+using python::solutionDict;
+
+namespace {
+
+// A scene as Python sees it: the model and the scene's own metadata.
+struct PyModel {
+  Scene scene;
+};
+
+// Matrix from a numpy array (any real dtype) or a scipy.sparse matrix;
+// `field` names it in errors.
+Eigen::SparseMatrix<double> matrixArgument(const py::handle& value, const std::string& field) {
+  const py::module_ sparse = py::module_::import("scipy.sparse");
+  if (sparse.attr("issparse")(value).cast<bool>()) {
+    try {
+      return sparse.attr("csc_matrix")(value, py::arg("dtype") = "float64")
+          .cast<Eigen::SparseMatrix<double>>();
+    } catch (const py::cast_error&) {
+      throw InputError(field + ": not convertible to a real sparse matrix");
+    }
+  }
+  py::array_t<double, py::array::forcecast> array;
+  try {
+    array = py::array_t<double, py::array::forcecast>::ensure(value);
+  } catch (const py::error_already_set&) {
+    throw InputError(field + ": must be a real 2-D numpy array or a scipy.sparse matrix");
+  }
+  if (!array || array.ndim() != 2)
+    throw InputError(field + ": must be a real 2-D numpy array or a scipy.sparse matrix (got " +
+                     std::string(py::str(py::type::of(value).attr("__name__"))) +
+                     (array ? ", " + std::to_string(array.ndim()) + "-D" : "") + ")");
+  auto view = array.unchecked<2>();
+  Eigen::MatrixXd dense(view.shape(0), view.shape(1));
+  for (py::ssize_t i = 0; i < view.shape(0); ++i)
+    for (py::ssize_t j = 0; j < view.shape(1); ++j) dense(i, j) = view(i, j);
+  return dense.sparseView();
+}
+
+// The model of `text` (a scene document whose structure only fixes the DOF
+// count) with M, C, K from arrays; the loads and laws come from the text.
+PyModel modelFromArrays(const std::string& text, const py::object& mass, const py::object& damping,
+                        const py::object& stiffness) {
+  StructureMatrices matrices;
+  matrices.mass = matrixArgument(mass, "mass");
+  matrices.stiffness = matrixArgument(stiffness, "stiffness");
+  if (damping.is_none()) {
+    matrices.damping.resize(matrices.mass.rows(), matrices.mass.cols());
+  } else {
+    matrices.damping = matrixArgument(damping, "damping");
+  }
+  checkStructureMatrices(matrices, 1e-12, MatrixNames{});
+  PyModel m{parseScene(text, "model")};
+  LinearStructure structure = toLinearStructure(matrices);
+  structure.loads = m.scene.model.structure.loads;
+  m.scene.model.structure = std::move(structure);
+  m.scene.model.validate();
+  return m;
+}
+
+SolverOptions solverOptions(double tolerance, int max_iterations, int max_evaluations, double time_limit,
+                            const std::map<std::string, std::string>& backend) {
+  SolverOptions options;
+  options.residual_tolerance = tolerance;
+  options.max_iterations = max_iterations;
+  options.max_evaluations = max_evaluations;
+  options.time_limit = time_limit;
+  options.backend = backend;
+  std::string why;
+  if (!options.isValid(&why)) throw InputError(why);
+  return options;
+}
+
+bool condensedSystem(const std::string& system) {
+  if (system != "condensed" && system != "full")
+    throwInputError("system", "\"" + system + "\"", "must be \"condensed\" or \"full\"");
+  return system == "condensed";
+}
+
+// The model with another ω, H or N, validated.
+HbModel withSettings(const HbModel& base, std::optional<double> omega, std::optional<int> harmonics,
+                     std::optional<int> samples) {
+  HbModel model = base;
+  if (omega) model.omega = *omega;
+  if (harmonics) model.basis = HarmonicSet(model.basis.kind(), *harmonics);
+  if (samples) model.samples = *samples;
+  if (omega && !(std::isfinite(*omega) && *omega > 0)) throwInputError("omega", formatNumber(*omega), "must be > 0");
+  model.validate();
+  return model;
+}
+
+py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
+               std::optional<int> samples, const std::string& solver_name, const std::string& system,
+               double tolerance, int max_iterations, int max_evaluations, double time_limit,
+               const std::map<std::string, std::string>& backend, const std::optional<Eigen::VectorXd>& initial) {
+  const HbModel model = withSettings(m.scene.model, omega, harmonics, samples);
+  const SolverOptions options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend);
+  auto solver = makeSolver(solver_name);
+  auto hb = makeHbSystem(model, condensedSystem(system));
+  Eigen::VectorXd z0 = Eigen::VectorXd::Zero(hb->size());
+  if (initial) {
+    const Eigen::Index full_size = static_cast<Eigen::Index>(model.basis.size()) *
+                                   (model.structure.dofs() + model.lawComponents());
+    if (initial->size() != full_size)
+      throwInputError("initial", "(" + std::to_string(initial->size()) + " values)",
+                      "must be a full coefficient vector [x; lambda] of " + std::to_string(full_size) +
+                          " values (the \"full\" entry of a solution)");
+    if (!initial->allFinite()) throwInputError("initial", "(vector)", "must be finite");
+    z0 = hb->fromFullCoefficients(*initial);
+  }
+  SolverResult result;
+  {
+    py::gil_scoped_release unlocked;
+    result = solver->solve(*hb, z0, options);
+  }
+  if (result.termination == Termination::kInvalidOptions) throw InputError("options: " + result.native_message);
+  py::dict d = resultDict(result);
+  d["system"] = system;
+  d["unknowns"] = hb->size();
+  d["omega"] = model.omega;
+  d["solution"] = solutionDict(model, hb->fullCoefficients(result.solution));
+  return d;
+}
+
+py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<double> to, double step,
+               const std::string& method, std::optional<int> harmonics, std::optional<int> samples,
+               const std::string& solver_name, const std::string& system, double tolerance, int max_iterations,
+               int max_evaluations, double time_limit, const std::map<std::string, std::string>& backend,
+               int max_points) {
+  const HbModel model = withSettings(m.scene.model, std::nullopt, harmonics, samples);
+  if (method != "sequential" && method != "arclength")
+    throwInputError("method", "\"" + method + "\"", "must be \"sequential\" or \"arclength\"");
+  ContinuationOptions options;
+  if (!from && !m.scene.sweep_from) throwInputError("start", "(missing)", "the model has no sweep range: give start and stop");
+  options.from = from ? *from : *m.scene.sweep_from;
+  options.to = to ? *to : m.scene.sweep_to.value_or(options.from);
+  options.step = step;
+  options.min_step = std::min(1e-6, step);
+  options.max_step = std::max(1.0, step);
+  options.max_points = max_points;
+  options.condensed = condensedSystem(system);
+  options.validate();
+  const SolverOptions solver_options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend);
+  auto solver = makeSolver(solver_name);
+  Curve curve;
+  {
+    py::gil_scoped_release unlocked;
+    curve = method == "arclength" ? sweepArclength(model, *solver, solver_options, options)
+                                  : sweepSequential(model, *solver, solver_options, options);
+  }
+  py::dict d = curveDict(model, curve);
+  d["solver"] = solver->name();
+  d["method"] = method;
+  d["system"] = system;
+  return d;
+}
+
+py::dict simulate(const PyModel& m, std::optional<double> omega, double step, int periods, double theta,
+                  double periodic_tolerance, double restitution, const std::optional<Eigen::VectorXd>& initial) {
+  const HbModel model = withSettings(m.scene.model, omega, std::nullopt, std::nullopt);
+  TimeOptions options;
+  options.step = step;
+  options.max_periods = periods;
+  options.theta = theta;
+  options.periodic_tolerance = periodic_tolerance;
+  options.restitution = restitution;
+  options.validate();
+  Eigen::VectorXd start;
+  if (initial) {
+    const Eigen::Index full_size = static_cast<Eigen::Index>(model.basis.size()) *
+                                   (model.structure.dofs() + model.lawComponents());
+    if (initial->size() != full_size || !initial->allFinite())
+      throwInputError("initial", "(" + std::to_string(initial->size()) + " values)",
+                      "must be a finite full coefficient vector of " + std::to_string(full_size) + " values");
+    start = *initial;
+  }
+  TimeReference reference;
+  {
+    py::gil_scoped_release unlocked;
+    reference = integrateToSteadyState(model, options, start);
+  }
+  return referenceDict(model, reference);
+}
+
+py::list lawList(const HbModel& model) {
+  py::list laws;
+  for (const auto& l : model.laws) {
+    py::list dofs;
+    for (int d : l.dofs) dofs.append(d + 1);
+    laws.append(py::dict(py::arg("type") = l.law->type(), py::arg("dofs") = dofs));
+  }
+  return laws;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_eqhb, m) {
+  m.doc() = "eqhb: periodic vibrations with dry friction and contact by equality-based harmonic balance";
+  m.attr("__version__") = EQHB_VERSION;
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      PyErr_SetString(input_error.ptr(), e.what());
+    }
+  });
+
+  m.def("solvers", [] {
+    py::list out;
+    for (const auto& e : registeredSolvers())
+      out.append(py::dict(py::arg("name") = e.name, py::arg("description") = e.description));
+    return out;
+  }, "The backends built in, as dicts {name, description}.");
+
+  py::class_<PyModel>(m, "Model", "A structure with its laws, loads and harmonic-balance settings.")
+      .def_static("from_scene",
+                  [](const std::string& path, const std::vector<std::string>& overrides) {
+                    return PyModel{loadScene(path, overrides)};
+                  },
+                  py::arg("path"), py::arg("overrides") = std::vector<std::string>{},
+                  "Loads a scene file; overrides are \"path=value\" strings as for `eqhb --set`.")
+      .def_static("_from_text",
+                  [](const std::string& text, const std::string& source) { return PyModel{parseScene(text, source)}; },
+                  py::arg("text"), py::arg("source"))
+      .def_static("_from_arrays", &modelFromArrays, py::arg("text"), py::arg("mass"), py::arg("damping"),
+                  py::arg("stiffness"))
+      .def_property_readonly("name", [](const PyModel& p) { return p.scene.name; })
+      .def_property_readonly("dofs", [](const PyModel& p) { return p.scene.model.structure.dofs(); })
+      .def_property_readonly("omega", [](const PyModel& p) { return p.scene.model.omega; })
+      .def_property_readonly("harmonic_count", [](const PyModel& p) { return p.scene.model.basis.count(); })
+      .def_property_readonly("harmonics", [](const PyModel& p) { return p.scene.model.basis.harmonics(); })
+      .def_property_readonly("harmonic_set",
+                             [](const PyModel& p) { return HarmonicSet::kindName(p.scene.model.basis.kind()); })
+      .def_property_readonly("samples", [](const PyModel& p) { return p.scene.model.samples; })
+      .def_property_readonly("sweep_range",
+                             [](const PyModel& p) -> py::object {
+                               if (!p.scene.sweep_from) return py::none();
+                               return py::make_tuple(*p.scene.sweep_from, *p.scene.sweep_to);
+                             })
+      .def_property_readonly("mass", [](const PyModel& p) { return p.scene.model.structure.mass; })
+      .def_property_readonly("damping", [](const PyModel& p) { return p.scene.model.structure.damping; })
+      .def_property_readonly("stiffness", [](const PyModel& p) { return p.scene.model.structure.stiffness; })
+      .def_property_readonly("laws", [](const PyModel& p) { return lawList(p.scene.model); })
+      .def("__repr__", [](const PyModel& p) {
+        const HbModel& model = p.scene.model;
+        return "<eqhb.Model '" + p.scene.name + "': " + std::to_string(model.structure.dofs()) + " DOFs, " +
+               std::to_string(model.laws.size()) + " laws, H = " + std::to_string(model.basis.count()) + " (" +
+               HarmonicSet::kindName(model.basis.kind()) + "), N = " + std::to_string(model.samples) +
+               ", omega = " + formatNumber(model.omega) + ">";
+      });
+
+  m.def("_solve", &solve, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),
+        py::arg("solver"), py::arg("system"), py::arg("tolerance"), py::arg("max_iterations"),
+        py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"), py::arg("initial"));
+  m.def("_sweep", &sweep, py::arg("model"), py::arg("start"), py::arg("stop"), py::arg("step"), py::arg("method"),
+        py::arg("harmonics"), py::arg("samples"), py::arg("solver"), py::arg("system"), py::arg("tolerance"),
+        py::arg("max_iterations"), py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"),
+        py::arg("max_points"));
+  m.def("_simulate", &simulate, py::arg("model"), py::arg("omega"), py::arg("step"), py::arg("periods"),
+        py::arg("theta"), py::arg("periodic_tolerance"), py::arg("restitution"), py::arg("initial"));
+}

@@ -1,0 +1,149 @@
+"""The Python module against the library's own answers: a scene file and
+the same model from arrays (dense and scipy.sparse) agree, a sweep agrees
+with single solves, the time reference agrees with harmonic balance, and
+every bad input raises eqhb.InputError naming the field."""
+import math
+import os
+import pathlib
+
+import numpy as np
+import pytest
+import scipy.sparse
+
+import eqhb
+
+PROBLEMS = pathlib.Path(os.environ.get("EQHB_PROBLEMS_DIR", pathlib.Path(__file__).parents[2] / "problems"))
+SCENE = PROBLEMS / "friction-1d.toml"
+
+# friction-1d (formulation spec section 4): 2-DOF chain, m = k = 1, d = 0.02,
+# Coulomb friction muN = 7.2 on DOF 2, forcing 20 cos(wt) on DOF 1.
+K = np.array([[2.0, -1.0], [-1.0, 1.0]])
+M = np.eye(2)
+C = 0.02 * K
+LAWS = [{"type": "coulomb-1d", "dofs": [2], "muN": 7.2, "form": "minmax", "rho": 1.0}]
+FORCING = [{"dof": 1, "harmonic": 1, "cos": 20.0}]
+
+
+def arrays_model(mass=M, stiffness=K, damping=C, **kw):
+    settings = dict(laws=LAWS, forcing=FORCING, harmonics=10, samples=1024, omega=0.4)
+    settings.update(kw)
+    return eqhb.model(mass, stiffness, damping, **settings)
+
+
+def test_version_and_backends():
+    assert eqhb.__version__.count(".") == 2
+    names = [s["name"] for s in eqhb.solvers()]
+    assert "dogleg" in names and "dogleg-newton" in names
+
+
+def test_scene_solve_is_physical():
+    model = eqhb.load_scene(SCENE)
+    assert (model.dofs, model.harmonic_count, model.samples, model.omega) == (2, 10, 1024, 0.4)
+    assert list(model.harmonics) == list(range(1, 20, 2))
+    r = eqhb.solve(model)
+    assert r["converged"] and r["termination"] == "converged"
+    assert r["residual_norm"] <= 1e-10
+    s = r["solution"]
+    assert s["x_cos"].shape == (2, 10) and s["lambda_cos"].shape == (1, 10)
+    assert s["x"].shape == (2, 1024) and s["t"].shape == (1024,)
+    # The truncated series of the friction force oscillates around muN = 7.2
+    # (Gibbs) but its level is that of the law.
+    assert 7.2 * 0.9 < np.max(np.abs(s["lambda"])) < 7.2 * 1.2
+    assert [i["type"] for i in s["invariants"]] == ["coulomb-1d"]
+    # max|x| is the largest sampled value of x.
+    np.testing.assert_allclose(s["max_abs_x"], np.max(np.abs(s["x"]), axis=1), rtol=1e-12)
+    # The time samples are the Fourier series with these coefficients.
+    t, w = s["t"], model.omega
+    x1 = sum(s["x_cos"][0, j] * np.cos(k * w * t) + s["x_sin"][0, j] * np.sin(k * w * t)
+             for j, k in enumerate(s["harmonics"]))
+    np.testing.assert_allclose(x1, s["x"][0], atol=1e-9 * np.max(np.abs(x1)))
+
+
+def test_arrays_dense_and_sparse_match_the_scene():
+    scene = eqhb.solve(eqhb.load_scene(SCENE))["solution"]
+    dense = eqhb.solve(arrays_model())["solution"]
+    sparse = eqhb.solve(arrays_model(scipy.sparse.csr_matrix(M), scipy.sparse.csc_matrix(K),
+                                     scipy.sparse.coo_matrix(C)))["solution"]
+    for other in (dense, sparse):
+        np.testing.assert_allclose(other["full"], scene["full"], rtol=0, atol=1e-9)
+
+
+def test_overrides_and_settings_change_the_answer():
+    base = eqhb.solve(eqhb.load_scene(SCENE))["solution"]["max_abs_x"]
+    stuck = eqhb.solve(eqhb.load_scene(SCENE, {"law[0].muN": 1e3}))["solution"]
+    # Friction far above the load: DOF 2 sticks.
+    assert stuck["max_abs_x"][1] < 1e-8 < base[1]
+    r = eqhb.solve(eqhb.load_scene(SCENE), omega=0.3, harmonics=5, samples=256)
+    assert r["omega"] == 0.3 and len(r["solution"]["harmonics"]) == 5
+
+
+def test_backends_by_name_agree_and_initial_restarts():
+    model = eqhb.load_scene(SCENE)
+    dogleg = eqhb.solve(model, solver="dogleg")
+    newton = eqhb.solve(model, solver="dogleg-newton", system="full")
+    assert newton["converged"] and newton["system"] == "full"
+    np.testing.assert_allclose(newton["solution"]["full"], dogleg["solution"]["full"], atol=1e-8)
+    again = eqhb.solve(model, initial=dogleg["solution"]["full"])
+    assert again["converged"] and again["iterations"] <= 1 < dogleg["iterations"]
+
+
+def test_sweep_points_are_the_single_solves():
+    model = eqhb.load_scene(SCENE)
+    curve = eqhb.sweep(model, 0.3, 0.4, step=0.02, harmonics=5, samples=256)
+    np.testing.assert_allclose(curve["omega"], np.linspace(0.3, 0.4, 6), atol=1e-12)
+    assert curve["converged"].all() and curve["complete"] and curve["failed_points"] == 0
+    assert curve["max_abs"].shape == (6, 2) and curve["x_cos"].shape == (6, 2, 5)
+    single = eqhb.solve(model, omega=curve["omega"][3], harmonics=5, samples=256)["solution"]
+    np.testing.assert_allclose(curve["max_abs"][3], single["max_abs_x"], rtol=1e-6)
+    np.testing.assert_allclose(curve["x_cos"][3], single["x_cos"], atol=1e-6 * np.max(single["max_abs_x"]))
+
+
+def test_arclength_sweep_uses_the_scene_range():
+    model = eqhb.load_scene(PROBLEMS / "cubic.toml")
+    curve = eqhb.sweep(model, method="arclength", harmonics=3, samples=64)
+    start, stop = model.sweep_range
+    assert curve["method"] == "arclength" and curve["complete"]
+    # The last arclength step may end just past the range.
+    assert math.isclose(curve["omega"][0], start) and stop <= curve["omega"][-1] < stop * 1.01
+
+
+def test_simulate_agrees_with_harmonic_balance():
+    model = eqhb.load_scene(SCENE)
+    hb = eqhb.solve(model, omega=0.3, harmonics=20, samples=2048)["solution"]
+    ref = eqhb.simulate(model, omega=0.3, step=2e-3, initial=None)
+    assert ref["periodic"] and ref["x"].shape[0] == 2 and ref["x"].shape == ref["v"].shape
+    np.testing.assert_allclose(ref["max_abs_x"], hb["max_abs_x"], rtol=0.02)
+
+
+BAD = [
+    (lambda: arrays_model(laws=[dict(LAWS[0], muN=-1.0)]), "law[0].muN"),
+    (lambda: arrays_model(laws=[dict(LAWS[0], muN=float("nan"))]), "law[0].muN"),
+    (lambda: arrays_model(laws=[dict(LAWS[0], dofs=[3])]), "law[0].dofs"),
+    (lambda: arrays_model(laws=[dict(LAWS[0], muN=object())]), "law[0].muN"),
+    (lambda: arrays_model(forcing=[{"dof": 1, "cos": "x"}]), "forcing[0].cos"),
+    (lambda: arrays_model(stiffness=np.ones((3, 3))), "stiffness"),
+    (lambda: arrays_model(mass=np.diag([1.0, -1.0])), "mass"),
+    (lambda: arrays_model(damping=np.array([[np.inf, 0], [0, 0]])), "damping"),
+    (lambda: arrays_model(mass="not a matrix"), "mass"),
+    (lambda: arrays_model(samples=8), "harmonic_balance.samples"),
+    (lambda: arrays_model(omega=0.0), "harmonic_balance.omega"),
+    (lambda: eqhb.load_scene(PROBLEMS / "missing.toml"), "missing.toml"),
+    (lambda: eqhb.load_scene(SCENE, {"law[0].form": "bogus"}), "law[0].form"),
+    (lambda: eqhb.solve(eqhb.load_scene(SCENE), omega=-1.0), "omega"),
+    (lambda: eqhb.solve(eqhb.load_scene(SCENE), solver="nope"), "solver"),
+    (lambda: eqhb.solve(eqhb.load_scene(SCENE), system="dense"), "system"),
+    (lambda: eqhb.solve(eqhb.load_scene(SCENE), tolerance=-1.0), "tolerance"),
+    (lambda: eqhb.solve(eqhb.load_scene(SCENE), options={"bogus": 1}), "bogus"),
+    (lambda: eqhb.solve(eqhb.load_scene(SCENE), initial=[0.0, 1.0]), "initial"),
+    (lambda: eqhb.sweep(eqhb.load_scene(SCENE), method="newton"), "method"),
+    (lambda: eqhb.sweep(eqhb.load_scene(SCENE), 0.1, 0.2, step=0.0), "step"),
+    (lambda: eqhb.simulate(eqhb.load_scene(SCENE), theta=2.0), "theta"),
+]
+
+
+@pytest.mark.parametrize("call,field", BAD, ids=[f for _, f in BAD])
+def test_bad_input_raises_naming_the_field(call, field):
+    with pytest.raises(eqhb.InputError) as error:
+        call()
+    assert field in str(error.value)
+    assert isinstance(error.value, ValueError)
