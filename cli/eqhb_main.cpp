@@ -8,6 +8,7 @@
 #include "generate_command.h"
 #include "shoot_command.h"
 #include "solve_command.h"
+#include "study_command.h"
 #include "sweep_command.h"
 #include "terminal/verbosity.h"
 #include "time_commands.h"
@@ -33,6 +34,9 @@ int main(int argc, char** argv) {
   eqhb::cli::addGenerateCommand(app, generate);
   eqhb::cli::ShootArguments shoot;
   eqhb::cli::addShootCommand(app, shoot);
+  eqhb::cli::SolveArguments study_hb;
+  eqhb::cli::StudyArguments study;
+  eqhb::cli::addStudyCommand(app, study_hb, study);
   CLI11_PARSE(app, argc, argv);
   try {
     if (solvers->parsed()) {
@@ -44,6 +48,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("generate")) return eqhb::cli::runGenerate(generate);
     if (app.got_subcommand("sweep")) return eqhb::cli::runSweep(sweep_hb, sweep);
     if (app.got_subcommand("shoot")) return eqhb::cli::runShoot(shoot);
+    if (app.got_subcommand("study")) return eqhb::cli::runStudy(study_hb, study);
     if (app.got_subcommand("compare")) return eqhb::cli::runCompare(compare_hb, compare_time);
     return eqhb::cli::runSolve(solve);
   } catch (const eqhb::InputError& e) {

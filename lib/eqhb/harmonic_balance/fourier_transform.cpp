@@ -3,10 +3,20 @@
 #include <fftw3.h>
 
 #include <cstring>
+#include <mutex>
 
 #include "eqhb/error.h"
 
 namespace eqhb {
+
+namespace {
+// FFTW's planner (plan creation and destruction) is not thread-safe; the
+// transforms themselves are. Studies build systems on several threads.
+std::mutex& plannerMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+}  // namespace
 
 struct FourierTransform::Plans {
   int n = 0;
@@ -18,10 +28,12 @@ struct FourierTransform::Plans {
   explicit Plans(int samples) : n(samples) {
     real = fftw_alloc_real(n);
     spectrum = fftw_alloc_complex(n / 2 + 1);
+    const std::lock_guard<std::mutex> lock(plannerMutex());
     forward = fftw_plan_dft_r2c_1d(n, real, spectrum, FFTW_ESTIMATE);
     backward = fftw_plan_dft_c2r_1d(n, spectrum, real, FFTW_ESTIMATE);
   }
   ~Plans() {
+    const std::lock_guard<std::mutex> lock(plannerMutex());
     fftw_destroy_plan(forward);
     fftw_destroy_plan(backward);
     fftw_free(real);

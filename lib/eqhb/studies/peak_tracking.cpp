@@ -1,0 +1,268 @@
+#include "eqhb/studies/peak_tracking.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "eqhb/continuation/continuation.h"
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+
+namespace eqhb {
+
+void PeakOptions::validate(int dofs) const {
+  if (!(from > 0.0) || !std::isfinite(from)) throwInputError("--from", formatNumber(from), "must be finite and > 0");
+  if (!(to > from) || !std::isfinite(to)) throwInputError("--to", formatNumber(to), "must be finite and > --from");
+  if (dof < 1 || dof > dofs)
+    throwInputError("--dof", std::to_string(dof), "must be a DOF of the scene, 1.." + std::to_string(dofs));
+  if (coarse_points < 3) throwInputError("--coarse-points", std::to_string(coarse_points), "must be >= 3");
+  if (!(omega_tolerance > 0.0) || omega_tolerance >= 1e-2)
+    throwInputError("omega_tolerance", formatNumber(omega_tolerance), "must be in (0, 1e-2)");
+  if (max_secant_steps < 2) throwInputError("max_secant_steps", std::to_string(max_secant_steps), "must be >= 2");
+}
+
+namespace {
+
+// A converged point of the branch with its tangent and the peak function.
+struct BranchPoint {
+  double omega = 0.0;
+  Eigen::VectorXd z, dz;  // solution and dz/dω
+  double phi = 0.0;       // dA²/dω
+  double amplitude2 = 0.0;
+};
+
+class BranchProbe {
+ public:
+  BranchProbe(HbSystem& system, Solver& solver, const SolverOptions& options, int dof)
+      : system_(system), solver_(solver), options_(options), dof_(dof), nb_(system.model().basis.size()) {}
+
+  // Solves g(z, ω) = 0 from `guess`, then the tangent and φ; false with why.
+  bool solveAt(double omega, const Eigen::VectorXd& guess, BranchPoint* point, std::string* why) {
+    if (!setOmega(omega, why)) return false;
+    const SolverResult r = solver_.solve(system_, guess, options_);
+    ++solves;
+    iterations += r.iterations;
+    if (!r.converged()) {
+      *why = std::string(terminationName(r.termination)) + " at omega = " + formatNumber(omega);
+      return false;
+    }
+    return differentiate(omega, r.solution, point, why);
+  }
+
+  int solves = 0, iterations = 0;
+
+ private:
+  bool setOmega(double omega, std::string* why) {
+    try {
+      system_.setOmega(omega);
+      return true;
+    } catch (const std::exception& e) {
+      *why = e.what();
+      return false;
+    }
+  }
+
+  double amplitude2(const Eigen::VectorXd& z) const {
+    const Eigen::VectorXd full = system_.fullCoefficients(z);
+    const double a = firstHarmonicAmplitude(system_.model().basis, full.data() + (dof_ - 1) * nb_);
+    return a * a;
+  }
+
+  bool differentiate(double omega, const Eigen::VectorXd& z, BranchPoint* p, std::string* why) {
+    const int n = system_.size();
+    Eigen::VectorXd g(n), g_shift(n);
+    Eigen::MatrixXd j(n, n);
+    if (!system_.residualAndJacobian(z, g, j)) {
+      *why = "Jacobian evaluation failed at omega = " + formatNumber(omega);
+      return false;
+    }
+    const double a0 = amplitude2(z);
+    const double delta = 1e-7 * std::max(1.0, omega);
+    if (!setOmega(omega + delta, why) || !system_.residual(z, g_shift)) {
+      if (why->empty()) *why = "residual evaluation failed at omega = " + formatNumber(omega + delta);
+      return false;
+    }
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(j);
+    const Eigen::VectorXd dz = -lu.solve((g_shift - g) / delta);
+    if (!dz.allFinite()) {
+      *why = "singular Jacobian (no tangent) at omega = " + formatNumber(omega);
+      return false;
+    }
+    // φ by a forward difference along the tangent; with the condensed
+    // system x depends on ω also through the condensation, which the
+    // system at ω + δ accounts for.
+    const double a1 = amplitude2(z + delta * dz);
+    p->omega = omega;
+    p->z = z;
+    p->dz = dz;
+    p->amplitude2 = a0;
+    p->phi = (a1 - a0) / delta;
+    return std::isfinite(p->phi) || (*why = "peak function not finite at omega = " + formatNumber(omega), false);
+  }
+
+  HbSystem& system_;
+  Solver& solver_;
+  const SolverOptions& options_;
+  int dof_, nb_;
+};
+
+// Secant iteration on φ from `start` inside [lo, hi]; the peak or why not.
+bool refinePeak(BranchProbe& probe, const PeakOptions& options, BranchPoint start, double lo, double hi,
+                BranchPoint* peak, std::string* why) {
+  std::optional<BranchPoint> rising, falling;  // φ > 0 (left of a maximum) and φ < 0 (right of it)
+  auto classify = [&](const BranchPoint& p) {
+    if (p.phi > 0.0 && (!rising || p.omega > rising->omega)) rising = p;
+    if (p.phi < 0.0 && (!falling || p.omega < falling->omega)) falling = p;
+  };
+  classify(start);
+  if (start.phi == 0.0) {
+    *peak = start;
+    return true;
+  }
+  const double range = hi - lo;
+  const double max_step = 0.1 * (options.to - options.from);
+  double step = std::min(1e-3 * (options.to - options.from), 0.25 * range);
+  BranchPoint previous, current = start;
+  bool have_previous = false;
+  for (int k = 0; k < options.max_secant_steps; ++k) {
+    const double direction = current.phi > 0.0 ? 1.0 : -1.0;
+    double target;
+    const bool bracketed = rising && falling && rising->omega < falling->omega;
+    const double slope = have_previous ? (current.phi - previous.phi) / (current.omega - previous.omega) : 0.0;
+    if (have_previous && slope < 0.0) {
+      target = current.omega - current.phi / slope;  // secant towards a maximum
+    } else {
+      target = current.omega + direction * step;  // uphill until φ changes sign
+      step = std::min(2.0 * step, max_step);
+    }
+    if (bracketed && !(target > rising->omega && target < falling->omega))
+      target = 0.5 * (rising->omega + falling->omega);
+    target = std::clamp(target, current.omega - max_step, current.omega + max_step);
+    target = std::clamp(target, lo, hi);
+    if (target == current.omega) {
+      *why = "the peak lies outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "] (amplitude still " +
+             (direction > 0 ? "rising" : "falling") + " at omega = " + formatNumber(current.omega) + ")";
+      return false;
+    }
+    // Corrector from the tangent predictor; on failure, halve the step.
+    BranchPoint next;
+    bool ok = false;
+    for (int halving = 0; halving < 8 && !ok; ++halving) {
+      const Eigen::VectorXd guess = current.z + (target - current.omega) * current.dz;
+      ok = probe.solveAt(target, guess, &next, why);
+      if (!ok) target = 0.5 * (target + current.omega);
+    }
+    if (!ok) return false;
+    classify(next);
+    const double moved = std::abs(next.omega - current.omega);
+    previous = current;
+    current = next;
+    have_previous = true;
+    if (moved <= options.omega_tolerance * current.omega || current.phi == 0.0) {
+      const bool maximum = (rising && falling && rising->omega <= current.omega + moved &&
+                            falling->omega >= current.omega - moved) ||
+                           (current.phi - previous.phi) / (current.omega - previous.omega) < 0.0;
+      if (!maximum) {
+        *why = "stationary amplitude at omega = " + formatNumber(current.omega) + " is not a maximum";
+        return false;
+      }
+      *peak = current;
+      return true;
+    }
+  }
+  *why = "no peak within " + std::to_string(options.max_secant_steps) + " secant steps (last omega = " +
+         formatNumber(current.omega) + ")";
+  return false;
+}
+
+}  // namespace
+
+PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
+                     const PeakOptions& options, const PeakState* warm) {
+  options.validate(model.structure.dofs());
+  const auto started = std::chrono::steady_clock::now();
+  PeakResult result;
+  HbModel m = model;
+  const bool use_warm = warm && warm->valid() && warm->omega >= options.from && warm->omega <= options.to;
+  m.omega = use_warm ? warm->omega : options.from;
+  std::unique_ptr<HbSystem> system;
+  try {
+    system = makeHbSystem(m, options.condensed);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    result.reason = e.what();
+    return result;
+  }
+  BranchProbe probe(*system, solver, solver_options, options.dof);
+  BranchPoint peak;
+  bool found = false;
+  std::string why;
+
+  if (use_warm && warm->z.size() == system->size()) {
+    BranchPoint start;
+    found = probe.solveAt(warm->omega, warm->z, &start, &why) &&
+            refinePeak(probe, options, start, options.from, options.to, &peak, &why);
+    result.start = found ? "warm" : "cold (warm: " + why + ")";
+  } else {
+    result.start = "cold";
+  }
+
+  if (!found) {
+    // Cold: a coarse sweep, its largest amplitude and the neighbours as bounds.
+    ContinuationOptions sweep;
+    sweep.from = options.from;
+    sweep.to = options.to;
+    sweep.step = (options.to - options.from) / (options.coarse_points - 1);
+    sweep.min_step = sweep.step * 1e-4;
+    sweep.max_step = std::max(1.0, sweep.step);
+    sweep.condensed = options.condensed;
+    const Curve curve = sweepSequential(m, solver, solver_options, sweep);
+    int best = -1;
+    for (int i = 0; i < static_cast<int>(curve.points.size()); ++i) {
+      const auto& p = curve.points[i];
+      probe.solves += 1;
+      probe.iterations += p.iterations;
+      if (p.converged && (best < 0 || p.first_harmonic[options.dof - 1] >
+                                          curve.points[best].first_harmonic[options.dof - 1]))
+        best = i;
+    }
+    const int last = static_cast<int>(curve.points.size()) - 1;
+    if (best < 0) {
+      why = "the coarse sweep over [" + formatNumber(options.from) + ", " + formatNumber(options.to) +
+            "] found no solution";
+    } else if (best == 0 || best == last) {
+      why = "largest amplitude at the edge of [" + formatNumber(options.from) + ", " + formatNumber(options.to) +
+            "] (omega = " + formatNumber(curve.points[best].omega) + "): widen the range";
+    } else {
+      BranchPoint start;
+      const double omega = curve.points[best].omega;
+      found = probe.solveAt(omega, system->fromFullCoefficients(curve.points[best].full), &start, &why) &&
+              refinePeak(probe, options, start, curve.points[best - 1].omega, curve.points[best + 1].omega, &peak,
+                         &why);
+    }
+  }
+
+  result.solves = probe.solves;
+  result.iterations = probe.iterations;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (!found) {
+    result.reason = why;
+    return result;
+  }
+  m.omega = peak.omega;
+  system->setOmega(peak.omega);
+  const CurvePoint described = describePoint(m, system->fullCoefficients(peak.z));
+  result.converged = true;
+  result.omega = peak.omega;
+  result.first_harmonic = described.first_harmonic;
+  result.max_abs = described.max_abs;
+  result.state.omega = peak.omega;
+  result.state.z = peak.z;
+  return result;
+}
+
+}  // namespace eqhb

@@ -1,0 +1,47 @@
+// The samples of a parameter study: a grid or a Latin hypercube over scene
+// values addressed by override paths (the paths of `--set`, e.g. law[0].muN).
+//
+// Samples are ordered so that consecutive ones are neighbours in parameter
+// space (a serpentine walk of the grid; a greedy nearest-neighbour chain of
+// the hypercube): a worker that takes a run of consecutive samples can start
+// each one from the previous one's solution.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace eqhb {
+
+struct VariedParameter {
+  std::string path;  // override path, as for --set
+  double from = 0.0, to = 0.0;
+  int count = 0;     // grid points (>= 1); unused by a Latin hypercube
+};
+
+// Parses "PATH=FROM:TO:COUNT" (or "PATH=FROM:TO" when `count_required` is
+// false). Throws InputError naming --vary and the rule.
+VariedParameter parseVariedParameter(const std::string& text, bool count_required);
+
+struct StudyPlan {
+  std::vector<VariedParameter> parameters;
+  std::vector<std::vector<double>> samples;  // samples[i][p], in study order
+};
+
+// The full grid (product of every parameter's COUNT points from FROM to TO),
+// walked as a serpentine: the last parameter varies fastest and reverses
+// direction whenever a slower one steps. Throws InputError if it is empty or
+// larger than `max_samples`.
+StudyPlan makeGridPlan(const std::vector<VariedParameter>& parameters, long max_samples = 10000000);
+
+// `count` samples of a Latin hypercube: every parameter's range cut into
+// `count` equal strata, one sample per stratum, strata paired by independent
+// random permutations, a uniform point inside each stratum. Reproducible
+// from `seed` on every platform (std::mt19937_64, own integer/real mapping).
+StudyPlan makeLatinHypercubePlan(const std::vector<VariedParameter>& parameters, int count, std::uint64_t seed);
+
+// The override "PATH=VALUE" of parameter p for a sample, VALUE printed so
+// that it reads back to the same double.
+std::string sampleOverride(const StudyPlan& plan, int sample, int parameter);
+
+}  // namespace eqhb

@@ -1,0 +1,47 @@
+#include "eqhb/studies/study_scheduler.h"
+
+#include <algorithm>
+#include <exception>
+#include <thread>
+
+namespace eqhb {
+
+GuidedScheduler::GuidedScheduler(std::vector<int> pending, int workers)
+    : pending_(std::move(pending)), workers_(std::max(1, workers)) {}
+
+std::vector<int> GuidedScheduler::next() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const std::size_t remaining = pending_.size() - position_;
+  const std::size_t run = std::min(remaining, std::max<std::size_t>(1, remaining / (2 * workers_)));
+  std::vector<int> ids(pending_.begin() + position_, pending_.begin() + position_ + run);
+  position_ += run;
+  return ids;
+}
+
+void runStudyOnThreads(const StudySettings& settings, const std::vector<int>& pending, int threads,
+                       const std::function<void(const SampleResult&)>& finished) {
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(pending.size())));
+  GuidedScheduler scheduler(pending, threads);
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto work = [&](int worker) {
+    try {
+      SampleWorker sampler(settings, worker);
+      for (auto ids = scheduler.next(); !ids.empty(); ids = scheduler.next())
+        for (int id : ids) finished(sampler.run(id));
+    } catch (...) {  // e.g. the journal cannot be written: stop and report
+      const std::lock_guard<std::mutex> lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+    }
+  };
+  if (threads == 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) pool.emplace_back(work, t);
+    for (auto& t : pool) t.join();
+  }
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace eqhb

@@ -1,0 +1,36 @@
+// Dynamic distribution of a study's pending samples over workers (threads
+// of one process, or MPI ranks). Guided self-scheduling: a worker asking
+// for work gets a run of consecutive pending samples, about
+// remaining / (2 · workers) long — long runs first (warm starts from
+// neighbour to neighbour), single samples near the end (balance, since
+// samples differ in cost).
+#pragma once
+
+#include <functional>
+#include <mutex>
+#include <vector>
+
+#include "eqhb/studies/study_sample.h"
+
+namespace eqhb {
+
+class GuidedScheduler {
+ public:
+  GuidedScheduler(std::vector<int> pending, int workers);
+  // The next run of sample ids (empty when everything is handed out).
+  std::vector<int> next();
+
+ private:
+  std::vector<int> pending_;
+  std::size_t position_ = 0;
+  int workers_;
+  std::mutex mutex_;
+};
+
+// Computes `pending` on `threads` threads (>= 1), each with its own solver
+// and warm-start state; `finished` is called for each sample as it
+// completes, from the thread that computed it (it must be thread-safe).
+void runStudyOnThreads(const StudySettings& settings, const std::vector<int>& pending, int threads,
+                       const std::function<void(const SampleResult&)>& finished);
+
+}  // namespace eqhb

@@ -1,0 +1,242 @@
+// Parameter studies: sample plans, peak tracking against the linear
+// frequency response and a dense sweep, the journal that makes a study
+// resumable.
+#include <gtest/gtest.h>
+
+#include <complex>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <set>
+
+#include "eqhb/continuation/continuation.h"
+#include "eqhb/error.h"
+#include "eqhb/scenes/scene.h"
+#include "eqhb/studies/peak_tracking.h"
+#include "eqhb/studies/study_journal.h"
+#include "eqhb/studies/study_plan.h"
+#include "eqhb/studies/study_scheduler.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+// friction-1d, small enough for a unit test.
+Scene smallFriction(double mu_n) {
+  return loadScene(test::problem("friction-1d.toml"),
+                   {"harmonic_balance.harmonics=5", "harmonic_balance.samples=128", "law.muN=" + formatNumber(mu_n)});
+}
+
+TEST(StudyPlan, GridIsASerpentineOverEveryCombination) {
+  const StudyPlan plan = makeGridPlan({parseVariedParameter("forcing[0].cos=10:30:3", true),
+                                       parseVariedParameter("law.muN=0:6:4", true)});
+  ASSERT_EQ(plan.samples.size(), 12u);
+  std::set<std::pair<double, double>> seen;
+  for (const auto& s : plan.samples) seen.insert({s[0], s[1]});
+  EXPECT_EQ(seen.size(), 12u);
+  EXPECT_TRUE(seen.count({20.0, 4.0}));
+  // Consecutive samples differ by one step of one parameter.
+  for (std::size_t i = 1; i < plan.samples.size(); ++i) {
+    const double d0 = std::abs(plan.samples[i][0] - plan.samples[i - 1][0]);
+    const double d1 = std::abs(plan.samples[i][1] - plan.samples[i - 1][1]);
+    EXPECT_TRUE((d0 == 10.0 && d1 == 0.0) || (d0 == 0.0 && d1 == 2.0)) << i;
+  }
+  // The turn: the second row starts where the first ended.
+  EXPECT_EQ(sampleOverride(plan, 3, 1), "law.muN=6");
+  EXPECT_EQ(sampleOverride(plan, 4, 1), "law.muN=6");
+  EXPECT_EQ(sampleOverride(plan, 5, 1), "law.muN=4");
+}
+
+TEST(StudyPlan, LatinHypercubeHasOneSamplePerStratumAndDependsOnlyOnTheSeed) {
+  const std::vector<VariedParameter> p = {parseVariedParameter("a=0:1", false), parseVariedParameter("b=-5:5", false)};
+  const StudyPlan plan = makeLatinHypercubePlan(p, 50, 7);
+  ASSERT_EQ(plan.samples.size(), 50u);
+  for (int q = 0; q < 2; ++q) {
+    std::set<int> strata;
+    for (const auto& s : plan.samples) {
+      const double u = (s[q] - p[q].from) / (p[q].to - p[q].from);
+      ASSERT_GE(u, 0.0);
+      ASSERT_LT(u, 1.0);
+      strata.insert(static_cast<int>(u * 50));
+    }
+    EXPECT_EQ(strata.size(), 50u) << "parameter " << q;
+  }
+  EXPECT_EQ(makeLatinHypercubePlan(p, 50, 7).samples, plan.samples);
+  EXPECT_NE(makeLatinHypercubePlan(p, 50, 8).samples, plan.samples);
+}
+
+TEST(StudyPlan, BadSpecificationsNameTheField) {
+  EXPECT_THROW(parseVariedParameter("law.muN=1:2", true), InputError);
+  EXPECT_THROW(parseVariedParameter("law.muN=1:x:3", true), InputError);
+  EXPECT_THROW(parseVariedParameter("law.muN=1:2:0", true), InputError);
+  EXPECT_THROW(parseVariedParameter("law.muN=nan:2:3", true), InputError);
+  EXPECT_THROW(parseVariedParameter("=1:2:3", true), InputError);
+  try {
+    parseVariedParameter("law.muN=1:2:-4", true);
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--vary law.muN COUNT = -4"), std::string::npos) << e.what();
+  }
+}
+
+// Without friction (μN = 0 makes r = 0) the chain is linear: the peak of
+// |X₁(ω)|, X = (K − ω²M + iωC)⁻¹ f, found here by golden section.
+TEST(PeakTracking, MatchesTheLinearFrequencyResponseWithoutFriction) {
+  const Scene scene = smallFriction(0.0);
+  auto amplitude = [](double w) {
+    using C = std::complex<double>;
+    const C i(0, 1);
+    const double d = 0.02;
+    const C a11 = 2.0 - w * w + i * w * 2.0 * d, a12 = -1.0 - i * w * d, a22 = 1.0 - w * w + i * w * d;
+    return std::abs(20.0 * a22 / (a11 * a22 - a12 * a12));
+  };
+  double lo = 0.5, hi = 0.7;
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  for (int k = 0; k < 200; ++k) {
+    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    (amplitude(a) > amplitude(b) ? hi : lo) = amplitude(a) > amplitude(b) ? b : a;
+  }
+  auto solver = makeSolver("dogleg");
+  PeakOptions options;
+  options.from = 0.1;
+  options.to = 0.8;
+  const PeakResult peak = trackPeak(scene.model, *solver, SolverOptions(), options);
+  ASSERT_TRUE(peak.converged) << peak.reason;
+  EXPECT_EQ(peak.start, "cold");
+  EXPECT_NEAR(peak.omega, 0.5 * (lo + hi), 1e-6);
+  EXPECT_NEAR(peak.first_harmonic[0], amplitude(0.5 * (lo + hi)), 1e-6 * peak.first_harmonic[0]);
+}
+
+TEST(PeakTracking, FindsTheTopOfADenseSweepAndWarmStartsCheaply) {
+  const Scene scene = smallFriction(4.0);
+  auto solver = makeSolver("dogleg");
+  PeakOptions options;
+  options.from = 0.1;
+  options.to = 1.2;
+  const PeakResult cold = trackPeak(scene.model, *solver, SolverOptions(), options);
+  ASSERT_TRUE(cold.converged) << cold.reason;
+  ContinuationOptions dense;
+  dense.from = cold.omega - 0.01;
+  dense.to = cold.omega + 0.01;
+  dense.step = 0.0005;
+  const Curve curve = sweepSequential(scene.model, *solver, SolverOptions(), dense);
+  double top = 0.0;
+  for (const auto& p : curve.points) {
+    ASSERT_TRUE(p.converged);
+    top = std::max(top, p.first_harmonic[0]);
+  }
+  // The tracked peak is the top of the curve: not below any swept point,
+  // and above the best of them by no more than a grid step's worth.
+  EXPECT_GE(cold.first_harmonic[0], top * (1 - 1e-9));
+  EXPECT_LE(cold.first_harmonic[0], top * (1 + 1e-3));
+
+  // The neighbouring μN from this peak: same answer as cold, fewer solves.
+  const Scene next = smallFriction(4.2);
+  const PeakResult warm = trackPeak(next.model, *solver, SolverOptions(), options, &cold.state);
+  const PeakResult reference = trackPeak(next.model, *solver, SolverOptions(), options);
+  ASSERT_TRUE(warm.converged) << warm.reason;
+  ASSERT_TRUE(reference.converged) << reference.reason;
+  EXPECT_EQ(warm.start, "warm");
+  EXPECT_NEAR(warm.omega, reference.omega, 1e-6);
+  EXPECT_NEAR(warm.first_harmonic[0], reference.first_harmonic[0], 1e-6 * reference.first_harmonic[0]);
+  EXPECT_LT(warm.solves * 3, reference.solves);
+}
+
+TEST(PeakTracking, APeakOutsideTheRangeIsAFailureWithItsReason) {
+  const Scene scene = smallFriction(0.0);
+  auto solver = makeSolver("dogleg");
+  PeakOptions options;
+  options.from = 0.1;
+  options.to = 0.5;  // the first mode (0.618) is beyond
+  const PeakResult peak = trackPeak(scene.model, *solver, SolverOptions(), options);
+  EXPECT_FALSE(peak.converged);
+  EXPECT_NE(peak.reason.find("edge of [0.1, 0.5]"), std::string::npos) << peak.reason;
+}
+
+StudySettings smallStudy(const std::string& dir) {
+  StudySettings s;
+  s.scene_path = test::problem("friction-1d.toml");
+  s.overrides = {"harmonic_balance.harmonics=5", "harmonic_balance.samples=128"};
+  s.plan = makeGridPlan({parseVariedParameter("law.muN=1:5:3", true)});
+  s.peak.from = 0.1;
+  s.peak.to = 1.2;
+  s.dofs = 2;
+  s.out_dir = dir;
+  s.make_solver = [] { return makeSolver("dogleg"); };
+  return s;
+}
+
+TEST(StudyJournal, RowsRoundTripAndAKilledRunResumesWithWhatIsMissing) {
+  const std::string dir = ::testing::TempDir() + "/eqhb_study_journal";
+  std::filesystem::remove_all(dir);
+  const StudySettings settings = smallStudy(dir);
+  const std::string plan = studyPlanText(settings, "dogleg");
+  SampleResult failed;
+  failed.id = 2;
+  failed.parameters = {5.0};
+  failed.reason = "did not converge, \"really\"";
+  failed.start = "cold (warm: x, y)";
+  std::vector<SampleResult> all;
+  {
+    StudyJournal journal(dir, settings, plan);
+    EXPECT_EQ(journal.pending(), (std::vector<int>{0, 1, 2}));
+    SampleWorker worker(settings, 0);
+    all.push_back(worker.run(0));
+    ASSERT_TRUE(all[0].ok) << all[0].reason;
+    journal.append(all[0]);
+    journal.append(failed);
+  }
+  // A kill in the middle of writing the next row leaves part of a line.
+  { std::ofstream(dir + "/journal.csv", std::ios::app) << "1,3,ok,warm,0.6"; }
+  StudyJournal resumed(dir, settings, plan);
+  EXPECT_EQ(resumed.pending(), (std::vector<int>{1}));
+  const SampleResult& back = resumed.done().at(0);
+  EXPECT_EQ(back.omega, all[0].omega);  // printed to round-trip
+  EXPECT_EQ(back.first_harmonic, all[0].first_harmonic);
+  EXPECT_EQ(resumed.done().at(2).reason, failed.reason);
+  EXPECT_EQ(resumed.done().at(2).start, failed.start);
+  EXPECT_FALSE(resumed.done().at(2).ok);
+
+  StudySettings other = settings;
+  other.peak.to = 1.3;
+  EXPECT_THROW(StudyJournal(dir, other, studyPlanText(other, "dogleg")), InputError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(StudyScheduler, ThreadsComputeEverySampleOnceWithTheSerialResults) {
+  StudySettings settings = smallStudy("");
+  settings.plan = makeGridPlan({parseVariedParameter("law.muN=1:5:5", true)});
+  std::vector<SampleResult> serial, threaded;
+  std::mutex mutex;
+  runStudyOnThreads(settings, {0, 1, 2, 3, 4}, 1, [&](const SampleResult& r) { serial.push_back(r); });
+  runStudyOnThreads(settings, {0, 1, 2, 3, 4}, 3, [&](const SampleResult& r) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    threaded.push_back(r);
+  });
+  ASSERT_EQ(threaded.size(), 5u);
+  std::sort(threaded.begin(), threaded.end(), [](auto& a, auto& b) { return a.id < b.id; });
+  for (int i = 0; i < 5; ++i) {
+    ASSERT_EQ(serial[i].id, i);
+    ASSERT_EQ(threaded[i].id, i);
+    ASSERT_TRUE(serial[i].ok && threaded[i].ok) << serial[i].reason << threaded[i].reason;
+    EXPECT_NEAR(threaded[i].omega, serial[i].omega, 1e-7);
+    EXPECT_NEAR(threaded[i].first_harmonic[0], serial[i].first_harmonic[0], 1e-6 * serial[i].first_harmonic[0]);
+  }
+}
+
+TEST(StudyScheduler, GuidedRunsShrinkAndCoverEverything) {
+  std::vector<int> ids(100);
+  std::iota(ids.begin(), ids.end(), 0);
+  GuidedScheduler scheduler(ids, 4);
+  std::vector<int> sizes, all;
+  for (auto run = scheduler.next(); !run.empty(); run = scheduler.next()) {
+    sizes.push_back(static_cast<int>(run.size()));
+    all.insert(all.end(), run.begin(), run.end());
+  }
+  EXPECT_EQ(all, ids);
+  EXPECT_EQ(sizes.front(), 12);
+  EXPECT_EQ(sizes.back(), 1);
+  EXPECT_TRUE(std::is_sorted(sizes.rbegin(), sizes.rend()));
+}
+
+}  // namespace
+}  // namespace eqhb
