@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The study on MPI ranks gives the serial results: 2 ranks (one worker),
+# then 3 ranks (two workers, dynamic distribution) resuming a journal that
+# already holds some samples.
+#   study_mpi_test.sh MPIEXEC EQHB SCENE WORKDIR
+set -euo pipefail
+mpiexec=$1 eqhb=$2 scene=$3 work=$4
+rm -rf "$work" && mkdir -p "$work"
+compare="/usr/bin/python3 $(dirname "$0")/compare_studies.py"
+launcher=("$mpiexec")
+# Open MPI: as root in containers (it refuses root otherwise, even for
+# --version), and more ranks than cores.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+"$mpiexec" --version 2>/dev/null | grep -qiE "open ?mpi|openrte|open-mpi" && launcher+=(--oversubscribe)
+args=(study "$scene" --harmonics 5 --samples 128 --vary forcing[0].cos=10:20:2 --vary law.muN=0.5:3:8
+  --peak --from 0.3 --to 1.2)
+total=16
+
+"$eqhb" "${args[@]}" --threads 1 --out "$work/serial" >/dev/null
+"${launcher[@]}" -np 2 "$eqhb" "${args[@]}" --out "$work/two" | tee "$work/two.txt"
+grep -q "on 2 MPI ranks" "$work/two.txt"
+$compare "$work/two/study.csv" "$work/serial/study.csv" 1e-6 "$total"
+
+# A journal with the first 5 samples (as a killed run leaves it), resumed on 3 ranks.
+mkdir -p "$work/three"
+cp "$work/serial/plan.txt" "$work/three/"
+head -n 6 "$work/serial/journal.csv" >"$work/three/journal.csv"
+"${launcher[@]}" -np 3 "$eqhb" "${args[@]}" --out "$work/three" | tee "$work/three.txt"
+grep -q "$((total - 5)) computed now on 3 MPI ranks" "$work/three.txt"
+$compare "$work/three/study.csv" "$work/serial/study.csv" 1e-6 "$total"
+# Both workers took part.
+[ "$(cut -d, -f14 "$work/three/journal.csv" | tail -n +7 | sort -u | tr '\n' ' ')" = "1 2 " ]
