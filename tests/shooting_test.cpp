@@ -7,6 +7,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
+#include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/backends/registry.h"
 #include "test_support.h"
@@ -207,6 +208,32 @@ TEST(Shooting, ContactOrbitsWithRestitutionZeroAndOne) {
     } else {
       EXPECT_TRUE(orbit.stable);
     }
+  }
+}
+
+TEST(Shooting, MoreauJeanConvergesToTheExactOrbit) {
+  // Stick-slip (ω = 0.4) and continuous sliding (Coulomb oscillator).
+  for (const auto& [file, omega] : {std::pair{"friction-1d.toml", 0.4}, std::pair{"coulomb-oscillator.toml", 0.6}}) {
+    HbModel model = loadScene(test::problem(file)).model;
+    model.omega = omega;
+    const PiecewiseLinearFlow flow(model, 0.0);
+    const Eigen::VectorXd hb = harmonicBalance(model);
+    const double t0 = orbits::quietStartTime(model, hb);
+    const auto orbit = shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
+    ASSERT_TRUE(orbit.converged) << orbit.failure;
+    std::vector<double> errors;
+    for (int steps : {250, 500, 1000}) {
+      TimeOptions options;
+      options.step = flow.period() / steps;
+      options.periodic_tolerance = 1e-11;
+      const TimeReference ref = integrateToSteadyState(model, options, hb);
+      ASSERT_TRUE(ref.periodic);
+      errors.push_back(orbits::distanceToOrbit(flow, orbit, ref.displacement));
+    }
+    // θ = ½ is second order on smooth phases, first order across events:
+    // at least first order overall, and small at 1000 steps per period.
+    EXPECT_GT(std::log2(errors[0] / errors[2]) / 2.0, 0.9) << file;
+    EXPECT_LT(errors[2], 2e-4) << file;
   }
 }
 

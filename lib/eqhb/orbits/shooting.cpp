@@ -103,6 +103,26 @@ ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start
   return out;
 }
 
+double distanceToOrbit(const Flow& flow, const ShootingResult& orbit, const Eigen::MatrixXd& displacement) {
+  const double period = flow.period(), t0 = orbit.start_time;
+  const int count = static_cast<int>(displacement.rows());
+  // The orbit is sampled from its start t0: instants before t0 are taken one
+  // period later (periodicity), then put in increasing order.
+  std::vector<std::pair<double, int>> instants;
+  for (int i = 0; i < count; ++i) {
+    const double t = period * i / count;
+    instants.push_back({t < t0 ? t + period : t, i});
+  }
+  std::sort(instants.begin(), instants.end());
+  FlowSamples samples;
+  for (const auto& [t, i] : instants) samples.times.push_back(t);
+  if (!flow.integrate(orbit.state, t0, period, false, &samples).ok) return std::nan("");
+  double worst = 0.0;
+  for (int k = 0; k < count; ++k)
+    worst = std::max(worst, (displacement.row(instants[k].second) - samples.displacement.row(k)).cwiseAbs().maxCoeff());
+  return worst / orbit.max_abs.maxCoeff();
+}
+
 Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full, double t) {
   const int n = model.structure.dofs(), nb = model.basis.size();
   Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);

@@ -45,6 +45,12 @@ struct ShootingResult {
 ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start, double start_time,
                                   const ShootingOptions& options);
 
+// Distance from samples of another solution, displacement row i at
+// t = iT/S (S = rows; a time reference's last period), to the orbit:
+// max over samples and DOFs of |x − x_orbit| / max|x_orbit|. Returns NaN if
+// the flow fails.
+double distanceToOrbit(const Flow& flow, const ShootingResult& orbit, const Eigen::MatrixXd& displacement);
+
 // y(t) = [x(t); ẋ(t)] of the displacement Fourier series in `full`
 // ([x; λ] coefficients on the model's basis).
 Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full, double t);
