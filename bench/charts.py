@@ -6,6 +6,8 @@ that eqhb-bench and eqhb-convergence write into one folder:
   failure_map_SCENE      success rate of each backend over each grid
   curve_SCENE_*          frequency-response curves (via cli/plot_curve.py)
   convergence_*          HB error vs harmonics, reference error vs step
+  scale                  scale study: time per solve, per residual + Jacobian
+                         and peak memory against the unknowns (log-log)
 """
 import csv
 import glob
@@ -165,6 +167,47 @@ def convergence_charts(folder):
         save(fig, folder, "convergence_step")
 
 
+def scale_chart(folder):
+    path = f"{folder}/scale.csv"
+    if not os.path.exists(path):
+        return
+    rows = [r for r in csv.DictReader(open(path)) if r["converged"] == "true"]
+    studies = [("full", "full system (5 contacts)"), ("condensed", "condensed system (200 DOFs)")]
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    for ax, (study, title) in zip(axes[:2], studies):
+        by_solver = defaultdict(list)
+        for r in rows:
+            if r["study"] == study:
+                by_solver[r["solver"]].append(r)
+        for solver, rs in sorted(by_solver.items()):
+            rs.sort(key=lambda r: int(r["unknowns"]))
+            x = [int(r["unknowns"]) for r in rs]
+            line, = ax.loglog(x, [number(r["solve_seconds"]) for r in rs], "o-", label=f"{solver} solve")
+            ax.loglog(x, [number(r["residual_jacobian_seconds"]) for r in rs], "s--", color=line.get_color(),
+                      label=f"{solver} residual+Jacobian")
+        ax.set_xlabel("unknowns")
+        ax.set_ylabel("seconds")
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6)
+    ax = axes[2]
+    for study, title in studies:
+        by_solver = defaultdict(list)
+        for r in rows:
+            if r["study"] == study:
+                by_solver[r["solver"]].append(r)
+        for solver, rs in sorted(by_solver.items()):
+            rs.sort(key=lambda r: int(r["unknowns"]))
+            ax.loglog([int(r["unknowns"]) for r in rs], [number(r["peak_mib"]) for r in rs], "o-",
+                      label=f"{study} {solver}")
+    ax.set_xlabel("unknowns")
+    ax.set_ylabel("peak memory (MiB)")
+    ax.set_title("peak memory per case")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6)
+    save(fig, folder, "scale")
+
+
 def main(folder):
     if os.path.exists(f"{folder}/bench.csv"):
         rows = list(csv.DictReader(open(f"{folder}/bench.csv")))
@@ -173,6 +216,7 @@ def main(folder):
     failure_maps(folder)
     curves(folder)
     convergence_charts(folder)
+    scale_chart(folder)
     print(f"charts written to {folder}")
 
 

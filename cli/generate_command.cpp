@@ -12,6 +12,7 @@ void addGenerateCommand(CLI::App& app, GenerateArguments& a) {
   cmd->add_option("--dofs", a.spec.dofs, "Number of masses (DOFs)")->capture_default_str();
   cmd->add_option("--contacts", a.spec.contacts, "Coulomb friction contacts spread along the chain")->capture_default_str();
   cmd->add_option("--harmonics", a.spec.harmonics, "H (odd harmonics 1..2H-1)")->capture_default_str();
+  cmd->add_option("--set", a.spec.set, "Harmonic set: odd (1..2H-1) or all (0..H)")->capture_default_str();
   cmd->add_option("--samples", a.spec.samples, "N (0: a power of two >= 4 k_max + 1)")->capture_default_str();
   cmd->add_option("--omega", a.spec.omega, "Frequency (0: 0.8 x the first eigenfrequency)")->capture_default_str();
   cmd->add_option("--mu-n", a.spec.mu_n, "Friction limit of every contact")->capture_default_str();

@@ -14,7 +14,7 @@ namespace {
 
 int defaultSamples(const ChainSceneSpec& spec) {
   if (spec.samples > 0) return spec.samples;
-  const int k_max = 2 * spec.harmonics - 1;
+  const int k_max = spec.set == "all" ? spec.harmonics : 2 * spec.harmonics - 1;
   int n = 64;
   while (n < 4 * k_max + 1) n *= 2;
   return n;
@@ -30,7 +30,7 @@ std::string loadsLawsAndBalance(const ChainSceneSpec& spec) {
     out << "\n[[law]]\ntype = \"coulomb-1d\"\ndofs = [" << dof << "]\nmuN = " << spec.mu_n << "\n";
   }
   const double omega = spec.omega > 0.0 ? spec.omega : 0.8 * chainFirstFrequency(spec);
-  out << "\n[harmonic_balance]\nharmonics = " << spec.harmonics << "\nset = \"odd\"\nsamples = "
+  out << "\n[harmonic_balance]\nharmonics = " << spec.harmonics << "\nset = \"" << spec.set << "\"\nsamples = "
       << defaultSamples(spec) << "\nomega = " << omega << "\n";
   return out.str();
 }
@@ -59,6 +59,8 @@ void validateChainSpec(const ChainSceneSpec& spec) {
   if (!(spec.mu_n >= 0.0)) throwInputError("--mu-n", formatNumber(spec.mu_n), "must be >= 0");
   if (!std::isfinite(spec.force)) throwInputError("--force", formatNumber(spec.force), "must be finite");
   if (spec.harmonics < 1) throwInputError("--harmonics", std::to_string(spec.harmonics), "must be >= 1");
+  if (spec.set != "odd" && spec.set != "all")
+    throwInputError("--set", "\"" + spec.set + "\"", "must be \"odd\" or \"all\"");
   if (spec.omega < 0.0 || !std::isfinite(spec.omega))
     throwInputError("--omega", formatNumber(spec.omega), "must be > 0 (or 0 for the default)");
 }

@@ -17,7 +17,8 @@ struct ChainSceneSpec {
   double m = 1.0, k = 1.0, d = 0.02;
   double force = 1.0;
   double mu_n = 0.2;           // friction limit of every contact
-  int harmonics = 10;          // odd harmonics 1..2H−1
+  int harmonics = 10;          // H
+  std::string set = "odd";     // "odd": 1..2H−1, "all": 0..H
   int samples = 0;             // 0: smallest power of two >= 4 k_max + 1 (at least 64)
   double omega = 0.0;          // 0: 0.8 × the chain's first eigenfrequency
 };
