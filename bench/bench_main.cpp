@@ -20,6 +20,7 @@
 #include "eqhb/scenes/scene.h"
 #include "eqhb/references/time_integrator.h"
 #include "failure_maps.h"
+#include "run_metadata.h"
 #include "mgh/mgh_problems.h"
 #include "scale_study.h"
 #include "eqhb/backends/registry.h"
@@ -253,7 +254,7 @@ int main(int argc, char** argv) {
   const fs::path friction = fs::path(problems) / "friction-1d.toml";
   if (fs::exists(friction)) {
     const std::vector<int> hs = quick ? std::vector<int>{10} : std::vector<int>{10, 40};
-    ProgressLine line(verbosity.progress, "bench 1/4 backends");
+    ProgressLine line(verbosity.progress, "bench 1/5 backends");
     const size_t total = hs.size() * 2 * all_backends.size();
     for (int h : hs)
       for (bool condensed : {true, false})
@@ -269,7 +270,7 @@ int main(int argc, char** argv) {
   }
 
   // 2. Every scene x form x system x backend at the scene's harmonics.
-  ProgressLine scenes_line(verbosity.progress, "bench 2/4 scenes");
+  ProgressLine scenes_line(verbosity.progress, "bench 2/5 scenes");
   for (const auto& path : scenes) {
     const size_t scene_index = &path - scenes.data();
     scenes_line.update(static_cast<double>(scene_index) / scenes.size(), count("scene", scene_index + 1, scenes.size()),
@@ -349,7 +350,8 @@ int main(int argc, char** argv) {
         << c.median_seconds << "," << c.repeats << "," << c.ratio_to_dogleg << "," << c.error_reference << ","
         << c.error_high_h << "\n";
   }
-  std::ofstream(out + "/bench.json") << json.dump(2) << "\n";
+  const nlohmann::json metadata = bench::runMetadata();
+  std::ofstream(out + "/bench.json") << nlohmann::json{{"metadata", metadata}, {"cases", json}}.dump(2) << "\n";
 
   // 3. Failure maps.
   std::vector<bench::FailureRow> failures;
@@ -357,7 +359,7 @@ int main(int argc, char** argv) {
       quick ? std::vector<std::string>{"dogleg", "dogleg-newton", "ceres-dogleg"}
             : std::vector<std::string>{"dogleg", "dogleg-newton", "minpack", "ceres-lm", "ceres-dogleg", "ipopt-ls",
                                        "nlopt-slsqp"};
-  ProgressLine maps_line(verbosity.progress, "bench 3/4 failure maps");
+  ProgressLine maps_line(verbosity.progress, "bench 3/5 failure maps");
   for (const auto& path : scenes) {
     const std::string stem = path.stem().string();
     const size_t scene_index = &path - scenes.data();
@@ -395,7 +397,7 @@ int main(int argc, char** argv) {
 
   // 4. Frequency-response curves of every scene with a [sweep].
   std::ostringstream curves;
-  ProgressLine curves_line(verbosity.progress, "bench 4/4 curves");
+  ProgressLine curves_line(verbosity.progress, "bench 4/5 curves");
   for (const auto& path : scenes) {
     const Scene scene = loadScene(path.string());
     const size_t scene_index = &path - scenes.data();
@@ -439,8 +441,11 @@ int main(int argc, char** argv) {
                 << (t.high ? "converged" : "not available") << " |\n";
 
   // Which backend to pick, per scene, from the data: most formulations
-  // converged, then the lowest median time over the exact-form cases.
-  std::ostringstream advice;
+  // converged, then the lowest median time over the converged cases.
+  const char* const advice_rule =
+      "per scene, the backend that converged in the most formulations (every form of the scene's laws, "
+      "condensed and full system, zero start); ties go to the lowest median time over its converged cases";
+  std::ostringstream advice, in_short;
   {
     std::map<std::string, std::map<std::string, std::pair<int, std::vector<double>>>> score;
     std::map<std::string, int> total;
@@ -468,28 +473,44 @@ int main(int argc, char** argv) {
       advice << "- **" << scene << "**: " << best << " (converged in " << best_ok << " of " << total[scene]
              << " formulations, median " << number(best_time) << " s; the slowest converging backend's median is "
              << number(slowest / best_time) << "x)\n";
+      in_short << "| " << scene << " | " << best << " | " << best_ok << "/" << total[scene] << " | "
+               << number(best_time) << " |\n";
     }
   }
 
   // 5. Scale study (its own CSV: the quick run's smallest sizes are not in
   // the perf-check baseline).
+  ProgressLine scale_line(verbosity.progress, "bench 5/5 scale study");
+  scale_line.update(-1.0, "running");
   const std::vector<bench::ScaleRow> scale = bench::runScaleStudy(
       quick,
       quick ? std::vector<std::string>{"dogleg"}
             : std::vector<std::string>{"dogleg", "dogleg-newton", "minpack", "ceres-lm", "ipopt-square", "nlopt-lbfgs"},
       problems);
+  scale_line.finish(std::to_string(scale.size()) + " cases");
   bench::writeScaleCsv(out + "/scale.csv", scale);
   std::string structure_names;
   for (const auto& path : structure_scenes) structure_names += (structure_names.empty() ? "" : ", ") + path.stem().string();
 
   std::ofstream report(out + "/report.md");
+  std::string libraries;
+  for (const auto& [name, version] : metadata["libraries"].items())
+    libraries += (libraries.empty() ? "" : ", ") + name + " " + version.get<std::string>();
   report << "# eqhb benchmark report\n\n"
+         << "## Summary\n\n"
+         << "What to pick for each scene (rule: " << advice_rule << "):\n\n"
+         << "| scene | backend | formulations converged | median s |\n|---|---|---|---|\n" << in_short.str()
+         << "\nRun: eqhb " << metadata["eqhb_version"].get<std::string>() << ", commit "
+         << metadata["commit"].get<std::string>() << (metadata["uncommitted_changes"].get<bool>() ? " (+ changes)" : "")
+         << ", " << metadata["date"].get<std::string>() << ", " << metadata["cpu"].get<std::string>() << " ("
+         << metadata["hardware_threads"].get<unsigned>() << " threads), " << metadata["compiler"].get<std::string>()
+         << " " << metadata["build_type"].get<std::string>() << "; " << libraries << ".\n\n"
          << "Every solve starts from a zero initial guess with tolerance ‖g‖₂ <= 1e-10; times are medians of up to "
          << repeats << " solves (fewer for slow cases) on this machine. Accuracy: relative L2 error over one "
          << "period of the displacements (worst DOF) against the time-domain reference (Moreau–Jean, h = "
          << reference_step << ") and against the same scene solved with 4x the harmonics.\n\n"
          << "## Backends on friction-1d\n\n" << table(cases, "backends")
-         << "\n## Which backend for which scene\n\n" << advice.str()
+         << "\n## Which backend for which scene\n\nThe rule: " << advice_rule << ".\n\n" << advice.str()
          << "\n## References of truth\n\n" << truth_table.str()
          << "\nA time run whose period-to-period change is at most " << kUsableChange
          << " is used as reference even if it has not met the 1e-7 periodicity tolerance.\n"

@@ -4,11 +4,13 @@ that eqhb-bench and eqhb-convergence write into one folder:
   work_precision_SCENE   median time vs error against the time reference
   performance_profile    Dolan-More profile over every scene/form/system case
   failure_map_SCENE      success rate of each backend over each grid
-  curve_SCENE_*          frequency-response curves (via cli/plot_curve.py)
+  curve_SCENE_*          frequency-response curves (via cli/plot_curve.py;
+                         --log-amplitude for a logarithmic amplitude axis)
   convergence_*          HB error vs harmonics, reference error vs step
   scale                  scale study: time per solve, per residual + Jacobian
                          and peak memory against the unknowns (log-log)
 """
+import argparse
 import csv
 import glob
 import math
@@ -93,6 +95,15 @@ def performance_profile(folder, rows):
     save(fig, folder, "performance_profile")
 
 
+# What each failure-map grid varies, as the axis label.
+GRID_LABELS = {
+    "start": "start: perturbation σ of the solution (× its rms; cold = zero start)",
+    "harmonics": "harmonics H (cold start)",
+    "rho": "law scaling ρ (cold start)",
+    "forcing": "forcing (× the scene's loads, cold start)",
+}
+
+
 def failure_maps(folder):
     path = f"{folder}/failure_maps.csv"
     if not os.path.exists(path):
@@ -119,20 +130,22 @@ def failure_maps(folder):
             ax.set_xticks(range(len(values)), values, rotation=45, fontsize=7)
             ax.set_yticks(range(len(solvers)), solvers, fontsize=7)
             ax.set_title(f"{grid}", fontsize=9)
+            ax.set_xlabel(GRID_LABELS.get(grid, grid), fontsize=8)
+            ax.set_ylabel("backend", fontsize=8)
             for i, line in enumerate(matrix):
                 for j, value in enumerate(line):
                     if not math.isnan(value):
                         ax.text(j, i, f"{value:.0%}", ha="center", va="center", fontsize=6)
-        fig.suptitle(f"{scene}: success rate (green) / failure (red)")
+        fig.suptitle(f"{scene}: share of solves converged per backend (green 100 %, red 0 %)")
         save(fig, folder, f"failure_map_{scene}")
 
 
-def curves(folder):
+def curves(folder, log_amplitude):
     for path in sorted(glob.glob(f"{folder}/curve_*.csv")):
         prefix = path[:-4]
         name = os.path.basename(prefix)[len("curve_"):]
-        subprocess.run([sys.executable, os.path.join(HERE, "..", "cli", "plot_curve.py"), path, prefix, name],
-                       check=False)
+        command = [sys.executable, os.path.join(HERE, "..", "cli", "plot_curve.py"), path, prefix, name]
+        subprocess.run(command + (["--log-amplitude"] if log_amplitude else []), check=False)
 
 
 def convergence_charts(folder):
@@ -208,17 +221,21 @@ def scale_chart(folder):
     save(fig, folder, "scale")
 
 
-def main(folder):
+def main(folder, log_amplitude=False):
     if os.path.exists(f"{folder}/bench.csv"):
         rows = list(csv.DictReader(open(f"{folder}/bench.csv")))
         work_precision(folder, rows)
         performance_profile(folder, rows)
     failure_maps(folder)
-    curves(folder)
+    curves(folder, log_amplitude)
     convergence_charts(folder)
     scale_chart(folder)
     print(f"charts written to {folder}")
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "results")
+    parser = argparse.ArgumentParser(description="Charts of the eqhb benchmark")
+    parser.add_argument("folder", nargs="?", default="results")
+    parser.add_argument("--log-amplitude", action="store_true", help="frequency responses on a log amplitude axis")
+    arguments = parser.parse_args()
+    main(arguments.folder, arguments.log_amplitude)

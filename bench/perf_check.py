@@ -31,9 +31,25 @@ def close(a, b):
     return abs(a - b) <= 1e-6 * max(abs(a), abs(b)) + 1e-14
 
 
+def load(path):
+    """(metadata, cases): bench.json is {"metadata", "cases"}; older files are the bare case list."""
+    data = json.load(open(path))
+    return (data.get("metadata", {}), data["cases"]) if isinstance(data, dict) else ({}, data)
+
+
+def describe(metadata):
+    if not metadata:
+        return "no metadata"
+    return (f"commit {metadata.get('commit', '?')[:10]}, {metadata.get('date', '?')}, {metadata.get('cpu', '?')}, "
+            f"{metadata.get('compiler', '?')}")
+
+
 def main(baseline_path, fresh_path):
-    baseline = {key(c): c for c in json.load(open(baseline_path))}
-    fresh = {key(c): c for c in json.load(open(fresh_path))}
+    baseline_metadata, baseline_cases = load(baseline_path)
+    fresh_metadata, fresh_cases = load(fresh_path)
+    print(f"baseline: {describe(baseline_metadata)}\nthis run: {describe(fresh_metadata)}")
+    baseline = {key(c): c for c in baseline_cases}
+    fresh = {key(c): c for c in fresh_cases}
     problems, ratios = [], []
     for k in sorted(set(baseline) | set(fresh), key=str):
         if k not in fresh or k not in baseline:

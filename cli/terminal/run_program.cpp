@@ -1,5 +1,6 @@
 #include "terminal/run_program.h"
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -29,6 +30,39 @@ int runProgram(const std::vector<std::string>& argv) {
   if (WIFSIGNALED(status))
     throw std::runtime_error(argv[0] + " was killed by signal " + std::to_string(WTERMSIG(status)));
   return WEXITSTATUS(status);
+}
+
+std::optional<std::string> programOutput(const std::vector<std::string>& argv) {
+  if (argv.empty()) return std::nullopt;
+  int pipe_ends[2];
+  if (pipe(pipe_ends) != 0) return std::nullopt;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], STDOUT_FILENO);
+  posix_spawn_file_actions_addclose(&actions, pipe_ends[0]);
+  posix_spawn_file_actions_addclose(&actions, pipe_ends[1]);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int failed = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(pipe_ends[1]);
+  std::string output;
+  if (failed == 0) {
+    char buffer[4096];
+    ssize_t n;
+    while ((n = read(pipe_ends[0], buffer, sizeof buffer)) > 0 || (n < 0 && errno == EINTR))
+      if (n > 0) output.append(buffer, static_cast<size_t>(n));
+  }
+  close(pipe_ends[0]);
+  if (failed != 0) return std::nullopt;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return std::nullopt;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
+  return output;
 }
 
 std::string findDataFile(const std::string& name) {

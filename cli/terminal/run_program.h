@@ -3,6 +3,7 @@
 // no shell, so no quoting and nothing in a file name is interpreted.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,10 @@ namespace eqhb::cli {
 // Returns the exit status; throws std::runtime_error if it could not start
 // or was killed by a signal.
 int runProgram(const std::vector<std::string>& argv);
+
+// Runs argv like runProgram and returns what it printed on stdout (stderr
+// is discarded); nullopt if it could not start or did not exit with 0.
+std::optional<std::string> programOutput(const std::vector<std::string>& argv);
 
 // A file installed with the programs under share/eqhb: <exe dir>/../share/eqhb/NAME
 // when installed, <exe dir>/share/eqhb/NAME in a build tree. Throws
