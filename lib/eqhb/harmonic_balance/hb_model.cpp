@@ -36,6 +36,11 @@ void HbModel::validate() const {
       throwInputError(field + ".dofs", std::to_string(attached.dofs.size()) + " DOF(s)",
                       "a " + attached.law->type() + " law acts on exactly " +
                           std::to_string(d) + " DOF(s)");
+    if (attached.law->needsConstantTerm() && !basis.contains(0))
+      throwInputError("harmonic_balance.set", "\"" + HarmonicSet::kindName(basis.kind()) + "\"",
+                      field + " (" + attached.law->type() +
+                          ") needs the constant term (harmonic 0): its force is one-sided, so "
+                          "its mean is not zero; use set = \"all\"");
     std::set<int> distinct;
     for (int dof : attached.dofs) {
       if (dof < 0 || dof >= structure.dofs())

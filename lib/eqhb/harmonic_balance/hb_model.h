@@ -19,7 +19,8 @@ struct HbModel {
 
   // Throws InputError naming the field: structure (see LinearStructure),
   // ω finite and > 0, N >= 2H+1, every law on existing, distinct DOFs with
-  // one DOF per component, every load's harmonic inside the basis.
+  // one DOF per component, every load's harmonic inside the basis, harmonic 0
+  // in the basis when a law needs the constant term (Law::needsConstantTerm).
   void validate() const;
   // Total number of law force components (unknown force channels).
   int lawComponents() const;

@@ -50,6 +50,11 @@ class Law {
   // Which inputs Ψ depends on; the assembly skips the others entirely.
   virtual bool usesDisplacement() const = 0;
   virtual bool usesVelocity() const = 0;
+  // True when the law's force cannot be periodic without a mean: a one-sided
+  // force (a contact pressure p >= 0) that is not zero has a positive mean,
+  // so a basis without harmonic 0 could only meet the law by letting the
+  // force change sign. Such a law needs the constant term in the basis.
+  virtual bool needsConstantTerm() const { return false; }
   // Fills psi and, if with_derivatives, the partials of the used inputs.
   virtual void evaluate(LawSamples& samples, bool with_derivatives) const = 0;
   // Physical checks on samples of a solution (inputs filled, densely in

@@ -26,6 +26,7 @@ class Signorini : public Law {
   double forceSign() const override { return -1.0; }
   bool usesDisplacement() const override { return true; }
   bool usesVelocity() const override { return false; }
+  bool needsConstantTerm() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   // Relative to max|g| and max|p| over the period: penetration max(−g, 0),
   // negative_pressure max(−p, 0), complementarity max |g p| (0 when g ⊥ p).

@@ -1,0 +1,12 @@
+# Verdicts to trust: model validation, convergence and invariants in the
+# problem's own scales, shipped scenes on their defaults, bounded runs.
+foreach(name hb_model_test)
+  add_executable(${name} ${name}.cpp)
+  target_link_libraries(${name} PRIVATE eqhb_test_support)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)
+endforeach()
+set(EXPECT_EXIT ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh)
+set(CONTACT ${PROJECT_SOURCE_DIR}/problems/contact.toml)
+add_test(NAME cli.contact_needs_the_constant_term
+         COMMAND ${EXPECT_EXIT} 2 "harmonic_balance.set = \"odd\": law\\[0\\] \\(signorini\\) needs the constant term"
+                 ${EQHB_CLI} solve ${CONTACT} --set harmonic_balance.set=odd --full)
