@@ -6,6 +6,7 @@ contact by an equality-based harmonic balance.
     result = eqhb.solve(model, omega=0.4, solver="dogleg")
     curve = eqhb.sweep(model, 0.1, 0.8, step=0.005)
     reference = eqhb.simulate(model, omega=0.3, step=1e-3)
+    orbit = eqhb.shoot(model, omega=0.3)                   # exact orbit, Floquet multipliers
 
 A model comes from a scene file (`load_scene`) or from arrays (`model`: numpy
 or scipy.sparse M, C, K, laws and loads as dicts with the scene file's keys).
@@ -16,9 +17,10 @@ import math
 import numbers
 
 from ._eqhb import InputError, Model, __version__, solvers
-from ._eqhb import _simulate, _solve, _sweep
+from ._eqhb import _shoot, _simulate, _solve, _sweep
 
-__all__ = ["InputError", "Model", "__version__", "load_scene", "model", "simulate", "solve", "solvers", "sweep"]
+__all__ = ["InputError", "Model", "__version__", "load_scene", "model", "shoot", "simulate", "solve", "solvers",
+           "sweep"]
 
 
 def load_scene(path, overrides=None):
@@ -95,6 +97,17 @@ def simulate(model, omega=None, *, step=1e-4, periods=5000, theta=0.5, periodic_
     DOF or law component), max_abs_x and its Fourier "coefficients"."""
     return _simulate(model, omega, step, periods, theta, periodic_tolerance, restitution,
                      _vector(initial, "initial"))
+
+
+def shoot(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", restitution=0.0, tolerance=1e-11,
+          max_iterations=40):
+    """The exact periodic orbit by shooting (Coulomb 1D and Signorini laws;
+    Newton on the period map with saltation matrices), started from the
+    harmonic-balance solution. Returns converged, period_residual, iterations,
+    state (y(t0) = [x; v]), monodromy, multipliers (complex, largest modulus
+    first), spectral_radius, stable, events per period, max_abs_x, and one
+    period sampled (t, x, v, lambda: one row per DOF or law component)."""
+    return _shoot(model, omega, harmonics, samples, solver, restitution, tolerance, max_iterations)
 
 
 def _square_size(matrix, field):

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <complex>
 #include <optional>
 
 #include "conversions.h"
@@ -13,6 +14,8 @@
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/orbits/piecewise_linear_flow.h"
+#include "eqhb/orbits/shooting.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/structures/structure_matrices.h"
 #include "eqhb/version.h"
@@ -205,6 +208,64 @@ py::dict simulate(const PyModel& m, std::optional<double> omega, double step, in
   return referenceDict(model, reference);
 }
 
+// The exact periodic orbit by shooting (Coulomb 1D and Signorini laws),
+// started from the harmonic-balance solution at the same ω, with its Floquet
+// multipliers and one period sampled on N instants.
+py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
+               std::optional<int> samples, const std::string& solver_name, double restitution, double tolerance,
+               int max_iterations) {
+  const HbModel model = withSettings(m.scene.model, omega, harmonics, samples);
+  orbits::ShootingOptions options;
+  options.tolerance = tolerance;
+  options.max_iterations = max_iterations;
+  options.validate();
+  const orbits::PiecewiseLinearFlow flow(model, restitution);  // rejects other laws first
+  auto solver = makeSolver(solver_name);
+  auto hb = makeHbSystem(model, true);
+  py::dict d;
+  orbits::ShootingResult orbit;
+  orbits::FlowSamples sampled;
+  bool sampled_ok = false;
+  SolverResult start;
+  {
+    py::gil_scoped_release unlocked;
+    start = solver->solve(*hb, Eigen::VectorXd::Zero(hb->size()), SolverOptions{});
+    const Eigen::VectorXd full = hb->fullCoefficients(start.solution);
+    const double t0 = orbits::quietStartTime(model, full);
+    orbit = orbits::shootPeriodicOrbit(flow, orbits::harmonicState(model, full, t0), t0, options);
+    for (int i = 0; i < model.samples; ++i) sampled.times.push_back(t0 + flow.period() * i / model.samples);
+    sampled_ok = flow.integrate(orbit.state, t0, flow.period(), false, &sampled).ok;
+  }
+  d["converged"] = orbit.converged;
+  d["failure"] = orbit.failure;
+  d["from_hb"] = resultDict(start);
+  d["omega"] = model.omega;
+  d["period"] = flow.period();
+  d["restitution"] = restitution;
+  d["iterations"] = orbit.iterations;
+  d["flow_evaluations"] = orbit.flow_evaluations;
+  d["period_residual"] = orbit.period_residual;
+  d["start_time"] = orbit.start_time;
+  d["state"] = python::toArray(orbit.state);
+  d["monodromy"] = python::toArray(orbit.monodromy);
+  py::array_t<std::complex<double>> multipliers(orbit.multipliers.size());
+  std::copy(orbit.multipliers.data(), orbit.multipliers.data() + orbit.multipliers.size(),
+            multipliers.mutable_data());
+  d["multipliers"] = multipliers;
+  d["spectral_radius"] = orbit.spectral_radius;
+  d["stable"] = orbit.stable;
+  d["events"] = orbit.events;
+  d["max_abs_x"] = python::toArray(orbit.max_abs);
+  d["seconds"] = orbit.seconds;
+  if (sampled_ok) {
+    d["t"] = py::array_t<double>(sampled.times.size(), sampled.times.data());
+    d["x"] = python::toArray(Eigen::MatrixXd(sampled.displacement.transpose()));
+    d["v"] = python::toArray(Eigen::MatrixXd(sampled.velocity.transpose()));
+    d["lambda"] = python::toArray(Eigen::MatrixXd(sampled.force.transpose()));
+  }
+  return d;
+}
+
 py::list lawList(const HbModel& model) {
   py::list laws;
   for (const auto& l : model.laws) {
@@ -280,6 +341,8 @@ PYBIND11_MODULE(_eqhb, m) {
         py::arg("harmonics"), py::arg("samples"), py::arg("solver"), py::arg("system"), py::arg("tolerance"),
         py::arg("max_iterations"), py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"),
         py::arg("max_points"));
+  m.def("_shoot", &shoot, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),
+        py::arg("solver"), py::arg("restitution"), py::arg("tolerance"), py::arg("max_iterations"));
   m.def("_simulate", &simulate, py::arg("model"), py::arg("omega"), py::arg("step"), py::arg("periods"),
         py::arg("theta"), py::arg("periodic_tolerance"), py::arg("restitution"), py::arg("initial"));
 }

@@ -115,6 +115,18 @@ def test_simulate_agrees_with_harmonic_balance():
     np.testing.assert_allclose(ref["max_abs_x"], hb["max_abs_x"], rtol=0.02)
 
 
+def test_shoot_finds_the_exact_orbit_near_harmonic_balance():
+    model = eqhb.load_scene(SCENE)
+    orbit = eqhb.shoot(model, omega=0.308)
+    assert orbit["converged"] and orbit["period_residual"] <= 1e-11
+    # Stick-slip at this frequency: two stick and two slip phases per period.
+    assert orbit["events"] == {"slip": 2, "stick": 2}
+    assert orbit["stable"] and orbit["spectral_radius"] == pytest.approx(np.max(np.abs(orbit["multipliers"])))
+    assert orbit["x"].shape == (2, model.samples)
+    hb = eqhb.solve(model, omega=0.308)["solution"]
+    np.testing.assert_allclose(orbit["max_abs_x"], hb["max_abs_x"], rtol=0.05)
+
+
 BAD = [
     (lambda: arrays_model(laws=[dict(LAWS[0], muN=-1.0)]), "law[0].muN"),
     (lambda: arrays_model(laws=[dict(LAWS[0], muN=float("nan"))]), "law[0].muN"),
@@ -138,6 +150,8 @@ BAD = [
     (lambda: eqhb.sweep(eqhb.load_scene(SCENE), method="newton"), "method"),
     (lambda: eqhb.sweep(eqhb.load_scene(SCENE), 0.1, 0.2, step=0.0), "step"),
     (lambda: eqhb.simulate(eqhb.load_scene(SCENE), theta=2.0), "theta"),
+    (lambda: eqhb.shoot(eqhb.load_scene(SCENE), restitution=2.0), "restitution"),
+    (lambda: eqhb.shoot(eqhb.load_scene(PROBLEMS / "cubic.toml")), "law"),
 ]
 
 
