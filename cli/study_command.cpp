@@ -41,6 +41,8 @@ void addStudyCommand(CLI::App& app, SolveArguments& s, StudyArguments& a) {
   cmd->add_option("--dof", a.dof, "DOF whose first-harmonic amplitude defines the peak")->capture_default_str();
   cmd->add_option("--coarse-points", a.coarse_points, "Points of the coarse sweep that starts a peak cold")
       ->capture_default_str();
+  cmd->add_option("--max-peaks", a.max_peaks, "Resonances (local maxima in [from, to]) followed at once")
+      ->capture_default_str();
   cmd->add_option("--threads", a.threads, "Threads (default: every core; one per MPI rank under mpirun)");
   cmd->add_option("--out", a.out, "Study folder: study.csv, study.json, journal.csv, plan.txt (resumable)")
       ->required();
@@ -73,6 +75,7 @@ void writeStudyJson(const std::string& path, const std::string& scene_name, cons
     s["max_abs"] = nlohmann::json::array();
     for (double v : r.first_harmonic) s["first_harmonic"].push_back(numberOrNull(v));
     for (double v : r.max_abs) s["max_abs"].push_back(numberOrNull(v));
+    if (settings.mode == StudyMode::kPeak) s["peaks"] = r.peaks;
     s["solves"] = r.solves;
     s["iterations"] = r.iterations;
     s["seconds"] = r.seconds;
@@ -132,6 +135,7 @@ StudySettings studySettings(const SolveArguments& s, const StudyArguments& a, st
   settings.peak.to = a.to ? *a.to : *scene.sweep_to;
   settings.peak.dof = a.dof;
   settings.peak.coarse_points = a.coarse_points;
+  settings.peak.max_peaks = a.max_peaks;
   settings.peak.condensed = !s.full;
   settings.peak.validate(settings.dofs);
   if (!(a.step > 0.0) || !std::isfinite(a.step) || a.step > settings.peak.to - settings.peak.from)

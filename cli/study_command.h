@@ -21,6 +21,7 @@ struct StudyArguments {
   double step = 0.01;              // --sweep grid step
   int dof = 1;
   int coarse_points = 41;
+  int max_peaks = 4;
   int threads = 0;                 // 0: every core
   std::string out;
 };

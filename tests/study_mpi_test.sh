@@ -29,4 +29,5 @@ head -n 6 "$work/serial/journal.csv" >"$work/three/journal.csv"
 grep -q "$((total - 5)) computed now on 3 MPI ranks" "$work/three.txt"
 $compare "$work/three/study.csv" "$work/serial/study.csv" 1e-6 "$total"
 # Both workers took part.
-[ "$(cut -d, -f14 "$work/three/journal.csv" | tail -n +7 | sort -u | tr '\n' ' ')" = "1 2 " ]
+column=$(head -n 1 "$work/three/journal.csv" | tr ',' '\n' | grep -n '^worker$' | cut -d: -f1)
+[ "$(cut -d, -f"$column" "$work/three/journal.csv" | tail -n +7 | sort -u | tr '\n' ' ')" = "1 2 " ]

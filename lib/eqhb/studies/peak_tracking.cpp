@@ -22,6 +22,7 @@ void PeakOptions::validate(int dofs) const {
   if (!(omega_tolerance > 0.0) || omega_tolerance >= 1e-2)
     throwInputError("omega_tolerance", formatNumber(omega_tolerance), "must be in (0, 1e-2)");
   if (max_secant_steps < 2) throwInputError("max_secant_steps", std::to_string(max_secant_steps), "must be >= 2");
+  if (max_peaks < 1 || max_peaks > 100) throwInputError("--max-peaks", std::to_string(max_peaks), "must be in [1, 100]");
 }
 
 namespace {
@@ -178,6 +179,21 @@ bool refinePeak(BranchProbe& probe, const PeakOptions& options, BranchPoint star
   return false;
 }
 
+// Peaks closer than `tolerance` in ω are one (two followed resonances that
+// merged, or ripples of a nonsmooth curve): the larger is kept.
+void mergeClosePeaks(std::vector<BranchPoint>* peaks, double tolerance) {
+  std::sort(peaks->begin(), peaks->end(), [](const auto& a, const auto& b) { return a.omega < b.omega; });
+  std::vector<BranchPoint> merged;
+  for (auto& p : *peaks) {
+    if (!merged.empty() && p.omega - merged.back().omega <= tolerance) {
+      if (p.amplitude2 > merged.back().amplitude2) merged.back() = std::move(p);
+    } else {
+      merged.push_back(std::move(p));
+    }
+  }
+  *peaks = std::move(merged);
+}
+
 }  // namespace
 
 PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
@@ -186,8 +202,7 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
   const auto started = std::chrono::steady_clock::now();
   PeakResult result;
   HbModel m = model;
-  const bool use_warm = warm && warm->valid() && warm->omega >= options.from && warm->omega <= options.to;
-  m.omega = use_warm ? warm->omega : options.from;
+  m.omega = options.from;
   std::unique_ptr<HbSystem> system;
   try {
     system = makeHbSystem(m, options.condensed);
@@ -198,21 +213,28 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
     return result;
   }
   BranchProbe probe(*system, solver, solver_options, options.dof);
-  BranchPoint peak;
-  bool found = false;
+  const double merge_tolerance = 1e-3 * (options.to - options.from);
+  std::vector<BranchPoint> peaks;
   std::string why;
 
-  if (use_warm && warm->z.size() == system->size()) {
-    BranchPoint start;
-    found = probe.solveAt(warm->omega, warm->z, &start, &why) &&
-            refinePeak(probe, options, start, options.from, options.to, &peak, &why);
-    result.start = found ? "warm" : "cold (warm: " + why + ")";
+  if (warm && warm->valid()) {
+    for (std::size_t k = 0; k < warm->z.size(); ++k) {
+      const double omega = warm->omegas[k];
+      if (warm->z[k].size() != system->size() || omega < options.from || omega > options.to) continue;
+      BranchPoint start, peak;
+      if (probe.solveAt(omega, warm->z[k], &start, &why) &&
+          refinePeak(probe, options, start, options.from, options.to, &peak, &why))
+        peaks.push_back(std::move(peak));
+    }
+    mergeClosePeaks(&peaks, merge_tolerance);
+    result.start = !peaks.empty() ? "warm" : "cold (warm: " + (why.empty() ? "no usable state" : why) + ")";
   } else {
     result.start = "cold";
   }
 
-  if (!found) {
-    // Cold: a coarse sweep, its largest amplitude and the neighbours as bounds.
+  if (peaks.empty()) {
+    // Cold: a coarse sweep; its interior local maxima, the largest first,
+    // each refined between its grid neighbours.
     ContinuationOptions sweep;
     sweep.from = options.from;
     sweep.to = options.to;
@@ -221,16 +243,14 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
     sweep.max_step = std::max(1.0, sweep.step);
     sweep.condensed = options.condensed;
     const Curve curve = sweepSequential(m, solver, solver_options, sweep);
-    int best = -1;
-    for (int i = 0; i < static_cast<int>(curve.points.size()); ++i) {
-      const auto& p = curve.points[i];
-      probe.solves += 1;
-      probe.iterations += p.iterations;
-      if (p.converged && (best < 0 || p.first_harmonic[options.dof - 1] >
-                                          curve.points[best].first_harmonic[options.dof - 1]))
-        best = i;
-    }
     const int last = static_cast<int>(curve.points.size()) - 1;
+    auto amplitude = [&](int i) { return curve.points[i].first_harmonic[options.dof - 1]; };
+    int best = -1;
+    for (int i = 0; i <= last; ++i) {
+      probe.solves += 1;
+      probe.iterations += curve.points[i].iterations;
+      if (curve.points[i].converged && (best < 0 || amplitude(i) > amplitude(best))) best = i;
+    }
     if (best < 0) {
       why = "the coarse sweep over [" + formatNumber(options.from) + ", " + formatNumber(options.to) +
             "] found no solution";
@@ -238,30 +258,44 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
       why = "largest amplitude at the edge of [" + formatNumber(options.from) + ", " + formatNumber(options.to) +
             "] (omega = " + formatNumber(curve.points[best].omega) + "): widen the range";
     } else {
-      BranchPoint start;
-      const double omega = curve.points[best].omega;
-      found = probe.solveAt(omega, system->fromFullCoefficients(curve.points[best].full), &start, &why) &&
-              refinePeak(probe, options, start, curve.points[best - 1].omega, curve.points[best + 1].omega, &peak,
-                         &why);
+      std::vector<int> maxima;
+      for (int i = 1; i < last; ++i)
+        if (curve.points[i - 1].converged && curve.points[i].converged && curve.points[i + 1].converged &&
+            amplitude(i) >= amplitude(i - 1) && amplitude(i) >= amplitude(i + 1))
+          maxima.push_back(i);
+      std::sort(maxima.begin(), maxima.end(), [&](int a, int b) { return amplitude(a) > amplitude(b); });
+      if (static_cast<int>(maxima.size()) > options.max_peaks) maxima.resize(options.max_peaks);
+      for (int i : maxima) {
+        BranchPoint start, peak;
+        if (probe.solveAt(curve.points[i].omega, system->fromFullCoefficients(curve.points[i].full), &start, &why) &&
+            refinePeak(probe, options, start, curve.points[i - 1].omega, curve.points[i + 1].omega, &peak, &why))
+          peaks.push_back(std::move(peak));
+      }
+      mergeClosePeaks(&peaks, merge_tolerance);
     }
   }
 
   result.solves = probe.solves;
   result.iterations = probe.iterations;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  if (!found) {
+  if (peaks.empty()) {
     result.reason = why;
     return result;
   }
-  m.omega = peak.omega;
-  system->setOmega(peak.omega);
-  const CurvePoint described = describePoint(m, system->fullCoefficients(peak.z));
+  const auto top = std::max_element(peaks.begin(), peaks.end(),
+                                    [](const auto& a, const auto& b) { return a.amplitude2 < b.amplitude2; });
+  m.omega = top->omega;
+  system->setOmega(top->omega);
+  const CurvePoint described = describePoint(m, system->fullCoefficients(top->z));
   result.converged = true;
-  result.omega = peak.omega;
+  result.peaks = static_cast<int>(peaks.size());
+  result.omega = top->omega;
   result.first_harmonic = described.first_harmonic;
   result.max_abs = described.max_abs;
-  result.state.omega = peak.omega;
-  result.state.z = peak.z;
+  for (auto& p : peaks) {
+    result.state.omegas.push_back(p.omega);
+    result.state.z.push_back(std::move(p.z));
+  }
   return result;
 }
 

@@ -10,11 +10,18 @@
 // ω is updated by secant steps on φ, kept inside a bracket once φ has
 // changed sign. A maximum needs φ decreasing through zero.
 //
-// Warm start: from the peak (ω*, z*) of a neighbouring sample, the secant
-// starts at ω* with z* as the corrector's start: a handful of solves per
-// sample instead of a dense sweep. Cold start (no neighbour, or the warm
-// one failed): a coarse sequential sweep over [from, to] brackets the
-// largest amplitude, then the same secant refines it.
+// Several resonances may share [from, to], and one may vanish (friction
+// damps it out) while another takes over as the largest. So every local
+// maximum is followed (up to max_peaks), and the result is the largest.
+// Warm start: from the peaks (ω*, z*) of a neighbouring sample, each secant
+// starts at its ω* with z* as the corrector's start: a handful of solves
+// per peak instead of a dense sweep; a peak that vanishes climbs to another
+// one and the two merge. Cold start (no neighbour, or every warm one
+// failed): a coarse sequential sweep over [from, to] brackets the local
+// maxima of the amplitude, the largest max_peaks are refined the same way.
+// Continuation cannot see a resonance appear that was not there before: a
+// study walks each grid line from a cold start (study_plan.h), so lines
+// should run the way resonances disappear (e.g. increasing normal load).
 #pragma once
 
 #include <Eigen/Dense>
@@ -32,16 +39,17 @@ struct PeakOptions {
   int coarse_points = 41;       // grid points of a cold start's sweep, >= 3
   double omega_tolerance = 1e-9;  // relative: stop when |Δω| <= tol · ω
   int max_secant_steps = 40;
+  int max_peaks = 4;              // local maxima followed at once, >= 1
   bool condensed = true;
   // Throws InputError naming the field.
   void validate(int dofs) const;
 };
 
-// Where a peak was found: enough to warm-start the next sample.
+// Where the peaks were found: enough to warm-start the next sample.
 struct PeakState {
-  double omega = 0.0;
-  Eigen::VectorXd z;  // the system's unknowns (condensed or full)
-  bool valid() const { return z.size() > 0; }
+  std::vector<double> omegas;
+  std::vector<Eigen::VectorXd> z;  // the system's unknowns (condensed or full)
+  bool valid() const { return !z.empty(); }
 };
 
 struct PeakResult {
@@ -51,6 +59,7 @@ struct PeakResult {
   double omega = 0.0;
   std::vector<double> first_harmonic;  // per DOF, at the peak
   std::vector<double> max_abs;         // per DOF, max |x_i(t)| over a period
+  int peaks = 0;                       // local maxima followed
   int solves = 0, iterations = 0;
   double seconds = 0.0;
   PeakState state;

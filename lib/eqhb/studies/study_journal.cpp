@@ -80,7 +80,7 @@ std::string studyCsvHeader(const StudySettings& settings) {
   h += ",status,start,peak_omega";
   for (int i = 1; i <= settings.dofs; ++i) h += ",first_harmonic_x" + std::to_string(i);
   for (int i = 1; i <= settings.dofs; ++i) h += ",max_abs_x" + std::to_string(i);
-  return h + ",solves,iterations,seconds,worker,curve,reason";
+  return h + ",peaks,solves,iterations,seconds,worker,curve,reason";
 }
 
 std::string studyCsvRow(const SampleResult& r, int dofs) {
@@ -92,14 +92,14 @@ std::string studyCsvRow(const SampleResult& r, int dofs) {
     row += "," + number(r.ok && i < static_cast<int>(r.first_harmonic.size()) ? r.first_harmonic[i] : NAN);
   for (int i = 0; i < dofs; ++i)
     row += "," + number(r.ok && i < static_cast<int>(r.max_abs.size()) ? r.max_abs[i] : NAN);
-  row += "," + std::to_string(r.solves) + "," + std::to_string(r.iterations) + "," + number(r.seconds) + "," +
+  row += "," + std::to_string(r.peaks) + "," + std::to_string(r.solves) + "," + std::to_string(r.iterations) + "," + number(r.seconds) + "," +
          std::to_string(r.worker) + "," + field(r.curve) + "," + field(r.reason);
   return row;
 }
 
 bool parseStudyCsvRow(const std::string& line, int parameters, int dofs, SampleResult* r) {
   std::vector<std::string> f;
-  if (!splitCsv(line, &f) || static_cast<int>(f.size()) != 1 + parameters + 3 + 2 * dofs + 6) return false;
+  if (!splitCsv(line, &f) || static_cast<int>(f.size()) != 1 + parameters + 3 + 2 * dofs + 7) return false;
   *r = SampleResult();
   std::size_t k = 0;
   if (!toInt(f[k++], &r->id) || r->id < 0) return false;
@@ -117,7 +117,7 @@ bool parseStudyCsvRow(const std::string& line, int parameters, int dofs, SampleR
     if (!toDouble(f[k++], &r->first_harmonic[i])) return false;
   for (int i = 0; i < dofs; ++i)
     if (!toDouble(f[k++], &r->max_abs[i])) return false;
-  if (!toInt(f[k++], &r->solves) || !toInt(f[k++], &r->iterations) || !toDouble(f[k++], &r->seconds) ||
+  if (!toInt(f[k++], &r->peaks) || !toInt(f[k++], &r->solves) || !toInt(f[k++], &r->iterations) || !toDouble(f[k++], &r->seconds) ||
       !toInt(f[k++], &r->worker))
     return false;
   r->curve = f[k++];
@@ -137,7 +137,8 @@ std::string studyPlanText(const StudySettings& s, const std::string& solver_name
       << "range = " << number(s.peak.from) << " " << number(s.peak.to) << "\n"
       << "dof = " << s.peak.dof << "\n"
       << "system = " << (s.peak.condensed ? "condensed" : "full") << "\n";
-  if (s.mode == StudyMode::kPeak) out << "coarse_points = " << s.peak.coarse_points << "\n";
+  if (s.mode == StudyMode::kPeak)
+    out << "coarse_points = " << s.peak.coarse_points << "\nmax_peaks = " << s.peak.max_peaks << "\n";
   if (s.mode == StudyMode::kSweep) out << "step = " << number(s.sweep_step) << "\n";
   out << "solver = " << solver_name << "\n"
       << "tolerance = " << number(s.solver_options.residual_tolerance) << "\n"

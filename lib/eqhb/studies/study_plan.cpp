@@ -75,18 +75,13 @@ StudyPlan makeGridPlan(const std::vector<VariedParameter>& parameters, long max_
     const auto& v = parameters[p];
     return v.count == 1 ? v.from : v.from + (v.to - v.from) * k / (v.count - 1);
   };
-  // Mixed-radix counter; digit p runs forwards or backwards depending on the
-  // parity of the slower digits' combined index (serpentine).
+  // Mixed-radix counter, last digit fastest.
   std::vector<int> digit(n, 0);
   for (long s = 0; s < total; ++s) {
     std::vector<double> sample(n);
-    long slower = 0;
-    for (int p = 0; p < n; ++p) {
-      const int k = (slower % 2 == 0) ? digit[p] : parameters[p].count - 1 - digit[p];
-      sample[p] = value(p, k);
-      slower = slower * parameters[p].count + k;
-    }
+    for (int p = 0; p < n; ++p) sample[p] = value(p, digit[p]);
     plan.samples.push_back(std::move(sample));
+    plan.continues.push_back(digit[n - 1] != 0);
     for (int p = n - 1; p >= 0; --p) {
       if (++digit[p] < parameters[p].count) break;
       digit[p] = 0;
@@ -142,6 +137,7 @@ StudyPlan makeLatinHypercubePlan(const std::vector<VariedParameter>& parameters,
   StudyPlan plan;
   plan.parameters = parameters;
   for (int i : order) {
+    plan.continues.push_back(!plan.samples.empty());
     std::vector<double> sample(n);
     for (int p = 0; p < n; ++p) sample[p] = parameters[p].from + (parameters[p].to - parameters[p].from) * unit[i][p];
     plan.samples.push_back(std::move(sample));

@@ -1,10 +1,13 @@
 // The samples of a parameter study: a grid or a Latin hypercube over scene
 // values addressed by override paths (the paths of `--set`, e.g. law[0].muN).
 //
-// Samples are ordered so that consecutive ones are neighbours in parameter
-// space (a serpentine walk of the grid; a greedy nearest-neighbour chain of
-// the hypercube): a worker that takes a run of consecutive samples can start
-// each one from the previous one's solution.
+// Samples are ordered so that a worker taking a run of consecutive samples
+// can start each from the previous one's solution where `continues` says
+// so: along a grid line (the last parameter varies fastest, always from
+// FROM to TO; a line starts afresh), along a greedy nearest-neighbour chain
+// of the hypercube. Grid lines all run the same way on purpose: peak
+// tracking follows resonances that exist at a line's start, so the walk
+// direction must be one the user chose (see peak_tracking.h).
 #pragma once
 
 #include <cstdint>
@@ -26,12 +29,12 @@ VariedParameter parseVariedParameter(const std::string& text, bool count_require
 struct StudyPlan {
   std::vector<VariedParameter> parameters;
   std::vector<std::vector<double>> samples;  // samples[i][p], in study order
+  std::vector<bool> continues;  // sample i may start from sample i − 1's solution
 };
 
-// The full grid (product of every parameter's COUNT points from FROM to TO),
-// walked as a serpentine: the last parameter varies fastest and reverses
-// direction whenever a slower one steps. Throws InputError if it is empty or
-// larger than `max_samples`.
+// The full grid (product of every parameter's COUNT points from FROM to TO)
+// in lines of the last parameter. Throws InputError if it is empty or larger
+// than `max_samples`.
 StudyPlan makeGridPlan(const std::vector<VariedParameter>& parameters, long max_samples = 10000000);
 
 // `count` samples of a Latin hypercube: every parameter's range cut into

@@ -46,7 +46,7 @@ SampleResult SampleWorker::compute(int id) {
     return r;
   }
   if (settings_.mode == StudyMode::kPeak) {
-    const bool neighbour = id == previous_id_ + 1;
+    const bool neighbour = id == previous_id_ + 1 && settings_.plan.continues[id];
     const PeakResult peak = trackPeak(scene.model, *solver_, settings_.solver_options, settings_.peak,
                                       neighbour ? &previous_peak_ : nullptr);
     r.ok = peak.converged;
@@ -55,6 +55,7 @@ SampleResult SampleWorker::compute(int id) {
     r.omega = peak.omega;
     r.first_harmonic = peak.first_harmonic;
     r.max_abs = peak.max_abs;
+    r.peaks = peak.peaks;
     r.solves = peak.solves;
     r.iterations = peak.iterations;
     previous_peak_ = peak.state;

@@ -37,15 +37,16 @@ struct SampleResult {
   std::string start;   // peak: warm / cold ...; sweep: "sweep"
   double omega = 0.0;  // of the peak (sweep: the largest grid point)
   std::vector<double> first_harmonic, max_abs;  // per DOF at the peak
+  int peaks = 0;       // --peak: resonances followed
   int solves = 0, iterations = 0;
   double seconds = 0.0;
   int worker = 0;      // thread or rank that computed it
   std::string curve;   // kSweep: the curve file, relative to the study folder
 };
 
-// Computes samples one after another and keeps the last peak: a sample that
-// directly follows the previous one in study order (a neighbour in
-// parameter space) starts from its peak; any other starts cold.
+// Computes samples one after another and keeps the last peaks: a sample that
+// directly follows the previous one in study order and continues it
+// (StudyPlan::continues) starts from its peaks; any other starts cold.
 class SampleWorker {
  public:
   SampleWorker(const StudySettings& settings, int worker);
