@@ -25,6 +25,7 @@ def main():
     parser.add_argument("--solver", default="dogleg")
     parser.add_argument("--out", default="friction-1d-frf", help="chart prefix: PREFIX.png, PREFIX.svg")
     parser.add_argument("--log-amplitude", action="store_true")
+    parser.add_argument("--no-chart", action="store_true", help="print the figures only")
     args = parser.parse_args()
 
     model = eqhb.load_scene(args.scene)
@@ -42,6 +43,8 @@ def main():
     print(f"peak: omega = {curve['omega'][peak]:.6g}, max|x{model.dofs}| = {amplitude[peak, -1]:.6g}, "
           f"first harmonic {curve['first_harmonic'][peak, -1]:.6g}")
     print(f"time: {curve['seconds']:.3f} s in the library, {wall:.3f} s with the Python call")
+    if args.no_chart:
+        return
 
     import matplotlib
 
