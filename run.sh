@@ -47,6 +47,12 @@ case "${1:-}" in
     quick=""
     for a in "$@"; do [ "$a" = "--quick" ] && quick="--quick"; done
     ./build/eqhb-bench --out results "$@" | tee results/summary.txt
+    # Damper curves: peak vs normal load per forcing level (exit 1 = some
+    # samples failed; they are listed in the report).
+    rm -rf results/damper
+    ./build/eqhb study problems/friction-1d.toml --vary forcing[0].cos=10:30:3 --vary law.muN=0.5:50:100 \
+      --peak --from 0.3 --to 2.0 --out results/damper | tee results/damper.txt || [ "${PIPESTATUS[0]}" -eq 1 ]
+    /usr/bin/python3 bench/damper_chart.py results/damper results/report.md
     ./build/eqhb-convergence --out results $quick | tee results/convergence.txt
     ./build/eqhb-orbits --out results $quick >/dev/null
     ./build/eqhb-micro --benchmark_min_time=0.02 --benchmark_out=results/micro.json \

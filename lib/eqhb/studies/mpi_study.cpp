@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "eqhb/studies/study_scheduler.h"
 
@@ -14,6 +15,8 @@ namespace {
 constexpr int kRequestTag = 1;  // worker -> coordinator: give me a run
 constexpr int kRunTag = 2;      // coordinator -> worker: sample ids (none: stop)
 constexpr int kRowTag = 3;      // worker -> coordinator: one result row
+// The coordinator's latency when idle; far below a sample's cost.
+constexpr std::chrono::microseconds kPollInterval(200);
 
 void coordinate(const MpiEnvironment& mpi, StudyJournal& journal,
                 const std::vector<int>& pending, MpiStudyTraffic* traffic) {
@@ -21,8 +24,15 @@ void coordinate(const MpiEnvironment& mpi, StudyJournal& journal,
   int active = mpi.size() - 1;
   std::string text;
   while (active > 0) {
+    // Poll with short sleeps: a blocking MPI_Probe spins in Open MPI and
+    // would take a core from a worker on the same node.
     MPI_Status status;
-    MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+    int arrived = 0;
+    while (true) {
+      MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+      if (arrived) break;
+      std::this_thread::sleep_for(kPollInterval);
+    }
     const auto started = std::chrono::steady_clock::now();
     int length = 0;
     MPI_Get_count(&status, MPI_CHAR, &length);
