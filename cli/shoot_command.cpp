@@ -5,6 +5,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/orbits/shooting.h"
+#include "eqhb/orbits/smooth_flow.h"
 
 namespace eqhb::cli {
 
@@ -33,7 +34,8 @@ int runShoot(const ShootArguments& a) {
   options.validate();
   // The flow first: unsupported laws and a bad restitution fail before any solve.
   const Scene plain = loadSceneWith(hb_args.scene);
-  const orbits::PiecewiseLinearFlow flow(plain.model, a.restitution);
+  const std::unique_ptr<orbits::Flow> flow_owner = orbits::makeFlow(plain.model, a.restitution);
+  const orbits::Flow& flow = *flow_owner;
 
   const HbRun hb = solveHarmonicBalance(hb_args);
   const HbModel& model = hb.scene.model;
@@ -62,7 +64,7 @@ int runShoot(const ShootArguments& a) {
     out["start_time"] = orbit.start_time;
     out["state"] = std::vector<double>(orbit.state.data(), orbit.state.data() + orbit.state.size());
     nlohmann::json dofs = nlohmann::json::array();
-    for (int i = 0; i < n; ++i) dofs.push_back({{"dof", i + 1}, {"max_abs", orbit.max_abs[i]}});
+    for (int i = 0; i < orbit.max_abs.size(); ++i) dofs.push_back({{"dof", i + 1}, {"max_abs", orbit.max_abs[i]}});
     out["dofs"] = dofs;
     nlohmann::json multipliers = nlohmann::json::array();
     for (int k = 0; k < orbit.multipliers.size(); ++k)
@@ -73,7 +75,7 @@ int runShoot(const ShootArguments& a) {
     out["events"] = orbit.events;
     out["seconds"] = orbit.seconds;
     out["seconds_per_orbit"] = orbit.seconds_per_orbit;
-    if (a.hb.trajectory) {
+    if (a.hb.trajectory && orbit.converged) {
       orbits::FlowSamples samples;
       for (int s = 0; s < model.samples; ++s) samples.times.push_back(t0 + flow.period() * s / model.samples);
       const auto run = flow.integrate(orbit.state, t0, flow.period(), false, &samples);
@@ -98,15 +100,17 @@ int runShoot(const ShootArguments& a) {
               << (orbit.converged ? "periodic orbit" : "NOT converged: " + orbit.failure) << ", period residual "
               << orbit.period_residual << " after " << orbit.iterations << " Newton steps, " << orbit.seconds
               << " s (" << orbit.seconds_per_orbit << " s per orbit)\n";
-    for (int i = 0; i < n; ++i) std::cout << "  max|x" << i + 1 << "| = " << orbit.max_abs[i] << "\n";
-    std::cout << "  multipliers:";
-    for (int k = 0; k < orbit.multipliers.size(); ++k)
-      std::cout << " " << orbit.multipliers[k].real() << (orbit.multipliers[k].imag() >= 0 ? "+" : "")
-                << orbit.multipliers[k].imag() << "i";
-    std::cout << "\n  " << (orbit.stable ? "stable" : "unstable") << " (spectral radius " << orbit.spectral_radius
-              << ")\n  events per period:";
-    for (const auto& [kind, count] : orbit.events) std::cout << " " << kind << " " << count;
-    std::cout << "\n";
+    for (int i = 0; i < orbit.max_abs.size(); ++i) std::cout << "  max|x" << i + 1 << "| = " << orbit.max_abs[i] << "\n";
+    if (orbit.multipliers.size() > 0) {
+      std::cout << "  multipliers:";
+      for (int k = 0; k < orbit.multipliers.size(); ++k)
+        std::cout << " " << orbit.multipliers[k].real() << (orbit.multipliers[k].imag() >= 0 ? "+" : "")
+                  << orbit.multipliers[k].imag() << "i";
+      std::cout << "\n  " << (orbit.stable ? "stable" : "unstable") << " (spectral radius " << orbit.spectral_radius
+                << ")\n  events per period:";
+      for (const auto& [kind, count] : orbit.events) std::cout << " " << kind << " " << count;
+      std::cout << "\n";
+    }
   }
   if (!orbit.converged) std::cerr << "eqhb: shooting did not converge: " << orbit.failure << "\n";
   return orbit.converged ? 0 : 1;

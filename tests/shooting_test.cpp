@@ -7,6 +7,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
+#include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/backends/registry.h"
@@ -237,11 +238,69 @@ TEST(Shooting, MoreauJeanConvergesToTheExactOrbit) {
   }
 }
 
+// Shooting a smooth scene from its harmonic balance at the scene's H.
+orbits::ShootingResult shootSmooth(const HbModel& model, const orbits::Flow& flow, const Eigen::VectorXd& hb) {
+  const double t0 = orbits::quietStartTime(model, hb);
+  return shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
+}
+
+TEST(Shooting, CubicOrbitAgreesWithConvergedHarmonicBalance) {
+  // Smooth: harmonic balance converges spectrally, so at H = 15 odd harmonics
+  // it is a second exact answer for the Gauss–Legendre shooting orbit.
+  HbModel model = loadScene(test::problem("cubic.toml")).model;
+  model.basis = HarmonicSet(HarmonicKind::kOdd, 15);
+  model.samples = 256;
+  const auto flow = orbits::makeFlow(model, 0.0);
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  const auto orbit = shootSmooth(model, *flow, hb);
+  ASSERT_TRUE(orbit.converged) << orbit.failure;
+  const Eigen::VectorXd y_hb = orbits::harmonicState(model, hb, orbit.start_time);
+  EXPECT_LT((y_hb - orbit.state).cwiseAbs().maxCoeff(), 1e-9 * orbit.state.cwiseAbs().maxCoeff());
+  const auto run = flow->integrate(orbit.state, orbit.start_time, flow->period(), true);
+  const Eigen::MatrixXd fd = finiteDifferenceMonodromy(*flow, orbit.state, orbit.start_time, run.events);
+  EXPECT_LT((fd - run.jacobian).norm(), 1e-6 * std::max(1.0, run.jacobian.norm()));
+  EXPECT_TRUE(orbit.stable);
+}
+
+TEST(Shooting, PlanarSlidingOrbitAndItsMonodromy) {
+  const HbModel model = loadScene(test::problem("friction-2d-sliding.toml")).model;
+  const auto flow = orbits::makeFlow(model, 0.0);
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  const auto orbit = shootSmooth(model, *flow, hb);
+  ASSERT_TRUE(orbit.converged) << orbit.failure;
+  EXPECT_LE(orbit.period_residual, 1e-11);
+  const auto run = flow->integrate(orbit.state, orbit.start_time, flow->period(), true);
+  const Eigen::MatrixXd fd = finiteDifferenceMonodromy(*flow, orbit.state, orbit.start_time, run.events);
+  EXPECT_LT((fd - run.jacobian).norm(), 1e-6 * std::max(1.0, run.jacobian.norm()));
+  // Harmonic balance (H = 10 odd) is within a few per cent of the exact orbit.
+  orbits::FlowSamples samples;
+  for (int s = 0; s < 200; ++s) samples.times.push_back(orbit.start_time + flow->period() * s / 200);
+  ASSERT_TRUE(flow->integrate(orbit.state, orbit.start_time, flow->period(), false, &samples).ok);
+  double worst = 0.0;
+  for (int s = 0; s < 200; ++s)
+    worst = std::max(worst, (orbits::harmonicState(model, hb, samples.times[s]).head(2) -
+                             samples.displacement.row(s).transpose()).cwiseAbs().maxCoeff());
+  EXPECT_LT(worst, 0.05 * orbit.max_abs.maxCoeff());
+  // The sliding force has magnitude μN = 8 everywhere on the orbit.
+  for (int s = 0; s < 200; ++s) EXPECT_NEAR(samples.force.row(s).norm(), 8.0, 1e-12);
+}
+
+TEST(Shooting, PlanarStickingIsReportedNotIntegrated) {
+  const HbModel model = loadScene(test::problem("friction-2d.toml")).model;
+  const auto flow = orbits::makeFlow(model, 0.0);
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  const auto orbit = shootSmooth(model, *flow, hb);
+  EXPECT_FALSE(orbit.converged);
+  EXPECT_NE(orbit.failure.find("comes to rest"), std::string::npos) << orbit.failure;
+}
+
 TEST(Shooting, RejectsLawsItCannotIntegrate) {
-  const HbModel model = loadScene(test::problem("cubic.toml")).model;
+  const HbModel model = loadScene(test::problem("stribeck.toml")).model;
   EXPECT_FALSE(PiecewiseLinearFlow::supports(model));
-  EXPECT_THROW(PiecewiseLinearFlow flow(model, 0.0), InputError);
+  EXPECT_FALSE(orbits::SmoothFlow::supports(model));
+  EXPECT_THROW(orbits::makeFlow(model, 0.0), InputError);
   EXPECT_THROW(PiecewiseLinearFlow flow(linearChain(false), 1.5), InputError);
+  EXPECT_THROW(orbits::makeFlow(linearChain(false), -0.1), InputError);
 }
 
 }  // namespace

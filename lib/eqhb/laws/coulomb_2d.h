@@ -33,6 +33,7 @@ class Coulomb2D : public Law {
   // by projected gradient to round-off (exact projection when D = d I).
   LocalVector solveStep(const StepProblem& step) const override;
   Coulomb2DForm form() const { return form_; }
+  double muN() const { return mu_n_; }
 
  private:
   double mu_n_;

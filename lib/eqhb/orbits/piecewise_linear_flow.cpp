@@ -106,7 +106,7 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
       site.gap = contact->gap();
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
-                      "exact orbits handle coulomb-1d and signorini laws only");
+                      "exact orbits handle coulomb-1d and signorini (event-driven), cubic and sliding coulomb-2d (smooth) laws, not mixed");
     }
     sites_.push_back(site);
   }

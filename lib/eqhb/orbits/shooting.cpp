@@ -150,10 +150,13 @@ double quietStartTime(const HbModel& model, const Eigen::VectorXd& full) {
   for (const auto& attached : model.laws) {
     const int dof = attached.dofs[0];
     const auto* contact = dynamic_cast<const Signorini*>(attached.law.get());
+    if (!attached.law->usesVelocity() && !contact) continue;  // smooth in x: no event
     std::vector<double> distance(samples);
     double largest = 0.0;
     for (int s = 0; s < samples; ++s) {
-      distance[s] = contact ? std::max(0.0, contact->gap() - states[s][dof]) : std::abs(states[s][n + dof]);
+      double speed = 0.0;  // sliding speed, in the plane for 2D friction
+      for (int dof_k : attached.dofs) speed = std::hypot(speed, states[s][n + dof_k]);
+      distance[s] = contact ? std::max(0.0, contact->gap() - states[s][dof]) : speed;
       largest = std::max(largest, distance[s]);
     }
     if (largest > 0.0)
