@@ -36,6 +36,10 @@ bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
       transform_.synthesize(s.velocity_coefficients.data(), s.samples.velocity.col(a).data());
     }
     transform_.synthesize(s.force_coefficients.col(a).data(), s.samples.force.col(a).data());
+    if (law.usesForceRate()) {
+      transform_.differentiate(s.force_coefficients.col(a).data(), omega, s.velocity_coefficients.data());
+      transform_.synthesize(s.velocity_coefficients.data(), s.samples.force_rate.col(a).data());
+    }
   }
   law.evaluate(s.samples, with_jacobian);
   if (!s.samples.psi.allFinite()) return false;
@@ -47,6 +51,11 @@ bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
     for (int b = 0; b < d; ++b) {
       const int ab = a * d + b;
       transform_.gram(s.samples.dpsi_dforce.col(ab).data(), s.force_blocks[ab]);
+      if (law.usesForceRate()) {  // chained through Dω like the velocity
+        transform_.gram(s.samples.dpsi_dforce_rate.col(ab).data(), gram_scratch_);
+        transform_.rightMultiplyDerivative(gram_scratch_, omega, velocity_scratch_);
+        s.force_blocks[ab] += velocity_scratch_;
+      }
       Eigen::MatrixXd& block = s.displacement_blocks[ab];
       if (law.usesDisplacement())
         transform_.gram(s.samples.dpsi_ddisplacement.col(ab).data(), block);

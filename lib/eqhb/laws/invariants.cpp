@@ -24,6 +24,8 @@ std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::Ve
       transform.synthesize(rate.data(), s.velocity.col(a).data());
       const int q = model.componentIndex(static_cast<int>(l), a);
       transform.synthesize(full.data() + base + q * nb, s.force.col(a).data());
+      transform.differentiate(full.data() + base + q * nb, model.omega, rate.data());
+      transform.synthesize(rate.data(), s.force_rate.col(a).data());
     }
     reports.push_back({static_cast<int>(l), attached.law->type(), attached.law->violations(s)});
   }

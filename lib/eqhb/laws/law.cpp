@@ -6,10 +6,12 @@ void LawSamples::resize(int samples, int dimension) {
   displacement.setZero(samples, dimension);
   velocity.setZero(samples, dimension);
   force.setZero(samples, dimension);
+  force_rate.setZero(samples, dimension);
   psi.setZero(samples, dimension);
   dpsi_ddisplacement.setZero(samples, dimension * dimension);
   dpsi_dvelocity.setZero(samples, dimension * dimension);
   dpsi_dforce.setZero(samples, dimension * dimension);
+  dpsi_dforce_rate.setZero(samples, dimension * dimension);
 }
 
 }  // namespace eqhb

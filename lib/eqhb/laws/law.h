@@ -18,8 +18,10 @@ namespace eqhb {
 // column a * d + b. Rows are the N time samples.
 struct LawSamples {
   Eigen::MatrixXd displacement, velocity, force;  // N x d inputs
+  Eigen::MatrixXd force_rate;                     // N x d input, λ̇ (laws with usesForceRate)
   Eigen::MatrixXd psi;                            // N x d output
   Eigen::MatrixXd dpsi_ddisplacement, dpsi_dvelocity, dpsi_dforce;  // N x d² outputs
+  Eigen::MatrixXd dpsi_dforce_rate;                                 // N x d² output
 
   void resize(int samples, int dimension);
 };
@@ -29,11 +31,12 @@ struct LawSamples {
 // held over the step, the velocity of its DOFs at the end of the step is
 //   u_end = u_free + delassus · λ,
 // and the displacement x_end = x_start + h (θ u_end + (1 − θ) v_start).
-// Sizes are at most 2 (no heap allocation per step).
-using LocalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1>;
-using LocalMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
+// Sizes are at most 3 (no heap allocation per step).
+using LocalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+using LocalMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
 struct StepProblem {
   LocalVector x_start, v_start, u_free;
+  LocalVector force_start;  // the law's force over the previous step (internal states)
   LocalMatrix delassus;  // h Wᵀ Ŵ⁻¹ W · forceSign, symmetric definite
   double h = 0.0, theta = 1.0;
   double restitution = 0.0;  // Newton impact coefficient (contact laws)
@@ -55,6 +58,8 @@ class Law {
   // so a basis without harmonic 0 could only meet the law by letting the
   // force change sign. Such a law needs the constant term in the basis.
   virtual bool needsConstantTerm() const { return false; }
+  // Ψ depends on λ̇ too (elastic friction: the slider moves at ẋ + λ̇/k_t).
+  virtual bool usesForceRate() const { return false; }
   // Fills psi and, if with_derivatives, the partials of the used inputs.
   virtual void evaluate(LawSamples& samples, bool with_derivatives) const = 0;
   // Physical checks on samples of a solution (inputs filled, densely in

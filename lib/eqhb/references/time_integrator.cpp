@@ -87,6 +87,7 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
 
   std::vector<LocalVector> lambda(laws);
   for (int l = 0; l < laws; ++l) lambda[l] = LocalVector::Zero(model.laws[l].law->dimension());
+  std::vector<LocalVector> lambda_start = lambda;
   Eigen::VectorXd f0(n), f1(n), rhs(n), v_free(n), v_new(n);
   StepProblem problem;
   problem.h = h;
@@ -107,6 +108,7 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
       rhs.noalias() -= h * h * theta * (1.0 - theta) * (s.stiffness * v);
       v_free = lu.solve(rhs);
       // Local problems: exact for one law, block Gauss–Seidel for several.
+      lambda_start = lambda;  // internal states (a slider) start from the previous step
       const int sweeps = laws > 1 ? 100 : 1;
       for (int sweep = 0; sweep < sweeps; ++sweep) {
         double change = 0.0;
@@ -124,6 +126,7 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
           for (int m = 0; m < laws; ++m)
             if (m != l) problem.u_free += coupling[l][m] * lambda[m];
           problem.delassus = coupling[l][l];
+          problem.force_start = lambda_start[l];
           const LocalVector next = attached.law->solveStep(problem);
           change = std::max(change, (next - lambda[l]).cwiseAbs().maxCoeff());
           lambda[l] = next;

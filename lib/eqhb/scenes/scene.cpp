@@ -12,6 +12,8 @@
 #include "eqhb/laws/coulomb_2d.h"
 #include "eqhb/laws/cubic_stiffness.h"
 #include "eqhb/error.h"
+#include "eqhb/laws/joints/contact_friction.h"
+#include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
 #include "eqhb/structures/beam.h"
@@ -252,6 +254,48 @@ const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
   return v.as_array();
 }
 
+// contact-friction: dofs = [normal, tangential (, tangential)]; see scene.h.
+std::shared_ptr<Law> readContactFriction(TableReader& t, const std::string& field, const std::vector<int>& dofs,
+                                         const std::string& normal_form) {
+  if (dofs.size() != 2 && dofs.size() != 3)
+    t.fail(field + ".dofs", std::to_string(dofs.size()) + " DOF(s)",
+           "a contact-friction law acts on [normal, tangential] or [normal, tangential, tangential]");
+  for (size_t a = 1; a < dofs.size(); ++a)
+    if (dofs[a] == dofs[0])
+      t.fail(field + ".dofs", std::to_string(dofs[0] + 1), "the normal DOF is also a tangential DOF");
+  ContactFrictionParameters p;
+  p.tangential = static_cast<int>(dofs.size()) - 1;
+  auto non_negative = [&](const char* key, std::optional<double> fallback, const char* what) {
+    const double x = t.number(key, fallback);
+    if (x < 0.0) t.fail(field + "." + key, formatNumber(x), std::string(what) + " must be >= 0");
+    return x;
+  };
+  auto positive_optional = [&](const char* key, const char* what) -> std::optional<double> {
+    if (!t.has(key)) return std::nullopt;
+    const double x = t.number(key);
+    if (!(x > 0.0)) t.fail(field + "." + key, formatNumber(x), std::string(what) + " must be > 0");
+    return x;
+  };
+  p.mu = non_negative("mu", std::nullopt, "friction coefficient");
+  p.preload = non_negative("preload", std::nullopt, "normal preload N0");
+  p.gap = t.number("gap", 0.0);
+  p.rho = t.number("rho", 1.0);
+  if (!(p.rho > 0.0)) t.fail(field + ".rho", formatNumber(p.rho), "must be > 0");
+  p.normal = parseNormalForm(normal_form, field + ".form");
+  p.normal_stiffness = positive_optional("k_n", "contact stiffness");
+  if (p.normal == NormalForm::kCompliant && !p.normal_stiffness)
+    t.fail(field + ".k_n", "(missing)", "form = \"compliant\" needs a contact stiffness k_n > 0");
+  if (p.normal != NormalForm::kCompliant && p.normal_stiffness)
+    t.fail(field + ".k_n", formatNumber(*p.normal_stiffness),
+           "a contact stiffness is only used by form = \"compliant\"");
+  p.tangential_stiffness = positive_optional("k_t", "tangential stiffness");
+  const std::string friction = t.text("friction_form", std::string("projection"));
+  p.friction = parseFrictionForm(friction, field + ".friction_form");
+  if (p.friction == FrictionForm::kMinMax && p.tangential != 1)
+    t.fail(field + ".friction_form", "\"minmax\"", "the minmax form has one tangential DOF; use max or projection");
+  return std::make_shared<ContactFriction>(p);
+}
+
 AttachedLaw readLaw(const toml::value& value, const std::string& field, const std::string& source,
                     int dofs, int nodes) {
   TableReader t(value, field, source);
@@ -321,9 +365,23 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
     attached.law = std::make_shared<Stribeck>(dynamic, stat, v_s, rho);
   } else if (type == "cubic") {
     attached.law = std::make_shared<CubicStiffness>(t.number("epsilon"));
+  } else if (type == "contact-friction") {
+    attached.law = readContactFriction(t, field, attached.dofs, t.text("form", std::string("min")));
+  } else if (type == "jenkins") {
+    const double mu_n = t.number("muN");
+    if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
+    const double k_t = positive("k_t", std::nullopt);
+    const double rho = positive("rho", 1.0);
+    const int m = static_cast<int>(attached.dofs.size());
+    if (m != 1 && m != 2) t.fail(field + ".dofs", describe(list), "a jenkins law acts on 1 or 2 DOFs");
+    const std::string name = form(m == 1 ? "minmax" : "max");
+    if (name == "minmax" && m != 1)
+      t.fail(field + ".form", "\"minmax\"", "the minmax form is one-dimensional; use max or projection");
+    attached.law = std::make_shared<Jenkins>(m, mu_n, k_t, parseFrictionForm(name, field + ".form"), rho);
   } else {
     t.fail(field + ".type", "\"" + type + "\"",
-           "unknown law (known: coulomb-1d, coulomb-2d, signorini, stribeck, cubic)");
+           "unknown law (known: coulomb-1d, coulomb-2d, signorini, stribeck, cubic, contact-friction, "
+           "jenkins)");
   }
   if (static_cast<int>(attached.dofs.size()) != attached.law->dimension())
     t.fail(field + ".dofs", describe(list),
@@ -512,7 +570,9 @@ const std::vector<std::string>& lawForms(const std::string& type) {
       {"coulomb-2d", {"max", "projection", "smoothed", "tanh"}},
       {"signorini", {"min", "fischer-burmeister", "sign-square"}},
       {"stribeck", {"minmax"}},
-      {"cubic", {}}};
+      {"cubic", {}},
+      {"contact-friction", {"min", "fischer-burmeister"}},  // and "compliant", which needs k_n
+      {"jenkins", {"minmax", "projection", "max"}}};
   static const std::vector<std::string> none;
   const auto it = forms.find(type);
   return it == forms.end() ? none : it->second;

@@ -19,6 +19,13 @@
 //                 form = min|fischer-burmeister|sign-square [min], rho [1]
 //     stribeck    muN_dynamic >= 0, muN_static >= muN_dynamic, v_s > 0, rho [1]
 //     cubic       epsilon (force −ε x³ as the DAE f + ε x³ = 0)
+//     contact-friction  dofs = [normal, tangential(, tangential)], mu >= 0,
+//                 preload N0 >= 0, gap g0 [0], form = min|fischer-burmeister|
+//                 compliant [min] (compliant needs k_n > 0), friction_form =
+//                 projection|max|minmax (minmax: one tangential DOF) [projection],
+//                 k_t > 0 (optional: elastic friction), rho [1]; needs set = "all"
+//     jenkins     1 or 2 dofs, muN >= 0, k_t > 0, form = minmax|projection|max
+//                 [minmax in 1D, max in 2D], rho [1]
 //   [harmonic_balance] harmonics, set = odd|all, samples, omega
 //   [sweep]     from, to  (optional)
 //

@@ -1,0 +1,43 @@
+// Exact Coulomb friction with a limit L that may vary from sample to sample
+// (spec §2 "Coulomb 1D/2D" and §5), shared by the joint laws. With u the
+// slip velocity (ẋ_t for a rigid contact, ẋ_t + ṙ/k_t for elastic
+// friction), r the friction force on the structure and s = r − ρu:
+//   minmax (1D):     Ψ = u + min(0, ρ(r+L) − u) + max(0, ρ(r−L) − u)
+//   projection:      Ψ = r − proj_D(L)(s)
+//   max:             Ψ = r max(L, ‖s‖) − L s
+// With L = μN these are exactly the formulas of Coulomb1D / Coulomb2D (same
+// branches, same ties), which is what the reduction tests check. With L = 0
+// the minmax and projection forms give Ψ = ρr or r (r = 0, separation); the
+// max form gives r ‖s‖, which also vanishes on s = 0: a singular root the
+// projection form does not have.
+#pragma once
+
+#include <string>
+
+#include "eqhb/laws/law.h"
+
+namespace eqhb {
+
+enum class FrictionForm { kMinMax, kProjection, kMax };
+
+FrictionForm parseFrictionForm(const std::string& name, const std::string& field);
+std::string frictionFormName(FrictionForm form);
+
+// Ψ at one sample for m = 1 or 2 components, and its partials (m x m,
+// row-major: d_u[a*m+b] = ∂Ψ_a/∂u_b; d_limit[a] = ∂Ψ_a/∂L). Throws nothing;
+// the caller checks that minmax is used with m = 1.
+struct FrictionPoint {
+  double psi[2] = {0.0, 0.0};
+  double d_u[4] = {0.0, 0.0, 0.0, 0.0};
+  double d_r[4] = {0.0, 0.0, 0.0, 0.0};
+  double d_limit[2] = {0.0, 0.0};
+};
+void evaluateFriction(FrictionForm form, int m, double rho, const double* u, const double* r,
+                      double limit, FrictionPoint& out);
+
+// argmin over the disc ‖λ‖ <= radius (an interval when m = 1) of
+// ½ λᵀAλ + λᵀb, A symmetric definite (maximal dissipation on one time
+// step): exact in 1D, projected gradient to round-off in 2D.
+LocalVector minimiseOnDisc(const LocalMatrix& a, const LocalVector& b, double radius);
+
+}  // namespace eqhb

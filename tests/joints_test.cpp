@@ -1,0 +1,360 @@
+// Joint laws (contact-friction, Jenkins): pointwise weak partials and
+// assembled Jacobians (full and condensed) against finite differences; the
+// blocked-normal reduction to the Coulomb laws; zero sets; bad input.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/fourier_transform.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/coulomb_2d.h"
+#include "eqhb/laws/joints/contact_friction.h"
+#include "eqhb/laws/joints/jenkins.h"
+#include "eqhb/laws/invariants.h"
+#include "eqhb/references/time_integrator.h"
+#include "eqhb/scenes/scene.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+struct JointCase {
+  std::string label;
+  std::shared_ptr<Law> law;
+};
+
+std::shared_ptr<Law> contactFriction(int m, NormalForm normal, FrictionForm friction,
+                                     std::optional<double> k_t = std::nullopt) {
+  ContactFrictionParameters p;
+  p.tangential = m;
+  p.mu = 0.4;
+  p.preload = 0.7;
+  p.gap = 0.2;
+  p.normal = normal;
+  if (normal == NormalForm::kCompliant) p.normal_stiffness = 3.0;
+  p.friction = friction;
+  p.tangential_stiffness = k_t;
+  p.rho = 0.8;
+  return std::make_shared<ContactFriction>(p);
+}
+
+std::vector<JointCase> allJoints() {
+  return {
+      {"cf1_min_minmax", contactFriction(1, NormalForm::kMin, FrictionForm::kMinMax)},
+      {"cf1_fb_projection", contactFriction(1, NormalForm::kFischerBurmeister, FrictionForm::kProjection)},
+      {"cf1_compliant_max", contactFriction(1, NormalForm::kCompliant, FrictionForm::kMax)},
+      {"cf2_min_projection", contactFriction(2, NormalForm::kMin, FrictionForm::kProjection)},
+      {"cf2_fb_max", contactFriction(2, NormalForm::kFischerBurmeister, FrictionForm::kMax)},
+      {"cf2_compliant_projection_kt", contactFriction(2, NormalForm::kCompliant, FrictionForm::kProjection, 2.5)},
+      {"cf1_min_minmax_kt", contactFriction(1, NormalForm::kMin, FrictionForm::kMinMax, 1.5)},
+      {"jenkins1_minmax", std::make_shared<Jenkins>(1, 1.2, 2.0, FrictionForm::kMinMax, 0.9)},
+      {"jenkins1_projection", std::make_shared<Jenkins>(1, 1.2, 2.0, FrictionForm::kProjection, 0.9)},
+      {"jenkins2_max", std::make_shared<Jenkins>(2, 1.2, 2.0, FrictionForm::kMax, 0.9)},
+      {"jenkins2_projection", std::make_shared<Jenkins>(2, 1.2, 2.0, FrictionForm::kProjection, 0.9)},
+  };
+}
+
+class JointTest : public ::testing::TestWithParam<JointCase> {};
+
+TEST_P(JointTest, PointwisePartialsMatchFiniteDifferences) {
+  const Law& law = *GetParam().law;
+  const int d = law.dimension();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  const int n = 400;
+  LawSamples s;
+  s.resize(n, d);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < d; ++a) {
+      s.displacement(i, a) = u(rng);
+      s.velocity(i, a) = u(rng);
+      s.force(i, a) = u(rng);
+      s.force_rate(i, a) = u(rng);
+    }
+  law.evaluate(s, true);
+  const double h = 1e-7;
+  const Eigen::MatrixXd* partials[] = {&s.dpsi_ddisplacement, &s.dpsi_dvelocity, &s.dpsi_dforce,
+                                       &s.dpsi_dforce_rate};
+  const bool used[] = {law.usesDisplacement(), law.usesVelocity(), true, law.usesForceRate()};
+  int checked = 0;
+  for (int q = 0; q < 4; ++q) {
+    if (!used[q]) continue;
+    for (int b = 0; b < d; ++b) {
+      LawSamples plus = s, minus = s;
+      Eigen::MatrixXd* in_plus[] = {&plus.displacement, &plus.velocity, &plus.force, &plus.force_rate};
+      Eigen::MatrixXd* in_minus[] = {&minus.displacement, &minus.velocity, &minus.force, &minus.force_rate};
+      in_plus[q]->col(b).array() += h;
+      in_minus[q]->col(b).array() -= h;
+      law.evaluate(plus, false);
+      law.evaluate(minus, false);
+      for (int a = 0; a < d; ++a)
+        for (int i = 0; i < n; ++i) {
+          const double fd = (plus.psi(i, a) - minus.psi(i, a)) / (2 * h);
+          EXPECT_NEAR((*partials[q])(i, a * d + b), fd, 1e-5 * (1 + std::abs(fd)))
+              << GetParam().label << " q=" << q << " a=" << a << " b=" << b << " sample " << i;
+          ++checked;
+        }
+    }
+  }
+  EXPECT_GT(checked, 0);
+}
+
+TEST_P(JointTest, AssembledJacobiansMatchFiniteDifferences) {
+  const std::shared_ptr<Law>& law = GetParam().law;
+  for (bool condensed : {false, true}) {
+    HbModel model;
+    const int n = 3;
+    model.structure.mass = Eigen::MatrixXd::Identity(n, n);
+    model.structure.stiffness = 2.0 * Eigen::MatrixXd::Identity(n, n);
+    model.structure.stiffness(0, 1) = model.structure.stiffness(1, 0) = -1.0;
+    model.structure.damping = 0.05 * model.structure.stiffness;
+    model.structure.loads.push_back({0, 1, 2.0, 0.5});
+    const int d = law->dimension();
+    std::vector<int> dofs;
+    for (int a = 0; a < d; ++a) dofs.push_back(n - d + a);
+    model.laws.push_back({dofs, law});
+    model.basis = HarmonicSet(HarmonicKind::kAll, 3);
+    model.samples = 64;
+    model.omega = 0.8;
+    auto system = makeHbSystem(model, condensed);
+    srand(19);
+    const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system->size());
+    Eigen::VectorXd g(system->size());
+    Eigen::MatrixXd j(system->size(), system->size());
+    ASSERT_TRUE(system->residualAndJacobian(z, g, j));
+    const Eigen::MatrixXd fd = test::finiteDifferenceJacobian(*system, z);
+    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()))
+        << GetParam().label << (condensed ? " condensed" : " full");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllJoints, JointTest, ::testing::ValuesIn(allJoints()),
+                         [](const auto& info) { return info.param.label; });
+
+// The blocked-normal reduction (spec §5): a Coulomb model and the same model
+// with one more DOF, the normal one, decoupled and pressed on the wall at
+// g0 = 0 by N0 = μN/μ. The Coulomb solution with x_n = 0 and λ_n = 0 (p = N0)
+// solves the contact-friction system, and both solved from rest agree.
+HbModel withBlockedNormal(const HbModel& coulomb, double mu, FrictionForm form) {
+  HbModel model = coulomb;
+  const int n = coulomb.structure.dofs();
+  auto grow = [n](const Eigen::MatrixXd& m, double diagonal) {
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n + 1, n + 1);
+    out.topLeftCorner(n, n) = m;
+    out(n, n) = diagonal;
+    return out;
+  };
+  model.structure.mass = grow(coulomb.structure.mass, 1.0);
+  model.structure.stiffness = grow(coulomb.structure.stiffness, 1.0);
+  model.structure.damping = grow(coulomb.structure.damping, 0.1);
+  const AttachedLaw& friction = coulomb.laws[0];
+  double mu_n = 0.0, rho = 1.0;
+  if (auto c1 = std::dynamic_pointer_cast<Coulomb1D>(friction.law)) mu_n = c1->muN(), rho = c1->rho();
+  ContactFrictionParameters p;
+  p.tangential = friction.law->dimension();
+  p.mu = mu;
+  p.preload = mu_n / mu;
+  p.friction = form;
+  p.rho = rho;
+  std::vector<int> dofs = {n};
+  dofs.insert(dofs.end(), friction.dofs.begin(), friction.dofs.end());
+  model.laws = {{dofs, std::make_shared<ContactFriction>(p)}};
+  return model;
+}
+
+// Coulomb full coefficients [x; r] -> contact-friction [x; x_n = 0; λ_n = 0; r].
+Eigen::VectorXd liftCoefficients(const HbModel& coulomb, const Eigen::VectorXd& full) {
+  const int nb = coulomb.basis.size(), n = coulomb.structure.dofs(), d = coulomb.laws[0].law->dimension();
+  Eigen::VectorXd out = Eigen::VectorXd::Zero((n + 2 + d) * nb);
+  out.head(n * nb) = full.head(n * nb);
+  out.tail(d * nb) = full.tail(d * nb);
+  return out;
+}
+
+double reductionResidual(const HbModel& coulomb, double mu, FrictionForm form, double* solution_gap) {
+  const HbModel joint = withBlockedNormal(coulomb, mu, form);
+  FullSystem reference(coulomb), lifted(joint);
+  const SolverResult solved = makeSolver("dogleg")->solve(reference, Eigen::VectorXd::Zero(reference.size()), {});
+  EXPECT_TRUE(solved.converged()) << solved.summary();
+  Eigen::VectorXd g_ref(reference.size()), g(lifted.size());
+  reference.residual(solved.solution, g_ref);
+  const Eigen::VectorXd z = liftCoefficients(coulomb, solved.solution);
+  lifted.residual(z, g);
+  // The same equations: every residual entry of the joint system is one of
+  // the Coulomb system's or an exact zero (the blocked normal DOF).
+  const double residual = g.norm();
+  EXPECT_NEAR(residual, g_ref.norm(), 1e-12);
+  const SolverResult direct = makeSolver("dogleg")->solve(lifted, Eigen::VectorXd::Zero(lifted.size()), {});
+  EXPECT_TRUE(direct.converged()) << direct.summary();
+  *solution_gap = (direct.solution - z).cwiseAbs().maxCoeff() / z.cwiseAbs().maxCoeff();
+  return residual;
+}
+
+TEST(ContactFriction, BlockedNormalReducesToCoulomb1D) {
+  for (auto [coulomb_form, form] : {std::pair{CoulombForm::kMinMax, FrictionForm::kMinMax},
+                                    std::pair{CoulombForm::kProjection, FrictionForm::kProjection}}) {
+    HbModel coulomb = test::chainWithFriction(7.2, coulomb_form, 10, 0.4, 256, HarmonicKind::kAll);
+    coulomb.laws[0].law = std::make_shared<Coulomb1D>(7.2, coulomb_form, 1.0);
+    double gap = 0.0;
+    const double residual = reductionResidual(coulomb, 0.3, form, &gap);
+    EXPECT_LT(residual, 1e-10);
+    EXPECT_LT(gap, 1e-8) << frictionFormName(form);
+  }
+}
+
+TEST(ContactFriction, BlockedNormalReducesToCoulomb2D) {
+  const Scene scene = loadScene(test::problem("friction-2d-sliding.toml"),
+                                {"harmonic_balance.set=all", "harmonic_balance.harmonics=12"});
+  for (auto [coulomb_form, form] : {std::pair{Coulomb2DForm::kMax, FrictionForm::kMax},
+                                    std::pair{Coulomb2DForm::kProjection, FrictionForm::kProjection}}) {
+    HbModel coulomb = scene.model;
+    coulomb.laws[0].law = std::make_shared<Coulomb2D>(8.0, coulomb_form, 1.0);
+    // withBlockedNormal reads μN from Coulomb1D only: set N0 = μN/μ here.
+    HbModel joint = withBlockedNormal(coulomb, 0.5, form);
+    ContactFrictionParameters p = std::dynamic_pointer_cast<ContactFriction>(joint.laws[0].law)->parameters();
+    p.preload = 8.0 / 0.5;
+    FullSystem reference(coulomb);
+    joint.laws[0].law = std::make_shared<ContactFriction>(p);
+    FullSystem lifted(joint);
+    const SolverResult solved = makeSolver("dogleg")->solve(reference, Eigen::VectorXd::Zero(reference.size()), {});
+    ASSERT_TRUE(solved.converged()) << solved.summary();
+    Eigen::VectorXd g_ref(reference.size()), g(lifted.size());
+    reference.residual(solved.solution, g_ref);
+    const Eigen::VectorXd z = liftCoefficients(coulomb, solved.solution);
+    lifted.residual(z, g);
+    EXPECT_LT(g.norm(), 1e-10);
+    EXPECT_NEAR(g.norm(), g_ref.norm(), 1e-12);
+  }
+}
+
+TEST(ContactFriction, PointwiseTangentialEqualsCoulombAtConstantPressure) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  const int n = 500;
+  for (int m : {1, 2})
+    for (FrictionForm form : {FrictionForm::kMinMax, FrictionForm::kProjection, FrictionForm::kMax}) {
+      if (m == 2 && form == FrictionForm::kMinMax) continue;
+      if (m == 1 && form == FrictionForm::kMax) continue;
+      ContactFrictionParameters p;
+      p.tangential = m, p.mu = 0.6, p.preload = 2.5, p.friction = form, p.rho = 0.7;
+      const ContactFriction joint(p);
+      std::shared_ptr<Law> coulomb;
+      if (m == 1)
+        coulomb = std::make_shared<Coulomb1D>(1.5, form == FrictionForm::kMinMax ? CoulombForm::kMinMax
+                                                                                  : CoulombForm::kProjection, 0.7);
+      else
+        coulomb = std::make_shared<Coulomb2D>(1.5, form == FrictionForm::kMax ? Coulomb2DForm::kMax
+                                                                              : Coulomb2DForm::kProjection, 0.7);
+      LawSamples a, b;
+      a.resize(n, 1 + m);
+      b.resize(n, m);
+      for (int i = 0; i < n; ++i)
+        for (int c = 0; c < m; ++c) {
+          a.velocity(i, 1 + c) = b.velocity(i, c) = u(rng);
+          a.force(i, 1 + c) = b.force(i, c) = u(rng);
+        }
+      joint.evaluate(a, true);
+      coulomb->evaluate(b, true);
+      EXPECT_LT((a.psi.rightCols(m) - b.psi).cwiseAbs().maxCoeff(), 1e-12);
+      for (int r = 0; r < m; ++r)
+        for (int c = 0; c < m; ++c) {
+          EXPECT_LT((a.dpsi_dvelocity.col((1 + r) * (1 + m) + 1 + c) - b.dpsi_dvelocity.col(r * m + c))
+                        .cwiseAbs().maxCoeff(), 1e-12);
+          EXPECT_LT((a.dpsi_dforce.col((1 + r) * (1 + m) + 1 + c) - b.dpsi_dforce.col(r * m + c))
+                        .cwiseAbs().maxCoeff(), 1e-12);
+        }
+    }
+}
+
+TEST(ContactFriction, SeparationForcesZeroFriction) {
+  // p = 0 (λ_n = N0): Ψ_t vanishes only at r_t = 0, whatever the velocity.
+  for (FrictionForm form : {FrictionForm::kMinMax, FrictionForm::kProjection}) {
+    ContactFrictionParameters p;
+    p.mu = 0.5, p.preload = 1.0, p.friction = form;
+    const ContactFriction law(p);
+    LawSamples s;
+    s.resize(3, 2);
+    s.force.col(0).setConstant(1.0);  // p = 0
+    s.velocity.col(1) << -1.0, 0.0, 2.0;
+    s.displacement.col(0).setConstant(-0.5);  // open gap
+    law.evaluate(s, false);
+    EXPECT_EQ(s.psi.col(1).cwiseAbs().maxCoeff(), 0.0);  // r_t = 0 is a zero
+    s.force.col(1).setConstant(0.1);
+    law.evaluate(s, false);
+    EXPECT_GT(s.psi.col(1).cwiseAbs().minCoeff(), 0.0);  // r_t != 0 is not
+  }
+}
+
+TEST(ContactFriction, BadInputNamesTheField) {
+  auto message = [](const std::string& law_keys, const std::string& set = "all") {
+    const std::string text = "name = \"x\"\n[structure]\ntype = \"chain\"\ndofs = 3\nm = 1.0\nk = 1.0\nd = 0.1\n"
+                             "[[law]]\n" + law_keys + "\n[harmonic_balance]\nharmonics = 3\nset = \"" + set +
+                             "\"\nsamples = 64\nomega = 0.5\n";
+    try {
+      parseScene(text, "t.toml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  const std::string cf = "type = \"contact-friction\"\ndofs = [1, 2]\n";
+  EXPECT_NE(message(cf + "mu = -0.1\npreload = 1.0").find("law[0].mu = -0.1"), std::string::npos);
+  EXPECT_NE(message(cf + "mu = 0.1\npreload = -1.0").find("law[0].preload = -1"), std::string::npos);
+  EXPECT_NE(message(cf + "mu = 0.1\npreload = 1.0\nk_t = 0.0").find("law[0].k_t = 0"), std::string::npos);
+  EXPECT_NE(message(cf + "mu = 0.1\npreload = 1.0\nform = \"compliant\"\nk_n = -2.0").find("law[0].k_n = -2"),
+            std::string::npos);
+  EXPECT_NE(message(cf + "mu = 0.1\npreload = 1.0\nform = \"compliant\"").find("law[0].k_n"), std::string::npos);
+  EXPECT_NE(message("type = \"contact-friction\"\ndofs = [2, 2]\nmu = 0.1\npreload = 1.0")
+                .find("law[0].dofs = 2: the normal DOF is also a tangential DOF"), std::string::npos);
+  EXPECT_NE(message(cf + "mu = 0.1\npreload = 1.0", "odd").find("harmonic_balance.set = \"odd\""),
+            std::string::npos);
+  EXPECT_NE(message("type = \"contact-friction\"\ndofs = [1, 2, 3]\nmu = 0.1\npreload = 1.0\nfriction_form = "
+                    "\"minmax\"").find("law[0].friction_form"), std::string::npos);
+  EXPECT_NE(message("type = \"jenkins\"\ndofs = [2]\nmuN = 1.0\nk_t = -1.0").find("law[0].k_t = -1"),
+            std::string::npos);
+  EXPECT_NE(message("type = \"jenkins\"\ndofs = [2]\nmuN = -1.0\nk_t = 1.0").find("law[0].muN = -1"),
+            std::string::npos);
+  EXPECT_EQ(message(cf + "mu = 0.1\npreload = 1.0"), "(accepted)");
+}
+
+struct SceneSolve {
+  HbModel model;
+  SolverResult result;
+  Eigen::VectorXd full;
+  std::map<std::string, double> violations;
+};
+
+SceneSolve solveScene(const std::string& file, bool condensed, const std::vector<std::string>& set = {},
+                      const std::string& solver = "dogleg") {
+  const Scene scene = loadScene(test::problem(file), set);
+  auto system = makeHbSystem(scene.model, condensed);
+  SceneSolve s;
+  s.model = scene.model;
+  s.result = makeSolver(solver)->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
+  s.full = system->fullCoefficients(s.result.solution);
+  const auto reports = checkInvariants(s.model, s.full);
+  for (const auto& [name, value] : reports[0].violations) s.violations[name] = value;
+  return s;
+}
+
+TEST(ContactFriction, SceneLiftsOffAndKeepsTheDisc) {
+  for (bool condensed : {true, false}) {
+    const SceneSolve s = solveScene("contact-friction-2d.toml", condensed);
+    ASSERT_TRUE(s.result.converged()) << s.result.summary();
+    EXPECT_LT(s.violations.at("negative_pressure"), 0.02);
+    EXPECT_LT(s.violations.at("penetration"), 0.02);
+    EXPECT_LT(s.violations.at("complementarity"), 0.02);
+    EXPECT_LT(s.violations.at("force_limit_excess"), 0.05);
+    EXPECT_LT(s.violations.at("sliding_force_error"), 0.1);
+    // Lift-off: the mass leaves the wall (x_n < 0) over part of the period.
+    FourierTransform t(s.model.basis, 512);
+    Eigen::VectorXd x_n(512);
+    t.synthesize(s.full.data(), x_n.data());
+    EXPECT_LT(x_n.minCoeff(), -0.5);
+  }
+}
+
+}  // namespace
+}  // namespace eqhb
