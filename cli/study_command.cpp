@@ -27,8 +27,8 @@ void addStudyCommand(CLI::App& app, SolveArguments& s, StudyArguments& a) {
                                           "or a Latin hypercube of scene values");
   addSceneOptions(cmd, s.scene);
   addSolverOptions(cmd, s);
-  cmd->add_option("--vary", a.vary, "PATH=FROM:TO:COUNT, PATH as for --set (repeat for a grid; "
-                                    "with --lhs, PATH=FROM:TO)")
+  cmd->add_option("--vary", a.vary, "PATH=FROM:TO:COUNT, PATH as for --set or A,B,... set together (repeat "
+                                    "for a grid; with --lhs, PATH=FROM:TO)")
       ->required();
   cmd->add_option("--lhs", a.lhs, "Latin hypercube of N samples instead of the grid");
   cmd->add_option("--seed", a.seed, "Random seed of --lhs")->capture_default_str();
@@ -119,7 +119,7 @@ StudySettings studySettings(const SolveArguments& s, const StudyArguments& a, st
     for (double value : {p.from, p.to}) {
       try {
         std::vector<std::string> probe = settings.overrides;
-        probe.push_back(p.path + "=" + formatNumber(value));
+        for (const auto& path : parameterPaths(p)) probe.push_back(path + "=" + formatNumber(value));
         loadScene(settings.scene_path, probe);
         why.clear();
         break;

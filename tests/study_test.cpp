@@ -67,6 +67,12 @@ TEST(StudyPlan, LatinHypercubeHasOneSamplePerStratumAndDependsOnlyOnTheSeed) {
   EXPECT_NE(makeLatinHypercubePlan(p, 50, 8).samples, plan.samples);
 }
 
+TEST(StudyPlan, LinkedPathsTakeOneValue) {
+  const StudyPlan plan = makeGridPlan({parseVariedParameter("law[0].muN,law[1].muN=1:3:3", true)});
+  EXPECT_EQ(sampleOverrides(plan, 2, 0), (std::vector<std::string>{"law[0].muN=3", "law[1].muN=3"}));
+  EXPECT_THROW(parseVariedParameter("law[0].muN,=1:3:3", true), InputError);
+}
+
 TEST(StudyPlan, BadSpecificationsNameTheField) {
   EXPECT_THROW(parseVariedParameter("law.muN=1:2", true), InputError);
   EXPECT_THROW(parseVariedParameter("law.muN=1:x:3", true), InputError);

@@ -43,6 +43,8 @@ VariedParameter parseVariedParameter(const std::string& text, bool count_require
   if (equals == std::string::npos || equals == 0) throwInputError("--vary", text, "must be " + form);
   VariedParameter p;
   p.path = text.substr(0, equals);
+  for (const auto& path : split(p.path, ','))
+    if (path.empty()) throwInputError("--vary", text, "has an empty PATH in the list A,B,…");
   const auto parts = split(text.substr(equals + 1), ':');
   if (parts.size() != 3 && (count_required || parts.size() != 2)) throwInputError("--vary", text, "must be " + form);
   if (!parseDouble(parts[0], &p.from)) throwInputError("--vary " + p.path + " FROM", parts[0], "must be a finite number");
@@ -143,6 +145,16 @@ StudyPlan makeLatinHypercubePlan(const std::vector<VariedParameter>& parameters,
     plan.samples.push_back(std::move(sample));
   }
   return plan;
+}
+
+std::vector<std::string> parameterPaths(const VariedParameter& parameter) { return split(parameter.path, ','); }
+
+std::vector<std::string> sampleOverrides(const StudyPlan& plan, int sample, int parameter) {
+  char value[40];
+  std::snprintf(value, sizeof value, "%.17g", plan.samples[sample][parameter]);
+  std::vector<std::string> overrides;
+  for (const auto& path : parameterPaths(plan.parameters[parameter])) overrides.push_back(path + "=" + value);
+  return overrides;
 }
 
 std::string sampleOverride(const StudyPlan& plan, int sample, int parameter) {

@@ -17,7 +17,7 @@
 namespace eqhb {
 
 struct VariedParameter {
-  std::string path;  // override path, as for --set
+  std::string path;  // override path, as for --set; "A,B,…": several set to one value
   double from = 0.0, to = 0.0;
   int count = 0;     // grid points (>= 1); unused by a Latin hypercube
 };
@@ -44,7 +44,10 @@ StudyPlan makeGridPlan(const std::vector<VariedParameter>& parameters, long max_
 StudyPlan makeLatinHypercubePlan(const std::vector<VariedParameter>& parameters, int count, std::uint64_t seed);
 
 // The override "PATH=VALUE" of parameter p for a sample, VALUE printed so
-// that it reads back to the same double.
+// that it reads back to the same double (one per path of a linked "A,B").
 std::string sampleOverride(const StudyPlan& plan, int sample, int parameter);
+std::vector<std::string> sampleOverrides(const StudyPlan& plan, int sample, int parameter);
+// The paths of a parameter ("A,B" → A, B).
+std::vector<std::string> parameterPaths(const VariedParameter& parameter);
 
 }  // namespace eqhb

@@ -11,8 +11,10 @@ namespace eqhb {
 
 std::vector<std::string> sampleOverrides(const StudySettings& settings, int id) {
   std::vector<std::string> o = settings.overrides;
-  for (int p = 0; p < static_cast<int>(settings.plan.parameters.size()); ++p)
-    o.push_back(sampleOverride(settings.plan, id, p));
+  for (int p = 0; p < static_cast<int>(settings.plan.parameters.size()); ++p) {
+    const auto linked = sampleOverrides(settings.plan, id, p);
+    o.insert(o.end(), linked.begin(), linked.end());
+  }
   return o;
 }
 
