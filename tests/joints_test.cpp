@@ -356,5 +356,76 @@ TEST(ContactFriction, SceneLiftsOffAndKeepsTheDisc) {
   }
 }
 
+// Relative distance between two solutions' displacement coefficients.
+double displacementDistance(const SceneSolve& a, const SceneSolve& b) {
+  const int n = a.model.structure.dofs() * a.model.basis.size();
+  return (a.full.head(n) - b.full.head(n)).norm() / b.full.head(n).norm();
+}
+
+TEST(Jenkins, StiffSpringApproachesRigidCoulomb) {
+  const SceneSolve rigid = solveScene("friction-1d.toml", true);
+  ASSERT_TRUE(rigid.result.converged());
+  std::vector<double> distances;
+  for (const char* k_t : {"1e2", "1e3", "1e4"}) {
+    const SceneSolve elastic = solveScene("jenkins-1d.toml", true, {std::string("law.k_t=") + k_t});
+    ASSERT_TRUE(elastic.result.converged()) << k_t << ": " << elastic.result.summary();
+    distances.push_back(displacementDistance(elastic, rigid));
+  }
+  EXPECT_LT(distances[1], 0.3 * distances[0]);
+  EXPECT_LT(distances[2], 0.3 * distances[1]);
+  EXPECT_LT(distances[2], 1e-3);
+  // The default k_t = 5 is a different system: stiffness in the stuck phases.
+  const SceneSolve soft = solveScene("jenkins-1d.toml", true);
+  ASSERT_TRUE(soft.result.converged());
+  EXPECT_GT(displacementDistance(soft, rigid), 0.05);
+  EXPECT_LT(soft.violations.at("force_limit_excess"), 0.1);
+}
+
+TEST(Jenkins, PlanarStiffSpringApproachesRigidCoulomb2D) {
+  const SceneSolve rigid = solveScene("friction-2d-sliding.toml", true);
+  ASSERT_TRUE(rigid.result.converged());
+  std::vector<double> distances;
+  for (const char* k_t : {"1e2", "1e4"}) {
+    const std::vector<std::string> set = {"law.type=\"jenkins\"", std::string("law.k_t=") + k_t};
+    const SceneSolve elastic = solveScene("friction-2d-sliding.toml", true, set);
+    ASSERT_TRUE(elastic.result.converged()) << k_t << ": " << elastic.result.summary();
+    distances.push_back(displacementDistance(elastic, rigid));
+  }
+  EXPECT_LT(distances[1], 0.03 * distances[0]);
+  EXPECT_LT(distances[1], 1e-3);
+}
+
+// L2 error of the displacements against the time reference (Moreau–Jean,
+// started from the HB solution) at two harmonic counts.
+std::pair<double, double> referenceErrors(const std::string& file, int h_low, int h_high, double step) {
+  std::pair<double, double> out;
+  for (int h : {h_low, h_high}) {
+    const SceneSolve s = solveScene(file, true, {"harmonic_balance.harmonics=" + std::to_string(h)});
+    EXPECT_TRUE(s.result.converged()) << file << " H=" << h;
+    TimeOptions options;
+    options.step = step;
+    options.periodic_tolerance = 1e-8;
+    const TimeReference ref = integrateToSteadyState(s.model, options, s.full);
+    EXPECT_TRUE(ref.periodic) << file;
+    double error = 0.0;
+    for (const auto& e : compareWithReference(s.model, s.full, ref))
+      if (e.label[0] == 'x') error = std::max(error, e.relative_l2);
+    (h == h_low ? out.first : out.second) = error;
+  }
+  return out;
+}
+
+TEST(ContactFriction, ErrorAgainstTheTimeReferenceFallsWithH) {
+  const auto [low, high] = referenceErrors("contact-friction-2d.toml", 10, 20, 2e-3);
+  EXPECT_LT(high, 0.8 * low);
+  EXPECT_LT(high, 0.1);
+}
+
+TEST(Jenkins, ErrorAgainstTheTimeReferenceFallsWithH) {
+  const auto [low, high] = referenceErrors("jenkins-1d.toml", 3, 10, 1e-3);
+  EXPECT_LT(high, 0.5 * low);
+  EXPECT_LT(high, 0.05);
+}
+
 }  // namespace
 }  // namespace eqhb
