@@ -16,6 +16,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
 #include "eqhb/orbits/shooting.h"
+#include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/structures/structure_matrices.h"
 #include "eqhb/version.h"
@@ -208,7 +209,8 @@ py::dict simulate(const PyModel& m, std::optional<double> omega, double step, in
   return referenceDict(model, reference);
 }
 
-// The exact periodic orbit by shooting (Coulomb 1D and Signorini laws),
+// The exact periodic orbit by shooting (Coulomb 1D and Signorini laws event
+// by event; cubic and sliding planar friction by the smooth flow),
 // started from the harmonic-balance solution at the same ω, with its Floquet
 // multipliers and one period sampled on N instants.
 py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
@@ -219,7 +221,8 @@ py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int>
   options.tolerance = tolerance;
   options.max_iterations = max_iterations;
   options.validate();
-  const orbits::PiecewiseLinearFlow flow(model, restitution);  // rejects other laws first
+  const std::unique_ptr<orbits::Flow> flow_owner = orbits::makeFlow(model, restitution);  // rejects other laws first
+  const orbits::Flow& flow = *flow_owner;
   auto solver = makeSolver(solver_name);
   auto hb = makeHbSystem(model, true);
   py::dict d;
