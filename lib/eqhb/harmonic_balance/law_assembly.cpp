@@ -1,5 +1,7 @@
 #include "eqhb/harmonic_balance/law_assembly.h"
 
+#include <cmath>
+
 namespace eqhb {
 
 LawAssembly::LawAssembly(const HbModel& model)
@@ -42,7 +44,9 @@ bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
     }
   }
   law.evaluate(s.samples, with_jacobian);
-  if (!s.samples.psi.allFinite()) return false;
+  // NaN and Inf propagate through a sum, which vectorises (allFinite's
+  // early-exit loop does not and costs as much as the law on N samples).
+  if (!std::isfinite(s.samples.psi.sum())) return false;
   for (int a = 0; a < d; ++a)
     transform_.project(s.samples.psi.col(a).data(), s.psi_coefficients.col(a).data());
   if (!with_jacobian) return true;

@@ -28,6 +28,15 @@ double givens(double a, double b, double* c, double* s) {
   return h;
 }
 
+// Contiguous columns (of Q): a plain loop the compiler vectorises.
+void rotateColumns(double* __restrict x, double* __restrict y, Eigen::Index n, double c, double s) {
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double xi = x[k], yi = y[k];
+    x[k] = c * xi + s * yi;
+    y[k] = -s * xi + c * yi;
+  }
+}
+
 template <typename X, typename Y>
 void rotate(X&& x, Y&& y, double c, double s) {
   for (Eigen::Index k = 0; k < x.size(); ++k) {
@@ -158,7 +167,7 @@ void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
     u[i - 1] = givens(u[i - 1], u[i], &c, &s);
     u[i] = 0.0;
     rotate(r.row(i - 1).tail(n - i + 1), r.row(i).tail(n - i + 1), c, s);
-    rotate(q.col(i - 1), q.col(i), c, s);
+    rotateColumns(q.col(i - 1).data(), q.col(i).data(), q.rows(), c, s);
     double a = qtf[i - 1], b = qtf[i];
     qtf[i - 1] = c * a + s * b;
     qtf[i] = -s * a + c * b;
@@ -171,7 +180,7 @@ void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
     givens(r(i, i), r(i + 1, i), &c, &s);
     rotate(r.row(i).tail(n - i), r.row(i + 1).tail(n - i), c, s);
     r(i + 1, i) = 0.0;
-    rotate(q.col(i), q.col(i + 1), c, s);
+    rotateColumns(q.col(i).data(), q.col(i + 1).data(), q.rows(), c, s);
     double a = qtf[i], b = qtf[i + 1];
     qtf[i] = c * a + s * b;
     qtf[i + 1] = -s * a + c * b;
