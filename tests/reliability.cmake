@@ -10,3 +10,6 @@ set(CONTACT ${PROJECT_SOURCE_DIR}/problems/contact.toml)
 add_test(NAME cli.contact_needs_the_constant_term
          COMMAND ${EXPECT_EXIT} 2 "harmonic_balance.set = \"odd\": law\\[0\\] \\(signorini\\) needs the constant term"
                  ${EQHB_CLI} solve ${CONTACT} --set harmonic_balance.set=odd --full)
+# The contact scene converges from a cold start on its own defaults.
+add_test(NAME cli.contact_defaults_converge
+         COMMAND ${EXPECT_EXIT} 0 "dogleg: converged" ${EQHB_CLI} solve ${CONTACT})
