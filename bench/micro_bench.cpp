@@ -22,9 +22,8 @@ HbModel model(int law, int harmonics, int samples) {
   HbModel m;
   Eigen::MatrixXd t(2, 2);
   t << 2, -1, -1, 1;
-  m.structure.mass = Eigen::MatrixXd::Identity(2, 2);
-  m.structure.stiffness = law == 1 ? Eigen::MatrixXd::Identity(2, 2) : t;
-  m.structure.damping = 0.02 * m.structure.stiffness;
+  const Eigen::MatrixXd k = law == 1 ? Eigen::MatrixXd::Identity(2, 2) : t;
+  m.structure = LinearStructure(Eigen::MatrixXd::Identity(2, 2), 0.02 * k, k);
   m.structure.loads.push_back({0, 1, 20.0, 0.0});
   HarmonicKind kind = HarmonicKind::kOdd;
   switch (law) {

@@ -1,6 +1,9 @@
 #include "solve_command.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -37,6 +40,10 @@ void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
   cmd->add_option("--max-iterations", a.max_iterations, "Iteration limit")->capture_default_str();
   cmd->add_option("--max-evaluations", a.max_evaluations, "Residual evaluation limit")->capture_default_str();
   cmd->add_option("--time-limit", a.time_limit, "Seconds per solve, 0 = none")->capture_default_str();
+  cmd->add_option("--linear-algebra", a.linear_algebra,
+                  "dense or sparse Jacobians and factorisations (auto: sparse for large systems)")
+      ->check(CLI::IsMember({"auto", "dense", "sparse"}))
+      ->capture_default_str();
 }
 
 nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd& c) {
@@ -81,6 +88,10 @@ SolverOptions solverOptions(const SolveArguments& a) {
   options.max_iterations = a.max_iterations;
   options.max_evaluations = a.max_evaluations;
   options.time_limit = a.time_limit;
+  if (a.linear_algebra == "dense") options.linear_algebra = LinearAlgebra::kDense;
+  else if (a.linear_algebra == "sparse") options.linear_algebra = LinearAlgebra::kSparse;
+  else if (a.linear_algebra == "auto") options.linear_algebra = LinearAlgebra::kAuto;
+  else throwInputError("--linear-algebra", a.linear_algebra, "must be auto, dense or sparse");
   for (const auto& kv : a.backend_options) {
     const auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) throwInputError("--option", kv, "must be NAME=VALUE");
@@ -95,10 +106,13 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
   HbRun run;
   run.scene = loadSceneWith(a.scene);
   const HbModel& model = run.scene.model;
-  run.system = makeHbSystem(model, !a.full);
+  const SolverOptions options = solverOptions(a);
+  const auto setup_start = std::chrono::steady_clock::now();
+  run.system = makeHbSystem(model, !a.full, options.linear_algebra);
+  run.setup_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   HbSystem* system = run.system.get();
 
-  const SolverOptions options = solverOptions(a);
   auto solver = makeSolver(a.solver);
 
   Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system->size());
@@ -141,6 +155,14 @@ int runSolve(const SolveArguments& a) {
   const double median = times.size() % 2 ? times[times.size() / 2]
                                          : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
   const HbSolution solution = summarize(model, system->fullCoefficients(result.solution));
+  // How the linear algebra went: dense or sparse, set-up, memory.
+  const bool sparse_solver = useSparseAlgebra(*run.system, options);
+  const auto* condensed = dynamic_cast<const CondensedSystem*>(system);
+  const bool sparse_factors = condensed && condensed->factors().sparse();
+  const double factor_mib = condensed ? condensed->factors().factorBytes() / 1048576.0 : 0.0;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double peak_rss_mib = usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
 
   if (a.json) {
     nlohmann::json out;
@@ -167,6 +189,11 @@ int runSolve(const SolveArguments& a) {
     out["repeats"] = a.repeat;
     out["seconds_min"] = times.front();
     out["seconds_max"] = times.back();
+    out["linear_algebra"] = sparse_solver ? "sparse" : "dense";
+    if (condensed) out["condensation"] = sparse_factors ? "sparse" : "dense";
+    out["setup_seconds"] = run.setup_seconds;
+    if (condensed) out["factor_mib"] = factor_mib;
+    out["peak_rss_mib"] = peak_rss_mib;
     const nlohmann::json channels = solutionJson(model, solution);
     out["dofs"] = channels["dofs"];
     out["laws"] = channels["laws"];
@@ -194,7 +221,12 @@ int runSolve(const SolveArguments& a) {
               << " (" << HarmonicSet::kindName(model.basis.kind()) << "), N = " << model.samples
               << ", " << (system->condensed() ? "condensed" : "full") << " system of "
               << system->size() << " unknowns\n"
-              << result.summary() << "\n";
+              << result.summary() << "\n"
+              << "linear algebra: " << (sparse_solver ? "sparse" : "dense");
+    if (condensed)
+      std::cout << ", A_k factored " << (sparse_factors ? "sparse (UMFPACK)" : "dense") << " ("
+                << factor_mib << " MiB of factors)";
+    std::cout << "; set-up " << run.setup_seconds << " s, peak RSS " << peak_rss_mib << " MiB\n";
     if (a.repeat > 1) std::cout << "median time over " << a.repeat << " solves: " << median << " s\n";
     for (const auto& c : solution.displacements)
       std::cout << "  max|" << c.label << "| = " << c.max_abs << "\n";

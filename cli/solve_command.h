@@ -29,6 +29,7 @@ struct SolveArguments {
   double time_limit = 0.0;
   int repeat = 1;
   std::optional<int> from_harmonics;  // seed by continuation in H from this H₀
+  std::string linear_algebra = "auto";  // --linear-algebra: auto, dense or sparse
 };
 
 // One harmonic-balance solve (repeated --repeat times) and what it used.
@@ -38,6 +39,7 @@ struct HbRun {
   SolverResult result;
   SolverOptions options;
   std::vector<double> times;  // sorted
+  double setup_seconds = 0.0;  // building the system (pattern, factorisations)
 };
 HbRun solveHarmonicBalance(const SolveArguments& args);
 // The common solver options and the --option pass-through; throws InputError.

@@ -116,7 +116,7 @@ TEST(HbSystems, InvalidModelsAreRejectedWithTheField) {
     EXPECT_NE(std::string(e.what()).find("law[0].dofs = 6"), std::string::npos) << e.what();
   }
   model = chainWithFriction(1.0, CoulombForm::kMinMax, 3, 0.5);
-  model.structure.mass(0, 0) = -1.0;
+  model.structure.mass.coeffRef(0, 0) = -1.0;
   EXPECT_THROW(FullSystem{model}, InputError);
   model = chainWithFriction(1.0, CoulombForm::kMinMax, 3, 0.5);
   model.omega = std::nan("");

@@ -52,9 +52,9 @@ TEST(Scene, TheShippedFriction1dSceneHasTheSpecParameters) {
   const HbModel& m = scene.model;
   EXPECT_EQ(scene.name, "friction-1d");
   EXPECT_EQ(m.structure.dofs(), 2);
-  EXPECT_DOUBLE_EQ(m.structure.stiffness(0, 0), 2.0);
-  EXPECT_DOUBLE_EQ(m.structure.stiffness(1, 1), 1.0);
-  EXPECT_DOUBLE_EQ(m.structure.damping(0, 1), -0.02);
+  EXPECT_DOUBLE_EQ(m.structure.stiffness.coeff(0, 0), 2.0);
+  EXPECT_DOUBLE_EQ(m.structure.stiffness.coeff(1, 1), 1.0);
+  EXPECT_DOUBLE_EQ(m.structure.damping.coeff(0, 1), -0.02);
   ASSERT_EQ(m.laws.size(), 1u);
   EXPECT_EQ(m.laws[0].dofs, std::vector<int>{1});
   const auto& law = dynamic_cast<const Coulomb1D&>(*m.laws[0].law);
@@ -75,7 +75,7 @@ TEST(Scene, OverridesChangeAnyValueBeforeValidation) {
   const auto& law = dynamic_cast<const Coulomb1D&>(*scene.model.laws[0].law);
   EXPECT_DOUBLE_EQ(law.muN(), 3.5);
   EXPECT_EQ(law.form(), CoulombForm::kProjection);
-  EXPECT_DOUBLE_EQ(scene.model.structure.damping(1, 1), 0.1);
+  EXPECT_DOUBLE_EQ(scene.model.structure.damping.coeff(1, 1), 0.1);
   EXPECT_DOUBLE_EQ(scene.model.omega, 0.7);
   expectError(kValid, "law[0].muN = -1", {"law[0].muN=-1"});
   expectError(kValid, "index 3 out of range", {"law[3].muN=1"});

@@ -41,9 +41,7 @@ inline HbModel chainWithFriction(double mu_n, CoulombForm form, int harmonics, d
   HbModel model;
   Eigen::MatrixXd t(2, 2);
   t << 2, -1, -1, 1;
-  model.structure.mass = Eigen::MatrixXd::Identity(2, 2);
-  model.structure.stiffness = t;
-  model.structure.damping = 0.02 * t;
+  model.structure = LinearStructure(Eigen::MatrixXd::Identity(2, 2), 0.02 * t, t);
   model.structure.loads.push_back({0, 1, 20.0, 0.0});
   model.laws.push_back({{1}, std::make_shared<Coulomb1D>(mu_n, form, 1.0, 5.0)});
   model.basis = HarmonicSet(kind, harmonics);

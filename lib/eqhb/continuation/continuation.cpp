@@ -95,7 +95,7 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   Curve curve;
   HbModel m = model;
   m.omega = options.from;
-  auto system = makeHbSystem(m, options.condensed);
+  auto system = makeHbSystem(m, options.condensed, solver_options.linear_algebra);
   const double direction = options.to > options.from ? 1.0 : -1.0;
   const int grid = static_cast<int>(std::floor(std::abs(options.to - options.from) / options.step + 1e-9));
   Eigen::VectorXd z = Eigen::VectorXd::Zero(system->size());
@@ -241,7 +241,7 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
   Curve curve;
   HbModel m = model;
   m.omega = options.from;
-  auto system = makeHbSystem(m, options.condensed);
+  auto system = makeHbSystem(m, options.condensed, solver_options.linear_algebra);
   const int n = system->size();
   const double direction = options.to > options.from ? 1.0 : -1.0;
   const double lo = std::min(options.from, options.to), hi = std::max(options.from, options.to);
@@ -359,7 +359,7 @@ SolverResult solveByHarmonicContinuation(const HbModel& model, Solver& solver, c
   HbModel seed_model;
   SolverResult result;
   while (true) {
-    auto system = makeHbSystem(current, condensed);
+    auto system = makeHbSystem(current, condensed, options.linear_algebra);
     Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system->size());
     if (seed.size()) z0 = system->fromFullCoefficients(transferCoefficients(seed_model, current, seed));
     result = solver.solve(*system, z0, options);

@@ -1,5 +1,6 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "eqhb/error.h"
@@ -31,29 +32,137 @@ HbSystem::HbSystem(HbModel model)
 
 // ---------------------------------------------------------------- full system
 
+namespace {
+// Index of entry (row, col) in a compressed column-major matrix's values.
+int slotOf(const SparseMatrix& m, int row, int col) {
+  const int* begin = m.innerIndexPtr() + m.outerIndexPtr()[col];
+  const int* end = m.innerIndexPtr() + m.outerIndexPtr()[col + 1];
+  const int* it = std::lower_bound(begin, end, row);
+  if (it == end || *it != row) throw std::logic_error("sparse Jacobian: entry outside the pattern");
+  return static_cast<int>(it - m.innerIndexPtr());
+}
+
+// Values of m at the entries of pattern p (zeros where m has none).
+Eigen::VectorXd valuesOnPattern(const SparseMatrix& m, const SparseMatrix& p) {
+  Eigen::VectorXd values = Eigen::VectorXd::Zero(p.nonZeros());
+  for (int j = 0; j < m.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(m, j); it; ++it) values[slotOf(p, it.row(), j)] += it.value();
+  return values;
+}
+}  // namespace
+
 FullSystem::FullSystem(HbModel model) : HbSystem(std::move(model)) {
   const int n = model_.structure.dofs();
   dynamic_rows_ = n * nb_;
   size_ = (n + model_.lawComponents()) * nb_;
   forcing_ = forcingCoefficients(model_);
+  buildPattern();
   setOmega(model_.omega);
+}
+
+void FullSystem::buildPattern() {
+  const LinearStructure& structure = model_.structure;
+  SparseMatrix p = structure.pattern();
+  p.makeCompressed();
+  pattern_mass_ = valuesOnPattern(structure.mass, p);
+  pattern_damping_ = valuesOnPattern(structure.damping, p);
+  pattern_stiffness_ = valuesOnPattern(structure.stiffness, p);
+
+  // Entries of A in the loop order of setOmega: harmonic, entry of P, block.
+  using Entry = Eigen::Triplet<double>;
+  std::vector<Entry> dynamics;
+  const auto& ks = model_.basis.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int w = harmonicWidth(ks[h]), o = model_.basis.offset(static_cast<int>(h));
+    for (int j = 0; j < p.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(p, j); it; ++it)
+        for (int ri = 0; ri < w; ++ri)
+          for (int cj = 0; cj < w; ++cj)
+            dynamics.emplace_back(static_cast<int>(it.row()) * nb_ + o + ri, j * nb_ + o + cj, 0.0);
+  }
+  linear_operator_.resize(dynamic_rows_, dynamic_rows_);
+  linear_operator_.setFromTriplets(dynamics.begin(), dynamics.end());
+  linear_operator_.makeCompressed();
+
+  std::vector<Entry> all = dynamics;
+  for (int l = 0; l < laws_.lawCount(); ++l) {
+    const AttachedLaw& attached = laws_.law(l);
+    const int d = laws_.dimension(l);
+    for (int a = 0; a < d; ++a) {
+      const int lambda = dynamic_rows_ + model_.componentIndex(l, a) * nb_;
+      const int row = lambda;  // law rows follow the λ layout
+      for (int t = 0; t < nb_; ++t) all.emplace_back(attached.dofs[a] * nb_ + t, lambda + t, 0.0);
+      for (int b = 0; b < d; ++b) {
+        const int lambda_b = dynamic_rows_ + model_.componentIndex(l, b) * nb_;
+        for (int c = 0; c < nb_; ++c)
+          for (int r = 0; r < nb_; ++r) {
+            all.emplace_back(row + r, attached.dofs[b] * nb_ + c, 0.0);
+            all.emplace_back(row + r, lambda_b + c, 0.0);
+          }
+      }
+    }
+  }
+  pattern_.resize(size_, size_);
+  pattern_.setFromTriplets(all.begin(), all.end());
+  pattern_.makeCompressed();
+
+  operator_slot_.resize(dynamics.size());
+  jacobian_slot_.resize(dynamics.size());
+  for (size_t e = 0; e < dynamics.size(); ++e) {
+    operator_slot_[e] = slotOf(linear_operator_, dynamics[e].row(), dynamics[e].col());
+    jacobian_slot_[e] = slotOf(pattern_, dynamics[e].row(), dynamics[e].col());
+  }
+  constant_values_.setZero(pattern_.nonZeros());
+  values_.setZero(pattern_.nonZeros());
+  displacement_slots_.assign(laws_.lawCount(), {});
+  force_slots_.assign(laws_.lawCount(), {});
+  for (int l = 0; l < laws_.lawCount(); ++l) {
+    const AttachedLaw& attached = laws_.law(l);
+    const int d = laws_.dimension(l);
+    const double sign = attached.law->forceSign();
+    displacement_slots_[l].assign(d * d, std::vector<int>(nb_ * nb_));
+    force_slots_[l].assign(d * d, std::vector<int>(nb_ * nb_));
+    for (int a = 0; a < d; ++a) {
+      const int row = dynamic_rows_ + model_.componentIndex(l, a) * nb_;
+      // Dynamics: − sign λ_a on the law's DOF (constant).
+      for (int t = 0; t < nb_; ++t)
+        constant_values_[slotOf(pattern_, attached.dofs[a] * nb_ + t, row + t)] -= sign;
+      for (int b = 0; b < d; ++b) {
+        const int lambda_b = dynamic_rows_ + model_.componentIndex(l, b) * nb_;
+        for (int c = 0; c < nb_; ++c)
+          for (int r = 0; r < nb_; ++r) {
+            displacement_slots_[l][a * d + b][c * nb_ + r] =
+                slotOf(pattern_, row + r, attached.dofs[b] * nb_ + c);
+            force_slots_[l][a * d + b][c * nb_ + r] = slotOf(pattern_, row + r, lambda_b + c);
+          }
+      }
+    }
+  }
 }
 
 void FullSystem::setOmega(double omega) {
   if (!(omega > 0.0) || !std::isfinite(omega))
     throwInputError("omega", formatNumber(omega), "must be finite and > 0");
   model_.omega = omega;
-  const int n = model_.structure.dofs();
-  linear_operator_.setZero(dynamic_rows_, dynamic_rows_);
+  // A_k = [K − (kω)²M, kωC; −kωC, K − (kω)²M] per DOF pair (see LinearStructure).
+  double* a = linear_operator_.valuePtr();
+  size_t e = 0;
   const auto& ks = model_.basis.harmonics();
+  const Eigen::Index entries = pattern_mass_.size();
   for (size_t h = 0; h < ks.size(); ++h) {
-    const int k = ks[h], w = harmonicWidth(k), o = model_.basis.offset(static_cast<int>(h));
-    const Eigen::MatrixXd a = model_.structure.harmonicOperator(k, omega);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        for (int ri = 0; ri < w; ++ri)
-          for (int cj = 0; cj < w; ++cj)
-            linear_operator_(i * nb_ + o + ri, j * nb_ + o + cj) = a(ri * n + i, cj * n + j);
+    const int k = ks[h], w = harmonicWidth(k);
+    const double kw = k * omega;
+    for (Eigen::Index q = 0; q < entries; ++q) {
+      const double diagonal = pattern_stiffness_[q] - kw * kw * pattern_mass_[q];
+      const double coupling = kw * pattern_damping_[q];
+      for (int ri = 0; ri < w; ++ri)
+        for (int cj = 0; cj < w; ++cj) {
+          const double value = ri == cj ? diagonal : (ri == 0 ? coupling : -coupling);
+          a[operator_slot_[e]] = value;
+          constant_values_[jacobian_slot_[e]] = value;
+          ++e;
+        }
+    }
   }
 }
 
@@ -65,18 +174,30 @@ bool FullSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z,
 bool FullSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                                      Eigen::Ref<Eigen::VectorXd> g,
                                      Eigen::Ref<Eigen::MatrixXd> jacobian) {
-  return evaluate(z, g, &jacobian);
+  const bool ok = evaluate(z, g, values_.data());
+  // Small systems: the sparse values scattered into the dense matrix.
+  jacobian.setZero();
+  for (int j = 0; j < size_; ++j)
+    for (int p = pattern_.outerIndexPtr()[j]; p < pattern_.outerIndexPtr()[j + 1]; ++p)
+      jacobian(pattern_.innerIndexPtr()[p], j) = values_[p];
+  return ok;
+}
+
+bool FullSystem::residualAndSparseJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                           Eigen::Ref<Eigen::VectorXd> g,
+                                           SparseMatrix& jacobian) {
+  if (jacobian.rows() != size_ || jacobian.cols() != size_ ||
+      jacobian.nonZeros() != pattern_.nonZeros() || !jacobian.isCompressed())
+    throw std::invalid_argument("residualAndSparseJacobian: the matrix lacks the Jacobian pattern");
+  return evaluate(z, g, jacobian.valuePtr());
 }
 
 bool FullSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z,
-                          Eigen::Ref<Eigen::VectorXd> g, Eigen::Ref<Eigen::MatrixXd>* jacobian) {
+                          Eigen::Ref<Eigen::VectorXd> g, double* values) {
   // Dynamics: A x − f − Σ sign_l λ_l on the law DOFs.
   g.head(dynamic_rows_).noalias() = linear_operator_ * z.head(dynamic_rows_);
   g.head(dynamic_rows_) -= forcing_;
-  if (jacobian) {
-    jacobian->setZero();
-    jacobian->topLeftCorner(dynamic_rows_, dynamic_rows_) = linear_operator_;
-  }
+  if (values) std::copy(constant_values_.data(), constant_values_.data() + constant_values_.size(), values);
   for (int l = 0; l < laws_.lawCount(); ++l) {
     const AttachedLaw& attached = laws_.law(l);
     const int d = laws_.dimension(l);
@@ -87,19 +208,21 @@ bool FullSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z,
       laws_.displacement(l).col(a) = z.segment(dof * nb_, nb_);
       laws_.force(l).col(a) = z.segment(lambda, nb_);
       g.segment(dof * nb_, nb_) -= sign * z.segment(lambda, nb_);
-      if (jacobian)
-        jacobian->block(dof * nb_, lambda, nb_, nb_).diagonal().array() -= sign;
     }
-    if (!laws_.evaluate(l, model_.omega, jacobian != nullptr)) return false;
+    if (!laws_.evaluate(l, model_.omega, values != nullptr)) return false;
     for (int a = 0; a < d; ++a) {
       const int row = dynamic_rows_ + model_.componentIndex(l, a) * nb_;
       g.segment(row, nb_) = laws_.residual(l).col(a);
-      if (!jacobian) continue;
+      if (!values) continue;
       for (int b = 0; b < d; ++b) {
-        const int dof = attached.dofs[b];
-        const int lambda = dynamic_rows_ + model_.componentIndex(l, b) * nb_;
-        jacobian->block(row, dof * nb_, nb_, nb_) += laws_.displacementBlock(l, a, b);
-        jacobian->block(row, lambda, nb_, nb_) += laws_.forceBlock(l, a, b);
+        const double* displacement = laws_.displacementBlock(l, a, b).data();
+        const double* force = laws_.forceBlock(l, a, b).data();
+        const std::vector<int>& ds = displacement_slots_[l][a * d + b];
+        const std::vector<int>& fs = force_slots_[l][a * d + b];
+        for (int e = 0; e < nb_ * nb_; ++e) {
+          values[ds[e]] += displacement[e];
+          values[fs[e]] += force[e];
+        }
       }
     }
   }
@@ -108,11 +231,24 @@ bool FullSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z,
 
 // ----------------------------------------------------------- condensed system
 
-CondensedSystem::CondensedSystem(HbModel model) : HbSystem(std::move(model)) {
+namespace {
+bool sparseCondensation(const HbModel& model, LinearAlgebra algebra) {
+  if (algebra == LinearAlgebra::kAuto)
+    return model.structure.dofs() >= kSparseCondensationFromDofs;
+  return algebra == LinearAlgebra::kSparse;
+}
+}  // namespace
+
+CondensedSystem::CondensedSystem(HbModel model, LinearAlgebra algebra)
+    : HbSystem(std::move(model)),
+      factors_(model_.structure, model_.basis, sparseCondensation(model_, algebra)) {
   components_ = model_.lawComponents();
   size_ = components_ * nb_;
   for (const auto& attached : model_.laws)
-    for (int dof : attached.dofs) component_dof_.push_back(dof);
+    for (int a = 0; a < attached.law->dimension(); ++a) {
+      component_dof_.push_back(attached.dofs[a]);
+      component_sign_.push_back(attached.law->forceSign());
+    }
   coupling_.assign(components_,
                    std::vector<Eigen::MatrixXd>(components_, Eigen::MatrixXd::Zero(nb_, 2)));
   offset_.assign(components_, Eigen::VectorXd::Zero(nb_));
@@ -122,38 +258,29 @@ CondensedSystem::CondensedSystem(HbModel model) : HbSystem(std::move(model)) {
 void CondensedSystem::setOmega(double omega) {
   if (!(omega > 0.0) || !std::isfinite(omega))
     throwInputError("omega", formatNumber(omega), "must be finite and > 0");
+  try {
+    factors_.factorize(model_.structure, omega);
+  } catch (...) {
+    // Keep the system usable at the previous ω.
+    if (factored_) factors_.factorize(model_.structure, model_.omega);
+    throw;
+  }
+  factored_ = true;
+  model_.omega = omega;
   const int n = model_.structure.dofs();
   const Eigen::VectorXd f = forcingCoefficients(model_);
-  std::vector<double> component_sign;
-  for (const auto& attached : model_.laws)
-    for (int a = 0; a < attached.law->dimension(); ++a)
-      component_sign.push_back(attached.law->forceSign());
-
-  std::vector<Eigen::MatrixXd> maps;
   const auto& ks = model_.basis.harmonics();
   for (size_t h = 0; h < ks.size(); ++h) {
     const int k = ks[h], w = harmonicWidth(k), o = model_.basis.offset(static_cast<int>(h));
-    const int s = w * n;
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(s, 1 + components_ * w);
+    // A_k⁻¹ [f_k | W_k]; only its rows at the law DOFs are kept.
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(w * n, 1 + components_ * w);
     for (int i = 0; i < n; ++i)
       for (int r = 0; r < w; ++r) rhs(r * n + i, 0) = f[i * nb_ + o + r];
     for (int c = 0; c < components_; ++c)
-      for (int r = 0; r < w; ++r) rhs(r * n + component_dof_[c], 1 + c * w + r) = component_sign[c];
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(model_.structure.harmonicOperator(k, omega));
-    if (!(lu.rcond() > 1e-13))
-      throw std::runtime_error("condensation impossible: the dynamic stiffness of harmonic " +
-                               std::to_string(k) + " is singular at omega = " +
-                               formatNumber(omega) + " (rcond " + formatNumber(lu.rcond()) +
-                               "); use the full system");
-    maps.push_back(lu.solve(rhs));
-  }
-  model_.omega = omega;
-  harmonic_maps_ = std::move(maps);
-  for (int q = 0; q < components_; ++q) {
-    const int dof = component_dof_[q];
-    for (size_t h = 0; h < ks.size(); ++h) {
-      const int w = harmonicWidth(ks[h]), o = model_.basis.offset(static_cast<int>(h));
-      const Eigen::MatrixXd& map = harmonic_maps_[h];
+      for (int r = 0; r < w; ++r) rhs(r * n + component_dof_[c], 1 + c * w + r) = component_sign_[c];
+    const Eigen::MatrixXd map = factors_.solve(static_cast<int>(h), rhs);
+    for (int q = 0; q < components_; ++q) {
+      const int dof = component_dof_[q];
       for (int r = 0; r < w; ++r) {
         offset_[q][o + r] = map(r * n + dof, 0);
         for (int c = 0; c < components_; ++c)
@@ -222,16 +349,20 @@ bool CondensedSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z,
 Eigen::VectorXd CondensedSystem::fullCoefficients(const Eigen::VectorXd& z) const {
   const int n = model_.structure.dofs();
   Eigen::VectorXd full = Eigen::VectorXd::Zero((n + components_) * nb_);
+  const Eigen::VectorXd f = forcingCoefficients(model_);
   const auto& ks = model_.basis.harmonics();
   for (size_t h = 0; h < ks.size(); ++h) {
     const int w = harmonicWidth(ks[h]), o = model_.basis.offset(static_cast<int>(h));
-    Eigen::VectorXd coeffs(1 + components_ * w);
-    coeffs[0] = 1.0;
-    for (int c = 0; c < components_; ++c)
-      for (int j = 0; j < w; ++j) coeffs[1 + c * w + j] = z[c * nb_ + o + j];
-    const Eigen::VectorXd x = harmonic_maps_[h] * coeffs;
+    // x_k = A_k⁻¹ (f_k + W_k λ_k) at every DOF.
+    Eigen::MatrixXd rhs(w * n, 1);
     for (int i = 0; i < n; ++i)
-      for (int r = 0; r < w; ++r) full[i * nb_ + o + r] = x[r * n + i];
+      for (int r = 0; r < w; ++r) rhs(r * n + i, 0) = f[i * nb_ + o + r];
+    for (int c = 0; c < components_; ++c)
+      for (int r = 0; r < w; ++r)
+        rhs(r * n + component_dof_[c], 0) += component_sign_[c] * z[c * nb_ + o + r];
+    const Eigen::MatrixXd x = factors_.solve(static_cast<int>(h), rhs);
+    for (int i = 0; i < n; ++i)
+      for (int r = 0; r < w; ++r) full[i * nb_ + o + r] = x(r * n + i, 0);
   }
   full.tail(components_ * nb_) = z;
   return full;
@@ -241,8 +372,9 @@ Eigen::VectorXd CondensedSystem::fromFullCoefficients(const Eigen::VectorXd& ful
   return full.tail(components_ * nb_);
 }
 
-std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed) {
-  if (condensed) return std::make_unique<CondensedSystem>(model);
+std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed,
+                                       LinearAlgebra algebra) {
+  if (condensed) return std::make_unique<CondensedSystem>(model, algebra);
   return std::make_unique<FullSystem>(model);
 }
 

@@ -6,13 +6,16 @@
 //
 // CondensedSystem: z = [λ_1 .. λ_L]; the dynamics are solved exactly per
 // harmonic, x = B λ + c, and only the projected laws remain. Far smaller;
-// requires every A_k to be regular at the current ω.
+// requires every A_k to be regular at the current ω. Only the receptance
+// at the law DOFs (the rows of B and c there) is kept; the other DOFs are
+// recovered from the factors of A_k when asked for.
 #pragma once
 
 #include <Eigen/Dense>
 #include <memory>
 #include <vector>
 
+#include "eqhb/harmonic_balance/dynamic_stiffness_factors.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/harmonic_balance/law_assembly.h"
 #include "eqhb/solvers/square_system.h"
@@ -54,6 +57,13 @@ class FullSystem : public HbSystem {
   bool residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                            Eigen::Ref<Eigen::VectorXd> g,
                            Eigen::Ref<Eigen::MatrixXd> jacobian) override;
+  // The Jacobian assembled sparse (pattern fixed here, at construction):
+  // per harmonic the blocks of A_k on the pattern of M, C and K, −W on the
+  // law DOFs, and the nb x nb law blocks on the law rows only.
+  bool nativeSparseJacobian() const override { return true; }
+  const SparseMatrix& jacobianPattern() override { return pattern_; }
+  bool residualAndSparseJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                 Eigen::Ref<Eigen::VectorXd> g, SparseMatrix& jacobian) override;
   void setOmega(double omega) override;
   Eigen::VectorXd fullCoefficients(const Eigen::VectorXd& z) const override { return z; }
   Eigen::VectorXd fromFullCoefficients(const Eigen::VectorXd& full) const override {
@@ -62,19 +72,35 @@ class FullSystem : public HbSystem {
   bool condensed() const override { return false; }
 
  private:
+  // Residual into g; with `values`, the Jacobian's values in the order of
+  // pattern_'s storage.
   bool evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,
-                Eigen::Ref<Eigen::MatrixXd>* jacobian);
+                double* values);
+  void buildPattern();
   int size_;
   int dynamic_rows_;
-  Eigen::MatrixXd linear_operator_;  // A, (n nb) x (n nb), block per DOF pair
+  SparseMatrix linear_operator_;  // A, (n nb) x (n nb): blocks of A_k per DOF pair
   Eigen::VectorXd forcing_;
+  SparseMatrix pattern_;          // the Jacobian's structure
+  // Values of M, C, K on the union pattern P, in P's storage order.
+  Eigen::VectorXd pattern_mass_, pattern_damping_, pattern_stiffness_;
+  // Per entry of A (loop order of setOmega): its index in linear_operator_
+  // and in pattern_'s values.
+  std::vector<int> operator_slot_, jacobian_slot_;
+  Eigen::VectorXd constant_values_;  // the Jacobian without the law blocks
+  Eigen::VectorXd values_;           // scratch for the dense Jacobian
+  // Per law l, per (a, b): the nb x nb slots (column-major) of ∂Ψ_a/∂x_b
+  // and ∂Ψ_a/∂λ_b in pattern_'s values.
+  std::vector<std::vector<std::vector<int>>> displacement_slots_, force_slots_;
 };
 
 class CondensedSystem : public HbSystem {
  public:
   // Throws InputError if the model is invalid, std::runtime_error if some
   // A_k is singular at the model's ω.
-  explicit CondensedSystem(HbModel model);
+  // algebra: how A_k is factored (kAuto: sparse from
+  // kSparseCondensationFromDofs DOFs up).
+  explicit CondensedSystem(HbModel model, LinearAlgebra algebra = LinearAlgebra::kAuto);
   int size() const override { return size_; }
   bool residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                 Eigen::Ref<Eigen::VectorXd> g) override;
@@ -85,6 +111,8 @@ class CondensedSystem : public HbSystem {
   Eigen::VectorXd fullCoefficients(const Eigen::VectorXd& z) const override;
   Eigen::VectorXd fromFullCoefficients(const Eigen::VectorXd& full) const override;
   bool condensed() const override { return true; }
+  // The factorisations of A_k: dense or sparse, set-up time, memory.
+  const DynamicStiffnessFactors& factors() const { return factors_; }
 
  private:
   bool evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,
@@ -92,8 +120,9 @@ class CondensedSystem : public HbSystem {
   int size_;
   int components_;
   std::vector<int> component_dof_;  // DOF of each law component
-  // Per harmonic: A_k^{-1} [f_k | W_k], rows (cos rows, sin rows) x DOF.
-  std::vector<Eigen::MatrixXd> harmonic_maps_;
+  std::vector<double> component_sign_;
+  DynamicStiffnessFactors factors_;
+  bool factored_ = false;
   // coupling_[q][c]: nb x 2, rows of harmonic h hold the w x w block mapping
   // λ_c's coefficients of h to those of x at component q's DOF.
   std::vector<std::vector<Eigen::MatrixXd>> coupling_;
@@ -101,6 +130,9 @@ class CondensedSystem : public HbSystem {
 };
 
 // The condensed or the full system of a model (throws as their constructors).
-std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed);
+// algebra: the condensed system's factorisation (the full system always
+// offers both Jacobians).
+std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed,
+                                       LinearAlgebra algebra = LinearAlgebra::kAuto);
 
 }  // namespace eqhb

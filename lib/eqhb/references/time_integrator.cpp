@@ -45,7 +45,7 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
   const double h = period / steps, theta = options.theta;
 
   // Constant operators of the step.
-  const Eigen::MatrixXd iteration_matrix = s.mass + h * theta * s.damping + h * h * theta * theta * s.stiffness;
+  const Eigen::MatrixXd iteration_matrix = Eigen::MatrixXd(s.mass + h * theta * s.damping + h * h * theta * theta * s.stiffness);
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(iteration_matrix);
   const int laws = static_cast<int>(model.laws.size());
   std::vector<Eigen::MatrixXd> response(laws);  // Y_l = h Ŵ⁻¹ W_l s_l (n x d_l)

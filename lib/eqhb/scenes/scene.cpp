@@ -128,12 +128,17 @@ class TableReader {
 
 // T = tridiag(−1, 2, −1) with the last diagonal entry 1: a chain fixed at
 // DOF 1's left end and free after DOF n (spec §4: k [[2, −1], [−1, 1]]).
-Eigen::MatrixXd chainPattern(int n) {
-  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(n, n);
+SparseMatrix chainPattern(int n) {
+  std::vector<Eigen::Triplet<double>> entries;
   for (int i = 0; i < n; ++i) {
-    t(i, i) = i + 1 < n ? 2.0 : 1.0;
-    if (i + 1 < n) t(i, i + 1) = t(i + 1, i) = -1.0;
+    entries.emplace_back(i, i, i + 1 < n ? 2.0 : 1.0);
+    if (i + 1 < n) {
+      entries.emplace_back(i, i + 1, -1.0);
+      entries.emplace_back(i + 1, i, -1.0);
+    }
   }
+  SparseMatrix t(n, n);
+  t.setFromTriplets(entries.begin(), entries.end());
   return t;
 }
 
@@ -191,16 +196,13 @@ ReadStructure readStructure(TableReader& top, const std::string& source) {
     if (!(m > 0.0)) s.fail("structure.m", formatNumber(m), "mass must be > 0");
     if (k < 0.0) s.fail("structure.k", formatNumber(k), "stiffness must be >= 0");
     if (d < 0.0) s.fail("structure.d", formatNumber(d), "damping must be >= 0");
-    const Eigen::MatrixXd t = chainPattern(n);
-    structure.mass = m * Eigen::MatrixXd::Identity(n, n);
-    structure.stiffness = k * t;
-    structure.damping = d * t;
+    const SparseMatrix t = chainPattern(n);
+    SparseMatrix identity(n, n);
+    identity.setIdentity();
+    structure = LinearStructure(SparseMatrix(m * identity), SparseMatrix(d * t), SparseMatrix(k * t));
   } else if (type == "matrices") {
-    structure.mass = s.matrix("mass");
-    structure.damping = s.matrix("damping");
-    structure.stiffness = s.matrix("stiffness");
-    StructureMatrices matrices{structure.mass.sparseView(), structure.damping.sparseView(),
-                               structure.stiffness.sparseView()};
+    structure = LinearStructure(s.matrix("mass"), s.matrix("damping"), s.matrix("stiffness"));
+    StructureMatrices matrices{structure.mass, structure.damping, structure.stiffness};
     MatrixNames names{"structure.mass", "structure.damping", "structure.stiffness"};
     checkStructureMatrices(matrices, 1e-12, names);
   } else if (type == "matrix-market") {

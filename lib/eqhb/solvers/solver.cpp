@@ -22,6 +22,35 @@ const char* terminationName(Termination termination) {
   return "unknown";
 }
 
+const char* linearAlgebraName(LinearAlgebra algebra) {
+  switch (algebra) {
+    case LinearAlgebra::kAuto: return "auto";
+    case LinearAlgebra::kDense: return "dense";
+    case LinearAlgebra::kSparse: return "sparse";
+  }
+  return "unknown";
+}
+
+bool useSparseAlgebra(SquareSystem& system, const SolverOptions& options) {
+  if (options.linear_algebra == LinearAlgebra::kSparse) return true;
+  if (options.linear_algebra == LinearAlgebra::kDense) return false;
+  return system.nativeSparseJacobian() && system.size() >= kSparseFromUnknowns;
+}
+
+bool denseBackendAccepts(const std::string& backend, int unknowns, int most_unknowns,
+                         const SolverOptions& options, SolverResult& result) {
+  std::string why;
+  if (options.linear_algebra == LinearAlgebra::kSparse)
+    why = backend + " has no sparse variant (linear algebra \"sparse\" requested)";
+  else if (unknowns > most_unknowns)
+    why = backend + " is dense and refuses " + std::to_string(unknowns) + " unknowns (at most " +
+          std::to_string(most_unknowns) + "); use a backend with a sparse variant (dogleg-newton, ipopt, nlopt-lbfgs)";
+  if (why.empty()) return true;
+  result.termination = Termination::kInvalidOptions;
+  result.native_message = why;
+  return false;
+}
+
 bool SolverOptions::isValid(std::string* why) const {
   auto fail = [why](const std::string& field, const std::string& value, const std::string& rule) {
     if (why) *why = field + " = " + value + ": " + rule;
@@ -76,6 +105,24 @@ bool MonitoredSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd
   bool ok = false;
   try {
     ok = inner_.residualAndJacobian(z, g, jacobian) && g.allFinite() && jacobian.allFinite();
+  } catch (const std::exception& e) {
+    failure_ = e.what();
+  } catch (...) {
+    failure_ = "unknown exception in Jacobian evaluation";
+  }
+  ++jacobian_evaluations_;
+  if (!ok) ++failed_evaluations_;
+  if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
+  return ok;
+}
+
+bool MonitoredSystem::residualAndSparseJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                                Eigen::Ref<Eigen::VectorXd> g,
+                                                SparseMatrix& jacobian) {
+  bool ok = false;
+  try {
+    ok = inner_.residualAndSparseJacobian(z, g, jacobian) && g.allFinite() &&
+         Eigen::Map<const Eigen::VectorXd>(jacobian.valuePtr(), jacobian.nonZeros()).allFinite();
   } catch (const std::exception& e) {
     failure_ = e.what();
   } catch (...) {

@@ -31,6 +31,11 @@ enum class Termination {
 
 const char* terminationName(Termination termination);
 
+// Dense or sparse linear algebra inside a backend (LinearAlgebra): kAuto is
+// sparse when the system assembles its Jacobian sparse and has at least
+// kSparseFromUnknowns unknowns (below that, dense factorisations are faster).
+const char* linearAlgebraName(LinearAlgebra algebra);
+
 struct SolverOptions {
   // Accept z when ‖g(z)‖₂ <= residual_tolerance (absolute). >= 0.
   double residual_tolerance = 1e-10;
@@ -43,6 +48,8 @@ struct SolverOptions {
   // Backend-specific settings, "name" -> "value", passed through unchanged;
   // a backend rejects names it does not know (kInvalidOptions).
   std::map<std::string, std::string> backend;
+  // Dense or sparse path (backends without a sparse variant refuse kSparse).
+  LinearAlgebra linear_algebra = LinearAlgebra::kAuto;
 
   // False with a message naming the field, its value and the rule.
   bool isValid(std::string* why) const;
@@ -75,6 +82,10 @@ class MonitoredSystem : public SquareSystem {
   bool residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                            Eigen::Ref<Eigen::VectorXd> g,
                            Eigen::Ref<Eigen::MatrixXd> jacobian) override;
+  bool nativeSparseJacobian() const override { return inner_.nativeSparseJacobian(); }
+  const SparseMatrix& jacobianPattern() override { return inner_.jacobianPattern(); }
+  bool residualAndSparseJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                 Eigen::Ref<Eigen::VectorXd> g, SparseMatrix& jacobian) override;
 
   int residualEvaluations() const { return residual_evaluations_; }
   int jacobianEvaluations() const { return jacobian_evaluations_; }
@@ -114,6 +125,16 @@ class Solver {
   virtual void run(MonitoredSystem& system, const Eigen::VectorXd& z0,
                    const SolverOptions& options, SolverResult& result) = 0;
 };
+
+// Whether a backend with a sparse variant takes it for this system.
+bool useSparseAlgebra(SquareSystem& system, const SolverOptions& options);
+// Dense backends (n x n matrices, O(n³) factorisations) refuse systems
+// larger than this: each dense matrix would pass 0.5 GB.
+constexpr int kDenseMostUnknowns = 8000;
+// For a backend that is dense only: false, with the reason in result
+// (kInvalidOptions), when the system is too large or sparse was requested.
+bool denseBackendAccepts(const std::string& backend, int unknowns, int most_unknowns,
+                         const SolverOptions& options, SolverResult& result);
 
 // Parses a backend option value; false (with why) if it is not a number.
 bool parseBackendNumber(const std::string& name, const std::string& text, double* value,

@@ -1,10 +1,13 @@
 // The one model interface every solver drives: a square nonlinear system
-// g(z) = 0 with a dense (weak) Jacobian. Evaluations report failure (a
-// non-finite value, a domain error) by returning false, never by throwing.
-// A sparse Jacobian can be added as a further virtual with a dense fallback.
+// g(z) = 0 with a dense (weak) Jacobian and, for large systems, the same
+// Jacobian as a sparse matrix whose pattern is fixed at set-up. Evaluations
+// report failure (a non-finite value, a domain error) by returning false,
+// never by throwing.
 #pragma once
 
 #include <Eigen/Dense>
+
+#include "eqhb/sparse_matrix.h"
 
 namespace eqhb {
 
@@ -19,6 +22,22 @@ class SquareSystem {
   virtual bool residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                                    Eigen::Ref<Eigen::VectorXd> residual,
                                    Eigen::Ref<Eigen::MatrixXd> jacobian) = 0;
+
+  // True when the system assembles its Jacobian sparse without ever forming
+  // a dense size() x size() matrix. Others get the fallback below, which
+  // evaluates densely and copies (every entry in the pattern).
+  virtual bool nativeSparseJacobian() const { return false; }
+  // The Jacobian's pattern (compressed), the same at every z.
+  virtual const SparseMatrix& jacobianPattern();
+  // Residual and Jacobian values at z; `jacobian` must hold the pattern of
+  // jacobianPattern() (a copy of it): only its values are overwritten.
+  virtual bool residualAndSparseJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                         Eigen::Ref<Eigen::VectorXd> residual,
+                                         SparseMatrix& jacobian);
+
+ private:
+  SparseMatrix dense_pattern_;      // fallback: every entry
+  Eigen::MatrixXd dense_jacobian_;  // fallback: scratch
 };
 
 }  // namespace eqhb

@@ -4,10 +4,15 @@
 //
 //     A_k = [ K − (kω)² M     kω C        ]      acting on [a; b].
 //           [ −kω C           K − (kω)² M ]
+//
+// M, C and K are stored sparse (finite-element models have a few entries per
+// row); small structures convert to dense where dense algebra is faster.
 #pragma once
 
 #include <Eigen/Dense>
 #include <vector>
+
+#include "eqhb/sparse_matrix.h"
 
 namespace eqhb {
 
@@ -20,15 +25,30 @@ struct HarmonicLoad {
 };
 
 struct LinearStructure {
-  Eigen::MatrixXd mass, damping, stiffness;  // n x n
+  SparseMatrix mass, damping, stiffness;  // n x n
   std::vector<HarmonicLoad> loads;
+
+  LinearStructure() = default;
+  // From sparse matrices (the usual way for models read from files).
+  LinearStructure(SparseMatrix mass, SparseMatrix damping, SparseMatrix stiffness,
+                  std::vector<HarmonicLoad> loads = {});
+  // From dense matrices (small inline models); exact zeros are dropped.
+  LinearStructure(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
+                  const Eigen::MatrixXd& stiffness, std::vector<HarmonicLoad> loads = {});
 
   int dofs() const { return static_cast<int>(mass.rows()); }
   // Throws InputError naming the matrix and the rule (square, same size,
   // finite, symmetric positive semidefinite mass) or the load.
   void validate() const;
-  // A_k for harmonic k at frequency omega (k = 0: the n x n block K).
+  // The union of the patterns of M, C and K (values 1): where A_k may be
+  // nonzero within one block, for every k and ω.
+  SparseMatrix pattern() const;
+  // A_k for harmonic k at frequency omega (k = 0: the n x n block K), dense.
   Eigen::MatrixXd harmonicOperator(int k, double omega) const;
+  // A_k as a sparse matrix whose pattern is that of pattern() in each block
+  // (explicit zeros kept), the same for every ω: a factorisation's symbolic
+  // analysis made for one ω serves all others.
+  SparseMatrix harmonicOperatorSparse(int k, double omega) const;
 };
 
 }  // namespace eqhb

@@ -114,11 +114,7 @@ void checkStructureMatrices(const StructureMatrices& s, double symmetry_toleranc
 }
 
 LinearStructure toLinearStructure(const StructureMatrices& s) {
-  LinearStructure structure;
-  structure.mass = Eigen::MatrixXd(s.mass);
-  structure.damping = Eigen::MatrixXd(s.damping);
-  structure.stiffness = Eigen::MatrixXd(s.stiffness);
-  return structure;
+  return LinearStructure(s.mass, s.damping, s.stiffness);
 }
 
 }  // namespace eqhb

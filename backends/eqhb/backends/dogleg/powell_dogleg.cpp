@@ -1,5 +1,7 @@
 #include "eqhb/backends/dogleg/powell_dogleg.h"
 
+#include "eqhb/backends/dogleg/sparse_newton_dogleg.h"
+
 #include <cmath>
 #include <limits>
 
@@ -46,11 +48,7 @@ void rotate(X&& x, Y&& y, double c, double s) {
   }
 }
 
-struct Settings {
-  double factor = 100.0;
-  double xtol = 1e-14;
-  bool scale_columns = true;
-};
+using Settings = DoglegSettings;
 
 bool parseSettings(const SolverOptions& options, Settings* settings, std::string* why) {
   for (const auto& [key, text] : options.backend) {
@@ -196,6 +194,12 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     result.native_message = why;
     return;
   }
+  // Large systems: Newton–dogleg on a sparse LU (Broyden updates would fill
+  // the factors; both policies take the weak Jacobian at every iterate there).
+  if (useSparseAlgebra(system, options))
+    return runSparseNewtonDogleg(system, z0, options, settings, result);
+  if (!denseBackendAccepts(name() + " (dense QR)", system.size(), kDenseMostUnknowns, options, result))
+    return;
   const Eigen::Index n = system.size();
   // Every vector of the iteration is made here, once.
   Eigen::VectorXd z = z0, g(n), trial(n), g_trial(n), step(n), model_residual(n), qt_trial(n), u(n), v(n);

@@ -1,6 +1,7 @@
 #include "eqhb/backends/ipopt/ipopt_backend.h"
 
 #include <IpIpoptApplication.hpp>
+#include <algorithm>
 #include <IpTNLP.hpp>
 
 namespace eqhb {
@@ -12,17 +13,35 @@ using Ipopt::Number;
 
 class SystemNlp : public Ipopt::TNLP {
  public:
+  // sparse: Jacobian (and Gauss–Newton Hessian) in the system's sparse
+  // pattern, never as dense n x n matrices.
   SystemNlp(MonitoredSystem& system, const SolverOptions& options, const Eigen::VectorXd& z0,
-            bool least_squares, bool gauss_newton)
+            bool least_squares, bool gauss_newton, bool sparse)
       : system_(system), options_(options), z0_(z0), least_squares_(least_squares),
-        gauss_newton_(gauss_newton), n_(system.size()), z_(n_), g_(n_), j_(n_, n_) {}
+        gauss_newton_(gauss_newton), sparse_(sparse), n_(system.size()), z_(n_), g_(n_) {
+    if (!sparse_) {
+      j_.resize(n_, n_);
+      return;
+    }
+    sparse_j_ = system.jacobianPattern();
+    if (least_squares_ && gauss_newton_) {
+      // Pattern of JᵀJ (lower triangle) from the pattern with unit values:
+      // no cancellation can hide an entry.
+      SparseMatrix ones = sparse_j_;
+      std::fill(ones.valuePtr(), ones.valuePtr() + ones.nonZeros(), 1.0);
+      hessian_pattern_ = SparseMatrix(ones.transpose() * ones).triangularView<Eigen::Lower>();
+      hessian_pattern_.makeCompressed();
+    }
+  }
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
                     IndexStyleEnum& index_style) override {
     n = n_;
     m = least_squares_ ? 0 : n_;
-    nnz_jac_g = least_squares_ ? 0 : n_ * n_;
-    nnz_h_lag = least_squares_ && gauss_newton_ ? n_ * (n_ + 1) / 2 : 0;
+    nnz_jac_g = least_squares_ ? 0 : sparse_ ? static_cast<Index>(sparse_j_.nonZeros()) : n_ * n_;
+    nnz_h_lag = !(least_squares_ && gauss_newton_) ? 0
+                : sparse_ ? static_cast<Index>(hessian_pattern_.nonZeros())
+                          : n_ * (n_ + 1) / 2;
     index_style = C_STYLE;
     return true;
   }
@@ -55,7 +74,8 @@ class SystemNlp : public Ipopt::TNLP {
       return true;
     }
     if (!jacobianAt(x, new_x)) return false;
-    out.noalias() = j_.transpose() * g_;
+    if (sparse_) out.noalias() = sparse_j_.transpose() * g_;
+    else out.noalias() = j_.transpose() * g_;
     return true;
   }
   bool eval_g(Index, const Number* x, bool new_x, Index m, Number* g) override {
@@ -67,6 +87,15 @@ class SystemNlp : public Ipopt::TNLP {
   bool eval_jac_g(Index, const Number* x, bool new_x, Index, Index, Index* rows, Index* cols,
                   Number* values) override {
     if (least_squares_) return true;  // no constraints
+    if (sparse_) {  // the system's pattern, column by column
+      if (values == nullptr) {
+        listEntries(sparse_j_, rows, cols);
+        return true;
+      }
+      if (!jacobianAt(x, new_x)) return false;
+      std::copy(sparse_j_.valuePtr(), sparse_j_.valuePtr() + sparse_j_.nonZeros(), values);
+      return true;
+    }
     if (values == nullptr) {  // dense structure, row by row
       for (Index i = 0, k = 0; i < n_; ++i)
         for (Index c = 0; c < n_; ++c, ++k) {
@@ -82,6 +111,24 @@ class SystemNlp : public Ipopt::TNLP {
   bool eval_h(Index, const Number* x, bool new_x, Number obj_factor, Index, const Number*, bool,
               Index, Index* rows, Index* cols, Number* values) override {
     // Only the least-squares form with Gauss–Newton gets here: obj_factor · JᵀJ.
+    if (sparse_) {
+      if (values == nullptr) {
+        listEntries(hessian_pattern_, rows, cols);
+        return true;
+      }
+      if (!jacobianAt(x, new_x)) return false;
+      const SparseMatrix h = SparseMatrix(sparse_j_.transpose() * sparse_j_).triangularView<Eigen::Lower>();
+      std::fill(values, values + hessian_pattern_.nonZeros(), 0.0);
+      for (int c = 0; c < h.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(h, c); it; ++it) {
+          const int* begin = hessian_pattern_.innerIndexPtr() + hessian_pattern_.outerIndexPtr()[c];
+          const int* end = hessian_pattern_.innerIndexPtr() + hessian_pattern_.outerIndexPtr()[c + 1];
+          const int* slot = std::lower_bound(begin, end, static_cast<int>(it.row()));
+          if (slot != end && *slot == it.row())
+            values[slot - hessian_pattern_.innerIndexPtr()] = obj_factor * it.value();
+        }
+      return true;
+    }
     if (values == nullptr) {
       for (Index i = 0, k = 0; i < n_; ++i)
         for (Index c = 0; c <= i; ++c, ++k) {
@@ -145,20 +192,34 @@ class SystemNlp : public Ipopt::TNLP {
       have_g_ = have_j_ = false;
     }
     if (!have_j_) {
-      if (!system_.residualAndJacobian(z_, g_, j_)) return false;
+      const bool ok = sparse_ ? system_.residualAndSparseJacobian(z_, g_, sparse_j_)
+                              : system_.residualAndJacobian(z_, g_, j_);
+      if (!ok) return false;
       have_g_ = have_j_ = true;
       if (accepted.size() == 0 && g_.norm() <= options_.residual_tolerance) accepted = z_;
     }
     return true;
   }
 
+  // Ipopt's triplet structure of a compressed column-major matrix.
+  static void listEntries(const SparseMatrix& m, Index* rows, Index* cols) {
+    Index k = 0;
+    for (int c = 0; c < m.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(m, c); it; ++it, ++k) {
+        rows[k] = static_cast<Index>(it.row());
+        cols[k] = c;
+      }
+  }
+
   MonitoredSystem& system_;
   const SolverOptions& options_;
   Eigen::VectorXd z0_;
-  bool least_squares_, gauss_newton_;
+  bool least_squares_, gauss_newton_, sparse_;
   Index n_;
   Eigen::VectorXd z_, g_;
-  Eigen::MatrixXd j_;
+  Eigen::MatrixXd j_;          // dense path
+  SparseMatrix sparse_j_;      // sparse path: values in the system's pattern
+  SparseMatrix hessian_pattern_;  // sparse Gauss–Newton: lower triangle of JᵀJ
   bool have_z_ = false, have_g_ = false, have_j_ = false;
   Ipopt::SolverReturn status_ = Ipopt::UNASSIGNED;
   std::vector<double> final_;
@@ -214,8 +275,12 @@ void IpoptBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     }
   }
   const bool least_squares = formulation_ == IpoptFormulation::kLeastSquares;
+  const bool sparse = useSparseAlgebra(system, options);
+  if (!sparse && !denseBackendAccepts(name() + " (dense Jacobian)", system.size(),
+                                      kDenseMostUnknowns, options, result))
+    return;
   Ipopt::SmartPtr<SystemNlp> nlp =
-      new SystemNlp(system, options, z0, least_squares, least_squares && gauss_newton);
+      new SystemNlp(system, options, z0, least_squares, least_squares && gauss_newton, sparse);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->Options()->SetStringValue("sb", "yes");
   app->Options()->SetIntegerValue("print_level", 0);
@@ -234,7 +299,8 @@ void IpoptBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
   app->OptimizeTNLP(nlp);
 
   result.native_code = nlp->status();
-  result.native_message = solverReturnName(nlp->status());
+  result.native_message = std::string(solverReturnName(nlp->status())) +
+                          (sparse ? " (sparse Jacobian, MUMPS)" : "");
   result.termination = ipoptTermination(nlp->status());
   result.iterations = nlp->iterations;
   if (nlp->accepted.size() > 0) {

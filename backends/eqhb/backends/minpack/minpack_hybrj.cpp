@@ -103,6 +103,7 @@ void MinpackHybrj::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     }
   }
   const int n = system.size();
+  if (!denseBackendAccepts(name(), n, kMinpackMostUnknowns, options, result)) return;
   CallbackContext ctx{&system, &options, Eigen::VectorXd(), Eigen::MatrixXd(n, n),
                       Eigen::VectorXd(n)};
   Eigen::VectorXd x = z0, fvec(n), diag = Eigen::VectorXd::Ones(n), qtf(n);

@@ -5,11 +5,15 @@
 //
 // Backend options: factor (> 0, default 100), xtol (>= 0, default 1e-14),
 // mode ("columns": internal column scaling, MINPACK mode 1; "none": unit D).
+// Dense only: refuses systems above kMinpackMostUnknowns and sparse requests.
 #pragma once
 
 #include "eqhb/solvers/solver.h"
 
 namespace eqhb {
+
+// Above this, hybrj's n x n QR per Jacobian takes minutes.
+constexpr int kMinpackMostUnknowns = 3000;
 
 // hybrj's info (and the callback's own negative codes) -> termination.
 Termination minpackTermination(int info);

@@ -11,7 +11,9 @@ struct Context {
   const SolverOptions* options;
   nlopt_opt opt;
   Eigen::VectorXd g;
-  Eigen::MatrixXd j;
+  Eigen::MatrixXd j;       // dense path
+  SparseMatrix sparse_j;   // sparse path: the system's pattern
+  bool sparse = false;
   Termination forced = Termination::kBackendError;
   int calls = 0;
 };
@@ -22,8 +24,9 @@ double objective(unsigned n, const double* x, double* gradient, void* data) noex
   auto& ctx = *static_cast<Context*>(data);
   ++ctx.calls;
   Eigen::Map<const Eigen::VectorXd> z(x, n);
-  const bool ok = gradient ? ctx.system->residualAndJacobian(z, ctx.g, ctx.j)
-                           : ctx.system->residual(z, ctx.g);
+  const bool ok = !gradient     ? ctx.system->residual(z, ctx.g)
+                  : ctx.sparse ? ctx.system->residualAndSparseJacobian(z, ctx.g, ctx.sparse_j)
+                               : ctx.system->residualAndJacobian(z, ctx.g, ctx.j);
   if (!ok) {
     ctx.forced = Termination::kEvaluationFailed;
     nlopt_force_stop(ctx.opt);
@@ -33,7 +36,10 @@ double objective(unsigned n, const double* x, double* gradient, void* data) noex
     ctx.forced = Termination::kTimeLimit;
     nlopt_force_stop(ctx.opt);
   }
-  if (gradient) Eigen::Map<Eigen::VectorXd>(gradient, n).noalias() = ctx.j.transpose() * ctx.g;
+  if (gradient && ctx.sparse)
+    Eigen::Map<Eigen::VectorXd>(gradient, n).noalias() = ctx.sparse_j.transpose() * ctx.g;
+  else if (gradient)
+    Eigen::Map<Eigen::VectorXd>(gradient, n).noalias() = ctx.j.transpose() * ctx.g;
   return 0.5 * ctx.g.squaredNorm();
 }
 
@@ -69,7 +75,7 @@ std::string NloptBackend::description() const {
   switch (method_) {
     case NloptMethod::kLbfgs: return "NLopt LD_LBFGS on min 1/2|g|^2 with gradient J^T g";
     case NloptMethod::kSlsqp: return "NLopt LD_SLSQP on min 1/2|g|^2 with gradient J^T g";
-    case NloptMethod::kNewuoa: return "NLopt LN_NEWUOA (derivative-free) on min 1/2|g|^2, <= 200 unknowns";
+    case NloptMethod::kNewuoa: return "NLopt LN_NEWUOA (derivative-free) on min 1/2|g|^2, dense, <= 200 unknowns";
   }
   return "";
 }
@@ -88,11 +94,18 @@ void NloptBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
                             "\" (known: initial_step > 0 for nlopt-newuoa)";
     return;
   }
-  if (method_ == NloptMethod::kNewuoa && n > 200) {
-    result.termination = Termination::kInvalidOptions;
-    result.native_message = "nlopt-newuoa is for small systems: " + std::to_string(n) + " unknowns > 200";
+  // NEWUOA (quadratic models in n unknowns) and SLSQP (dense BFGS matrix
+  // and QP) are dense; L-BFGS needs only Jᵀ g, sparse for large systems.
+  if (method_ == NloptMethod::kNewuoa &&
+      !denseBackendAccepts(name(), n, kNewuoaMostUnknowns, options, result))
     return;
-  }
+  if (method_ == NloptMethod::kSlsqp &&
+      !denseBackendAccepts(name(), n, kSlsqpMostUnknowns, options, result))
+    return;
+  const bool sparse = method_ == NloptMethod::kLbfgs && useSparseAlgebra(system, options);
+  if (method_ == NloptMethod::kLbfgs && !sparse &&
+      !denseBackendAccepts(name() + " (dense Jacobian)", n, kDenseMostUnknowns, options, result))
+    return;
   const nlopt_algorithm algorithm = method_ == NloptMethod::kLbfgs   ? NLOPT_LD_LBFGS
                                     : method_ == NloptMethod::kSlsqp ? NLOPT_LD_SLSQP
                                                                      : NLOPT_LN_NEWUOA;
@@ -102,7 +115,12 @@ void NloptBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     result.native_message = "nlopt_create failed";
     return;
   }
-  Context ctx{&system, &options, opt, Eigen::VectorXd(n), Eigen::MatrixXd(n, n)};
+  Context ctx{&system, &options, opt, Eigen::VectorXd(n),
+              sparse || method_ == NloptMethod::kNewuoa ? Eigen::MatrixXd() : Eigen::MatrixXd(n, n)};
+  if (sparse) {
+    ctx.sparse = true;
+    ctx.sparse_j = system.jacobianPattern();
+  }
   nlopt_set_min_objective(opt, objective, &ctx);
   nlopt_set_stopval(opt, 0.5 * options.residual_tolerance * options.residual_tolerance);
   nlopt_set_maxeval(opt, options.max_evaluations);
@@ -116,7 +134,8 @@ void NloptBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
   const nlopt_result status = nlopt_optimize(opt, z.data(), &f);
   nlopt_destroy(opt);
   result.native_code = static_cast<int>(status);
-  result.native_message = nlopt_result_to_string(status);
+  result.native_message = std::string(nlopt_result_to_string(status)) +
+                          (sparse ? " (sparse Jacobian)" : "");
   result.termination = nloptTermination(status);
   if (status == NLOPT_FORCED_STOP) result.termination = ctx.forced;
   result.iterations = ctx.calls;

@@ -4,6 +4,8 @@
 // NLopt's stopval ½ tol²; max_evaluations is maxeval (objective calls);
 // NLopt does not expose iterations, so iterations = objective calls.
 // Backend option: initial_step > 0 (derivative-free only, default 1).
+// LD_LBFGS takes the sparse Jacobian for large systems (Jᵀg only); SLSQP
+// and NEWUOA are dense and refuse systems above their limits below.
 #pragma once
 
 #include "eqhb/solvers/solver.h"
@@ -11,6 +13,9 @@
 namespace eqhb {
 
 enum class NloptMethod { kLbfgs, kSlsqp, kNewuoa };
+
+constexpr int kNewuoaMostUnknowns = 200;   // O(n²) model, O(n⁴) work per cycle
+constexpr int kSlsqpMostUnknowns = 2000;   // dense n x n BFGS matrix and QP
 
 // nlopt_result (as int) -> termination.
 Termination nloptTermination(int code);
