@@ -116,9 +116,9 @@ TEST_F(MatrixMarketFiles, SceneReadsPathsRelativeToTheSceneFileAndBuildsRayleigh
   const auto path = write("s.toml", scene("mass = \"m.mtx\"\nstiffness = \"k.mtx\"\nrayleigh = [0.1, 0.02]"));
   const Scene s = loadScene(path);
   ASSERT_EQ(s.model.structure.dofs(), 3);
-  EXPECT_DOUBLE_EQ(s.model.structure.mass(2, 2), 3.0);
-  EXPECT_DOUBLE_EQ(s.model.structure.damping(1, 1), 0.1 * 2 + 0.02 * 2);
-  EXPECT_DOUBLE_EQ(s.model.structure.damping(0, 1), 0.02 * -1);
+  EXPECT_DOUBLE_EQ(s.model.structure.mass.coeff(2, 2), 3.0);
+  EXPECT_DOUBLE_EQ(s.model.structure.damping.coeff(1, 1), 0.1 * 2 + 0.02 * 2);
+  EXPECT_DOUBLE_EQ(s.model.structure.damping.coeff(0, 1), 0.02 * -1);
 }
 
 TEST_F(MatrixMarketFiles, ModalDampingGivesEveryModeTheRatio) {

@@ -23,9 +23,8 @@ using orbits::shootPeriodicOrbit;
 // m ẍ + k x + F sgn(ẋ) = P cos ωt with m = k = P = 1 (no damping).
 HbModel denHartog(double omega, double friction) {
   HbModel model;
-  model.structure.mass = Eigen::MatrixXd::Identity(1, 1);
-  model.structure.stiffness = Eigen::MatrixXd::Identity(1, 1);
-  model.structure.damping = Eigen::MatrixXd::Zero(1, 1);
+  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
+                                    Eigen::MatrixXd::Identity(1, 1));
   model.structure.loads.push_back({0, 1, 1.0, 0.0});
   model.laws.push_back({{0}, std::make_shared<Coulomb1D>(friction, CoulombForm::kMinMax)});
   model.basis = HarmonicSet(HarmonicKind::kOdd, 5);
@@ -95,8 +94,8 @@ TEST(Shooting, LinearOrbitIsTheExactResponseAndMultipliersAreExpLambdaT) {
     // Multipliers exp(λ_i T), λ_i the eigenvalues of the first-order system.
     Eigen::MatrixXd state = Eigen::MatrixXd::Zero(4, 4);
     state.topRightCorner(2, 2).setIdentity();
-    state.bottomLeftCorner(2, 2) = -model.structure.stiffness;
-    state.bottomRightCorner(2, 2) = -model.structure.damping;
+    state.bottomLeftCorner(2, 2) = -Eigen::MatrixXd(model.structure.stiffness);
+    state.bottomRightCorner(2, 2) = -Eigen::MatrixXd(model.structure.damping);
     Eigen::VectorXcd expected = (state.eigenvalues() * flow.period()).array().exp();
     std::sort(expected.data(), expected.data() + 4, [](auto p, auto q) { return std::abs(p) > std::abs(q); });
     for (int k = 0; k < 4; ++k) {

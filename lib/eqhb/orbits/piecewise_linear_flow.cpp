@@ -71,7 +71,7 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
   n_ = s.dofs();
   omega_ = model.omega;
   // Massless DOFs would make the phases differential-algebraic.
-  const Eigen::LLT<Eigen::MatrixXd> mass_factor(s.mass);
+  const Eigen::LLT<Eigen::MatrixXd> mass_factor{Eigen::MatrixXd(s.mass)};
   if (mass_factor.info() != Eigen::Success || mass_factor.matrixL().toDenseMatrix().diagonal().minCoeff() <= 0.0)
     throwInputError("structure.mass", "singular", "exact orbits need a positive definite mass (no massless DOFs)");
   mass_inverse_ = mass_factor.solve(Eigen::MatrixXd::Identity(n_, n_));

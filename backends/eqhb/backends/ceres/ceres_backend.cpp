@@ -88,6 +88,8 @@ std::string CeresBackend::description() const {
 
 void CeresBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
                        const SolverOptions& options, SolverResult& result) {
+  // One parameter block of size n: Ceres sees a dense n x n Jacobian block.
+  if (!denseBackendAccepts(name(), system.size(), kDenseMostUnknowns, options, result)) return;
   ceres::Solver::Options o;
   o.linear_solver_type = ceres::DENSE_QR;
   for (const auto& [key, text] : options.backend) {

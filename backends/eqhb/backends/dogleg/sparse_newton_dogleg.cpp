@@ -16,7 +16,7 @@ void runSparseNewtonDogleg(MonitoredSystem& system, const Eigen::VectorXd& z0,
   const Eigen::Index n = system.size();
   SparseMatrix jacobian = system.jacobianPattern();
   Eigen::UmfPackLU<SparseMatrix> lu;
-  lu.analyzePattern(jacobian);  // once: the pattern never changes
+  bool analyzed = false;  // the symbolic analysis: once, on the first Jacobian's values
   Eigen::VectorXd z = z0, g(n), trial(n), g_trial(n), step(n), model_residual(n);
   Eigen::VectorXd newton(n), scaled_newton(n), gradient(n), direction(n), image(n), cauchy(n),
       difference(n);
@@ -58,6 +58,10 @@ void runSparseNewtonDogleg(MonitoredSystem& system, const Eigen::VectorXd& z0,
       radius = z_norm > 0.0 ? settings.factor * z_norm : settings.factor;
     }
     // Gauss–Newton step; a singular J leaves only the gradient direction.
+    if (!analyzed) {
+      lu.analyzePattern(jacobian);
+      analyzed = true;
+    }
     lu.factorize(jacobian);
     bool have_newton = lu.info() == Eigen::Success;
     if (have_newton) {
