@@ -325,9 +325,9 @@ PYBIND11_MODULE(_eqhb, m) {
                                if (!p.scene.sweep_from) return py::none();
                                return py::make_tuple(*p.scene.sweep_from, *p.scene.sweep_to);
                              })
-      .def_property_readonly("mass", [](const PyModel& p) { return p.scene.model.structure.mass; })
-      .def_property_readonly("damping", [](const PyModel& p) { return p.scene.model.structure.damping; })
-      .def_property_readonly("stiffness", [](const PyModel& p) { return p.scene.model.structure.stiffness; })
+      .def_property_readonly("mass", [](const PyModel& p) { return Eigen::MatrixXd(p.scene.model.structure.mass); })
+      .def_property_readonly("damping", [](const PyModel& p) { return Eigen::MatrixXd(p.scene.model.structure.damping); })
+      .def_property_readonly("stiffness", [](const PyModel& p) { return Eigen::MatrixXd(p.scene.model.structure.stiffness); })
       .def_property_readonly("laws", [](const PyModel& p) { return lawList(p.scene.model); })
       .def("__repr__", [](const PyModel& p) {
         const HbModel& model = p.scene.model;
