@@ -106,10 +106,9 @@ TEST_P(JointTest, AssembledJacobiansMatchFiniteDifferences) {
   for (bool condensed : {false, true}) {
     HbModel model;
     const int n = 3;
-    model.structure.mass = Eigen::MatrixXd::Identity(n, n);
-    model.structure.stiffness = 2.0 * Eigen::MatrixXd::Identity(n, n);
-    model.structure.stiffness(0, 1) = model.structure.stiffness(1, 0) = -1.0;
-    model.structure.damping = 0.05 * model.structure.stiffness;
+    Eigen::MatrixXd k = 2.0 * Eigen::MatrixXd::Identity(n, n);
+    k(0, 1) = k(1, 0) = -1.0;
+    model.structure = LinearStructure(Eigen::MatrixXd::Identity(n, n), 0.05 * k, k);
     model.structure.loads.push_back({0, 1, 2.0, 0.5});
     const int d = law->dimension();
     std::vector<int> dofs;

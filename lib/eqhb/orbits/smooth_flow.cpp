@@ -43,7 +43,7 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
   const LinearStructure& s = model.structure;
   n_ = s.dofs();
   omega_ = model.omega;
-  const Eigen::LLT<Eigen::MatrixXd> mass_factor(s.mass);
+  const Eigen::LLT<Eigen::MatrixXd> mass_factor{Eigen::MatrixXd(s.mass)};
   if (mass_factor.info() != Eigen::Success || mass_factor.matrixL().toDenseMatrix().diagonal().minCoeff() <= 0.0)
     throwInputError("structure.mass", "singular", "exact orbits need a positive definite mass (no massless DOFs)");
   mass_inverse_ = mass_factor.solve(Eigen::MatrixXd::Identity(n_, n_));
