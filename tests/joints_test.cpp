@@ -139,11 +139,11 @@ INSTANTIATE_TEST_SUITE_P(AllJoints, JointTest, ::testing::ValuesIn(allJoints()),
 HbModel withBlockedNormal(const HbModel& coulomb, double mu, FrictionForm form) {
   HbModel model = coulomb;
   const int n = coulomb.structure.dofs();
-  auto grow = [n](const Eigen::MatrixXd& m, double diagonal) {
+  auto grow = [n](const SparseMatrix& m, double diagonal) {
     Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n + 1, n + 1);
-    out.topLeftCorner(n, n) = m;
+    out.topLeftCorner(n, n) = Eigen::MatrixXd(m);
     out(n, n) = diagonal;
-    return out;
+    return SparseMatrix(out.sparseView());
   };
   model.structure.mass = grow(coulomb.structure.mass, 1.0);
   model.structure.stiffness = grow(coulomb.structure.stiffness, 1.0);
