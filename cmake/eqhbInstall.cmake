@@ -40,7 +40,7 @@ install(FILES ${PROJECT_BINARY_DIR}/eqhbConfig.cmake ${PROJECT_BINARY_DIR}/eqhbC
 # they are public requirements then; shared libraries keep them private.
 set(EQHB_PC_LIBS "-leqhb_solvers")
 set(EQHB_PC_REQUIRES_DEPS "fftw3")
-set(EQHB_PC_LIBS_DEPS "")
+set(EQHB_PC_LIBS_DEPS " -lumfpack -lamd -lsuitesparseconfig")  # SuiteSparse has no .pc file on Debian 12
 foreach(backend ${EQHB_BACKENDS})
   string(APPEND EQHB_PC_LIBS " -leqhb_${backend}")
   if(backend STREQUAL "ceres")
