@@ -37,7 +37,13 @@ int main(int argc, char** argv) {
   eqhb::cli::SolveArguments study_hb;
   eqhb::cli::StudyArguments study;
   eqhb::cli::addStudyCommand(app, study_hb, study);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end parsing with code 0; any other parse error is bad input,
+    // which exits 2 like every other input error (CLI11's own codes are 100+).
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   try {
     if (solvers->parsed()) {
       for (const auto& entry : eqhb::registeredSolvers())

@@ -13,3 +13,11 @@ add_test(NAME cli.contact_needs_the_constant_term
 # The contact scene converges from a cold start on its own defaults.
 add_test(NAME cli.contact_defaults_converge
          COMMAND ${EXPECT_EXIT} 0 "dogleg: converged" ${EQHB_CLI} solve ${CONTACT})
+
+# Command-line parse errors are bad input: exit 2 with CLI11's message; --help exits 0.
+add_test(NAME cli.unknown_option COMMAND ${EXPECT_EXIT} 2 "not expected: --nope"
+         ${EQHB_CLI} solve ${SCENE} --nope)
+add_test(NAME cli.unconvertible_value COMMAND ${EXPECT_EXIT} 2 "Could not convert: --omega = abc"
+         ${EQHB_CLI} solve ${SCENE} --omega abc)
+add_test(NAME cli.no_subcommand COMMAND ${EXPECT_EXIT} 2 "subcommand is required" ${EQHB_CLI})
+add_test(NAME cli.help_exits_0 COMMAND ${EXPECT_EXIT} 0 "solve" ${EQHB_CLI} --help)
