@@ -1,4 +1,5 @@
 #include "eqhb/backends/dogleg/sparse_newton_dogleg.h"
+#include "eqhb/backends/dogleg/trust_radius.h"
 
 #include <Eigen/UmfPackSupport>
 #include <cmath>
@@ -123,14 +124,7 @@ void runSparseNewtonDogleg(MonitoredSystem& system, const Eigen::VectorXd& z0,
       const double predicted = model_norm < g_norm ? 1.0 - std::pow(model_norm / g_norm, 2) : 0.0;
       const double ratio = predicted > 0.0 ? actual / predicted : 0.0;
 
-      if (ratio < 0.1) {
-        consecutive_successes = 0;
-        radius *= 0.5;
-      } else {
-        ++consecutive_successes;
-        if (ratio >= 0.5 || consecutive_successes > 1) radius = std::max(radius, step_norm / 0.5);
-        if (std::abs(ratio - 1.0) <= 0.1) radius = step_norm / 0.5;
-      }
+      dogleg::updateTrustRadius(ratio, step_norm, radius, consecutive_successes);
       const bool accepted = ratio >= 1e-4;
       if (accepted) {
         no_success_yet = false;
