@@ -53,6 +53,15 @@ case "${1:-}" in
     ./build/eqhb study problems/friction-1d.toml --vary forcing[0].cos=10:30:3 --vary law.muN=0.5:50:100 \
       --peak --from 0.3 --to 2.0 --out results/damper | tee results/damper.txt || [ "${PIPESTATUS[0]}" -eq 1 ]
     /usr/bin/python3 bench/damper_chart.py results/damper results/report.md
+    # The same on a blade: five elastic (Jenkins) dampers on a beam, loaded
+    # together, peak of the tip's transverse motion (DOF 119).
+    loads="law[0].muN,law[1].muN,law[2].muN,law[3].muN,law[4].muN"
+    rm -rf results/damper-beam
+    ./build/eqhb study problems/beam-damper-elastic.toml --vary forcing[0].cos=0.5:2:4 --vary "$loads=0.01:4:40" \
+      --peak --dof 119 --from 2.8 --to 8 --coarse-points 100 --out results/damper-beam | tee results/damper-beam.txt \
+      || [ "${PIPESTATUS[0]}" -eq 1 ]
+    /usr/bin/python3 bench/damper_chart.py results/damper-beam results/report.md forcing[0].cos "$loads" 119 \
+      beam-damper-elastic
     ./build/eqhb-convergence --out results $quick | tee results/convergence.txt
     ./build/eqhb-orbits --out results $quick >/dev/null
     ./build/eqhb-micro --benchmark_min_time=0.02 --benchmark_out=results/micro.json \

@@ -3,7 +3,9 @@
 normal load: peak amplitude vs normal load, one curve per forcing level, the
 optimum load of each (the smallest peak), as a chart and a report section.
 
-    damper_chart.py STUDY_DIR REPORT.md [FORCING_PATH LOAD_PATH DOF]
+    damper_chart.py STUDY_DIR REPORT.md [FORCING_PATH LOAD_PATH DOF [SCENE_NAME]]
+
+LOAD_PATH may be the linked form of `--vary A,B,...` (the study's column).
 """
 import csv
 import os
@@ -24,6 +26,7 @@ def main():
     forcing = sys.argv[3] if len(sys.argv) > 3 else "forcing[0].cos"
     load = sys.argv[4] if len(sys.argv) > 4 else "law.muN"
     dof = sys.argv[5] if len(sys.argv) > 5 else "1"
+    name = sys.argv[6] if len(sys.argv) > 6 else "friction-1d"
     with open(os.path.join(folder, "study.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
     curves = defaultdict(list)
@@ -45,21 +48,21 @@ def main():
         ax.plot([best[0]], [best[1]], "k*")
         lines.append(f"| {level:g} | {best[0]:.4g} | {best[1]:.4g} | {best[2]:.4g} | {points[0][1]:.4g} | "
                      f"{points[-1][1]:.4g} |")
-    ax.set_xlabel("normal load μN")
+    ax.set_xlabel("normal load μN" + (" (every damper)" if "," in load else ""))
     ax.set_ylabel(f"peak first-harmonic amplitude of x{dof}")
     ax.set_yscale("log")
-    ax.set_title("Friction damper: resonance peak vs normal load (★ optimum)")
+    ax.set_title(f"{name}: resonance peak vs normal load (★ optimum)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     for ext in ("png", "svg"):
-        fig.savefig(os.path.join(os.path.dirname(report) or ".", f"damper_friction-1d.{ext}"), dpi=120,
+        fig.savefig(os.path.join(os.path.dirname(report) or ".", f"damper_{name}.{ext}"), dpi=120,
                     bbox_inches="tight")
-    section = ["", "## Damper curves (friction-1d)", "",
+    section = ["", f"## Damper curves ({name})", "",
                "Resonance peak (largest maximum over ω of the first-harmonic amplitude of x" + dof +
                ") vs the normal load, per forcing level, by `eqhb study --peak` (peaks followed along the load; "
                f"{len(rows)} samples, {len(failed)} failed). Too little load and the damper slides freely, too much "
                "and it sticks; the optimum lies between.", "", *lines, "",
-               "![damper curves](damper_friction-1d.png)", ""]
+               f"![damper curves](damper_{name}.png)", ""]
     for r in failed:
         section.insert(-2, f"- failed: {forcing} = {r[forcing]}, {load} = {r[load]}: {r['reason']}")
     with open(report, "a") as f:

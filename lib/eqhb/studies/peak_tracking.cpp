@@ -179,6 +179,71 @@ bool refinePeak(BranchProbe& probe, const PeakOptions& options, BranchPoint star
   return false;
 }
 
+// Amplitude at ω from the nearest known point (tangent predictor); false
+// with why.
+bool amplitudeAt(BranchProbe& probe, const BranchPoint& near, double omega, BranchPoint* point, std::string* why) {
+  return probe.solveAt(omega, near.z + (omega - near.omega) * near.dz, point, why);
+}
+
+// φ comes from the weak Jacobian's tangent, which a nonsmooth branch
+// (stick–slip switching along ω) can get wrong, so the secant may stop
+// where φ vanishes but the amplitude still climbs. A peak is accepted only
+// if the amplitude at ω* ± h is not above it. Otherwise the maximum is
+// found from amplitudes alone: steps uphill, doubling, until the amplitude
+// falls, then golden-section search of that bracket (down to 1e-7 ω: the
+// amplitude is flat at a maximum, so its value is then exact to ~1e-14).
+bool confirmPeak(BranchProbe& probe, const PeakOptions& options, double lo, double hi, BranchPoint* peak,
+                 std::string* why) {
+  const double h = std::max(1e-4 * (options.to - options.from), 1e3 * options.omega_tolerance * peak->omega);
+  BranchPoint left, right;
+  const bool has_left = peak->omega - h >= lo, has_right = peak->omega + h <= hi;
+  if (has_left && !amplitudeAt(probe, *peak, peak->omega - h, &left, why)) return false;
+  if (has_right && !amplitudeAt(probe, *peak, peak->omega + h, &right, why)) return false;
+  const double top = peak->amplitude2 * (1.0 + 1e-12);
+  const bool left_higher = has_left && left.amplitude2 > top, right_higher = has_right && right.amplitude2 > top;
+  if (!left_higher && !right_higher) return true;
+
+  // Bracket a < b < c with A(b) >= A(a), A(c), walking uphill from the peak.
+  const double direction = (right_higher && (!left_higher || right.amplitude2 >= left.amplitude2)) ? 1.0 : -1.0;
+  BranchPoint a = *peak, b = direction > 0 ? right : left, c;
+  double step = h;
+  for (int k = 0;; ++k) {
+    if (k >= options.max_secant_steps) {
+      *why = "amplitude still rising at omega = " + formatNumber(b.omega) + " after " +
+             std::to_string(options.max_secant_steps) + " uphill steps";
+      return false;
+    }
+    step = std::min(2.0 * step, 0.1 * (options.to - options.from));
+    const double next = std::clamp(b.omega + direction * step, lo, hi);
+    if (next == b.omega) {
+      *why = "the peak lies outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "] (amplitude still rising at omega = " +
+             formatNumber(b.omega) + ")";
+      return false;
+    }
+    if (!amplitudeAt(probe, b, next, &c, why)) return false;
+    if (c.amplitude2 <= b.amplitude2) break;
+    a = std::move(b);
+    b = std::move(c);
+  }
+  if (a.omega > c.omega) std::swap(a, c);
+  // Golden section on [a, c] keeping the best interior point b.
+  const double ratio = 0.5 * (3.0 - std::sqrt(5.0));
+  while (c.omega - a.omega > 1e-7 * b.omega) {
+    const bool right_part = c.omega - b.omega > b.omega - a.omega;
+    const double x = right_part ? b.omega + ratio * (c.omega - b.omega) : b.omega - ratio * (b.omega - a.omega);
+    BranchPoint trial;
+    if (!amplitudeAt(probe, b, x, &trial, why)) return false;
+    if (trial.amplitude2 > b.amplitude2) {
+      (right_part ? a : c) = std::move(b);
+      b = std::move(trial);
+    } else {
+      (right_part ? c : a) = std::move(trial);
+    }
+  }
+  *peak = std::move(b);
+  return true;
+}
+
 // Peaks closer than `tolerance` in ω are one (two followed resonances that
 // merged, or ripples of a nonsmooth curve): the larger is kept.
 void mergeClosePeaks(std::vector<BranchPoint>* peaks, double tolerance) {
@@ -223,7 +288,8 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
       if (warm->z[k].size() != system->size() || omega < options.from || omega > options.to) continue;
       BranchPoint start, peak;
       if (probe.solveAt(omega, warm->z[k], &start, &why) &&
-          refinePeak(probe, options, start, options.from, options.to, &peak, &why))
+          refinePeak(probe, options, start, options.from, options.to, &peak, &why) &&
+          confirmPeak(probe, options, options.from, options.to, &peak, &why))
         peaks.push_back(std::move(peak));
     }
     mergeClosePeaks(&peaks, merge_tolerance);
@@ -268,7 +334,8 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
       for (int i : maxima) {
         BranchPoint start, peak;
         if (probe.solveAt(curve.points[i].omega, system->fromFullCoefficients(curve.points[i].full), &start, &why) &&
-            refinePeak(probe, options, start, curve.points[i - 1].omega, curve.points[i + 1].omega, &peak, &why))
+            refinePeak(probe, options, start, curve.points[i - 1].omega, curve.points[i + 1].omega, &peak, &why) &&
+            confirmPeak(probe, options, options.from, options.to, &peak, &why))
           peaks.push_back(std::move(peak));
       }
       mergeClosePeaks(&peaks, merge_tolerance);

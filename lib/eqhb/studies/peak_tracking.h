@@ -8,7 +8,10 @@
 // The extended system [g(z, ω); φ(z, ω)] = 0 is solved by nesting: the chosen
 // backend solves g = 0 at fixed ω (started from the tangent predictor), and
 // ω is updated by secant steps on φ, kept inside a bracket once φ has
-// changed sign. A maximum needs φ decreasing through zero.
+// changed sign. A maximum needs φ decreasing through zero, and is confirmed
+// by the amplitude itself at ω ± h: on nonsmooth branches the weak-Jacobian
+// tangent can make φ vanish where the amplitude still climbs; there the
+// maximum is found from amplitudes alone (uphill bracket, golden section).
 //
 // Several resonances may share [from, to], and one may vanish (friction
 // damps it out) while another takes over as the largest. So every local
