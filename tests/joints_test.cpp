@@ -15,6 +15,7 @@
 #include "eqhb/laws/invariants.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"
+#include "law_checks.h"
 #include "test_support.h"
 
 namespace eqhb {
@@ -59,74 +60,11 @@ std::vector<JointCase> allJoints() {
 class JointTest : public ::testing::TestWithParam<JointCase> {};
 
 TEST_P(JointTest, PointwisePartialsMatchFiniteDifferences) {
-  const Law& law = *GetParam().law;
-  const int d = law.dimension();
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-2.0, 2.0);
-  const int n = 400;
-  LawSamples s;
-  s.resize(n, d);
-  for (int i = 0; i < n; ++i)
-    for (int a = 0; a < d; ++a) {
-      s.displacement(i, a) = u(rng);
-      s.velocity(i, a) = u(rng);
-      s.force(i, a) = u(rng);
-      s.force_rate(i, a) = u(rng);
-    }
-  law.evaluate(s, true);
-  const double h = 1e-7;
-  const Eigen::MatrixXd* partials[] = {&s.dpsi_ddisplacement, &s.dpsi_dvelocity, &s.dpsi_dforce,
-                                       &s.dpsi_dforce_rate};
-  const bool used[] = {law.usesDisplacement(), law.usesVelocity(), true, law.usesForceRate()};
-  int checked = 0;
-  for (int q = 0; q < 4; ++q) {
-    if (!used[q]) continue;
-    for (int b = 0; b < d; ++b) {
-      LawSamples plus = s, minus = s;
-      Eigen::MatrixXd* in_plus[] = {&plus.displacement, &plus.velocity, &plus.force, &plus.force_rate};
-      Eigen::MatrixXd* in_minus[] = {&minus.displacement, &minus.velocity, &minus.force, &minus.force_rate};
-      in_plus[q]->col(b).array() += h;
-      in_minus[q]->col(b).array() -= h;
-      law.evaluate(plus, false);
-      law.evaluate(minus, false);
-      for (int a = 0; a < d; ++a)
-        for (int i = 0; i < n; ++i) {
-          const double fd = (plus.psi(i, a) - minus.psi(i, a)) / (2 * h);
-          EXPECT_NEAR((*partials[q])(i, a * d + b), fd, 1e-5 * (1 + std::abs(fd)))
-              << GetParam().label << " q=" << q << " a=" << a << " b=" << b << " sample " << i;
-          ++checked;
-        }
-    }
-  }
-  EXPECT_GT(checked, 0);
+  test::expectPointwisePartialsMatch(*GetParam().law, GetParam().label, 5, 400);
 }
 
 TEST_P(JointTest, AssembledJacobiansMatchFiniteDifferences) {
-  const std::shared_ptr<Law>& law = GetParam().law;
-  for (bool condensed : {false, true}) {
-    HbModel model;
-    const int n = 3;
-    Eigen::MatrixXd k = 2.0 * Eigen::MatrixXd::Identity(n, n);
-    k(0, 1) = k(1, 0) = -1.0;
-    model.structure = LinearStructure(Eigen::MatrixXd::Identity(n, n), 0.05 * k, k);
-    model.structure.loads.push_back({0, 1, 2.0, 0.5});
-    const int d = law->dimension();
-    std::vector<int> dofs;
-    for (int a = 0; a < d; ++a) dofs.push_back(n - d + a);
-    model.laws.push_back({dofs, law});
-    model.basis = HarmonicSet(HarmonicKind::kAll, 3);
-    model.samples = 64;
-    model.omega = 0.8;
-    auto system = makeHbSystem(model, condensed);
-    srand(19);
-    const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system->size());
-    Eigen::VectorXd g(system->size());
-    Eigen::MatrixXd j(system->size(), system->size());
-    ASSERT_TRUE(system->residualAndJacobian(z, g, j));
-    const Eigen::MatrixXd fd = test::finiteDifferenceJacobian(*system, z);
-    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()))
-        << GetParam().label << (condensed ? " condensed" : " full");
-  }
+  test::expectAssembledJacobiansMatch(GetParam().law, GetParam().label, 19);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllJoints, JointTest, ::testing::ValuesIn(allJoints()),

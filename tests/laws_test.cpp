@@ -10,6 +10,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
+#include "law_checks.h"
 #include "test_support.h"
 
 namespace eqhb {
@@ -39,70 +40,11 @@ std::vector<LawCase> allLaws() {
 class LawTest : public ::testing::TestWithParam<LawCase> {};
 
 TEST_P(LawTest, PointwisePartialsMatchFiniteDifferences) {
-  const Law& law = *GetParam().law;
-  const int d = law.dimension();
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(-2.0, 2.0);
-  const int n = 300;
-  LawSamples s;
-  s.resize(n, d);
-  for (int i = 0; i < n; ++i)
-    for (int a = 0; a < d; ++a) {
-      s.displacement(i, a) = u(rng);
-      s.velocity(i, a) = u(rng);
-      s.force(i, a) = u(rng);
-    }
-  law.evaluate(s, true);
-  const double h = 1e-7;
-  Eigen::MatrixXd* inputs[] = {&s.displacement, &s.velocity, &s.force};
-  const Eigen::MatrixXd* partials[] = {&s.dpsi_ddisplacement, &s.dpsi_dvelocity, &s.dpsi_dforce};
-  const bool used[] = {law.usesDisplacement(), law.usesVelocity(), true};
-  for (int q = 0; q < 3; ++q) {
-    if (!used[q]) continue;
-    for (int b = 0; b < d; ++b) {
-      LawSamples plus = s, minus = s;
-      Eigen::MatrixXd* in_plus[] = {&plus.displacement, &plus.velocity, &plus.force};
-      Eigen::MatrixXd* in_minus[] = {&minus.displacement, &minus.velocity, &minus.force};
-      in_plus[q]->col(b).array() += h;
-      in_minus[q]->col(b).array() -= h;
-      law.evaluate(plus, false);
-      law.evaluate(minus, false);
-      for (int a = 0; a < d; ++a)
-        for (int i = 0; i < n; ++i) {
-          const double fd = (plus.psi(i, a) - minus.psi(i, a)) / (2 * h);
-          EXPECT_NEAR((*partials[q])(i, a * d + b), fd, 1e-5 * (1 + std::abs(fd)))
-              << GetParam().label << " q=" << q << " a=" << a << " b=" << b << " sample " << i;
-        }
-    }
-  }
-  (void)inputs;
+  test::expectPointwisePartialsMatch(*GetParam().law, GetParam().label, 3, 300);
 }
 
 TEST_P(LawTest, AssembledJacobiansMatchFiniteDifferences) {
-  const std::shared_ptr<Law>& law = GetParam().law;
-  for (bool condensed : {false, true}) {
-    HbModel model;
-    const int n = 3;
-    Eigen::MatrixXd k = 2.0 * Eigen::MatrixXd::Identity(n, n);
-    k(0, 1) = k(1, 0) = -1.0;
-    model.structure = LinearStructure(Eigen::MatrixXd::Identity(n, n), 0.05 * k, k);
-    model.structure.loads.push_back({0, 1, 2.0, 0.5});
-    model.laws.push_back({law->dimension() == 2 ? std::vector<int>{1, 2} : std::vector<int>{2}, law});
-    model.basis = HarmonicSet(HarmonicKind::kAll, 3);
-    model.samples = 64;
-    model.omega = 0.8;
-    std::unique_ptr<HbSystem> system;
-    if (condensed) system = std::make_unique<CondensedSystem>(model);
-    else system = std::make_unique<FullSystem>(model);
-    srand(17);
-    const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system->size());
-    Eigen::VectorXd g(system->size());
-    Eigen::MatrixXd j(system->size(), system->size());
-    ASSERT_TRUE(system->residualAndJacobian(z, g, j));
-    const Eigen::MatrixXd fd = test::finiteDifferenceJacobian(*system, z);
-    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()))
-        << GetParam().label << (condensed ? " condensed" : " full");
-  }
+  test::expectAssembledJacobiansMatch(GetParam().law, GetParam().label, 17);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllLaws, LawTest, ::testing::ValuesIn(allLaws()),

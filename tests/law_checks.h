@@ -1,0 +1,94 @@
+// Checks every law must pass, shared by the suites of the basic laws and of
+// the joint laws: pointwise partials of ψ and the assembled weak Jacobians
+// (full and condensed) against central differences.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/law.h"
+#include "test_support.h"
+
+namespace eqhb::test {
+
+// ∂ψ/∂(displacement, velocity, force, force rate), whichever the law uses,
+// at `samples` random points in [-2, 2]; the partials are checked column by
+// column (a * d + b: component a of ψ, component b of the input).
+inline void expectPointwisePartialsMatch(const Law& law, const std::string& label, unsigned seed,
+                                         int samples) {
+  const int d = law.dimension();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  LawSamples s;
+  s.resize(samples, d);
+  for (int i = 0; i < samples; ++i)
+    for (int a = 0; a < d; ++a) {
+      s.displacement(i, a) = u(rng);
+      s.velocity(i, a) = u(rng);
+      s.force(i, a) = u(rng);
+      s.force_rate(i, a) = u(rng);
+    }
+  law.evaluate(s, true);
+  const double h = 1e-7;
+  const Eigen::MatrixXd* partials[] = {&s.dpsi_ddisplacement, &s.dpsi_dvelocity, &s.dpsi_dforce,
+                                       &s.dpsi_dforce_rate};
+  const bool used[] = {law.usesDisplacement(), law.usesVelocity(), true, law.usesForceRate()};
+  int checked = 0;
+  for (int q = 0; q < 4; ++q) {
+    if (!used[q]) continue;
+    for (int b = 0; b < d; ++b) {
+      LawSamples plus = s, minus = s;
+      Eigen::MatrixXd* in_plus[] = {&plus.displacement, &plus.velocity, &plus.force, &plus.force_rate};
+      Eigen::MatrixXd* in_minus[] = {&minus.displacement, &minus.velocity, &minus.force, &minus.force_rate};
+      in_plus[q]->col(b).array() += h;
+      in_minus[q]->col(b).array() -= h;
+      law.evaluate(plus, false);
+      law.evaluate(minus, false);
+      for (int a = 0; a < d; ++a)
+        for (int i = 0; i < samples; ++i) {
+          const double fd = (plus.psi(i, a) - minus.psi(i, a)) / (2 * h);
+          EXPECT_NEAR((*partials[q])(i, a * d + b), fd, 1e-5 * (1 + std::abs(fd)))
+              << label << " q=" << q << " a=" << a << " b=" << b << " sample " << i;
+          ++checked;
+        }
+    }
+  }
+  EXPECT_GT(checked, 0) << label;
+}
+
+// The law on the last DOFs of a 3-DOF chain, all harmonics 0..3, at a random
+// z: the weak Jacobian of the full and of the condensed system.
+inline void expectAssembledJacobiansMatch(const std::shared_ptr<Law>& law, const std::string& label,
+                                          unsigned seed) {
+  for (bool condensed : {false, true}) {
+    HbModel model;
+    const int n = 3;
+    Eigen::MatrixXd k = 2.0 * Eigen::MatrixXd::Identity(n, n);
+    k(0, 1) = k(1, 0) = -1.0;
+    model.structure = LinearStructure(Eigen::MatrixXd::Identity(n, n), 0.05 * k, k);
+    model.structure.loads.push_back({0, 1, 2.0, 0.5});
+    const int d = law->dimension();
+    std::vector<int> dofs;
+    for (int a = 0; a < d; ++a) dofs.push_back(n - d + a);
+    model.laws.push_back({dofs, law});
+    model.basis = HarmonicSet(HarmonicKind::kAll, 3);
+    model.samples = 64;
+    model.omega = 0.8;
+    auto system = makeHbSystem(model, condensed);
+    srand(seed);
+    const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system->size());
+    Eigen::VectorXd g(system->size());
+    Eigen::MatrixXd j(system->size(), system->size());
+    ASSERT_TRUE(system->residualAndJacobian(z, g, j)) << label;
+    const Eigen::MatrixXd fd = finiteDifferenceJacobian(*system, z);
+    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()))
+        << label << (condensed ? " condensed" : " full");
+  }
+}
+
+}  // namespace eqhb::test
