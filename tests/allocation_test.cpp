@@ -7,8 +7,12 @@
 #include <cstdlib>
 #include <new>
 
+#include <optional>
+
 #include "eqhb/laws/coulomb_2d.h"
 #include "eqhb/laws/cubic_stiffness.h"
+#include "eqhb/laws/joints/contact_friction.h"
+#include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
@@ -29,30 +33,64 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 namespace eqhb {
 namespace {
 
+std::shared_ptr<Law> contactFriction(int tangential, NormalForm normal, std::optional<double> k_t) {
+  ContactFrictionParameters p;
+  p.tangential = tangential;
+  p.mu = 0.4;
+  p.preload = 0.7;
+  p.gap = 0.2;
+  p.normal = normal;
+  if (normal == NormalForm::kCompliant) p.normal_stiffness = 3.0;
+  p.friction = tangential == 1 ? FrictionForm::kMinMax : FrictionForm::kProjection;
+  p.tangential_stiffness = k_t;
+  return std::make_shared<ContactFriction>(p);
+}
+
+// Every law on the last DOFs of a 3-DOF chain, both systems; the dense
+// Jacobian and the sparse one (fixed pattern) after the first evaluation.
 TEST(Allocation, ResidualAndJacobianAllocateNothing) {
-  const std::vector<std::pair<std::vector<int>, std::shared_ptr<Law>>> laws = {
-      {{1}, std::make_shared<Coulomb1D>(7.2, CoulombForm::kMinMax)},
-      {{0, 1}, std::make_shared<Coulomb2D>(8.0, Coulomb2DForm::kMax)},
-      {{1}, std::make_shared<Signorini>(2.0, SignoriniForm::kFischerBurmeister)},
-      {{1}, std::make_shared<Stribeck>(1.0, 1.5, 0.5)},
-      {{1}, std::make_shared<CubicStiffness>(0.5)}};
-  for (const auto& [dofs, law] : laws)
+  const std::vector<std::shared_ptr<Law>> laws = {
+      std::make_shared<Coulomb1D>(7.2, CoulombForm::kMinMax),
+      std::make_shared<Coulomb2D>(8.0, Coulomb2DForm::kMax),
+      std::make_shared<Signorini>(2.0, SignoriniForm::kFischerBurmeister),
+      std::make_shared<Stribeck>(1.0, 1.5, 0.5),
+      std::make_shared<CubicStiffness>(0.5),
+      std::make_shared<Jenkins>(1, 1.2, 2.0, FrictionForm::kMinMax),
+      std::make_shared<Jenkins>(2, 1.2, 2.0, FrictionForm::kProjection),
+      contactFriction(1, NormalForm::kMin, std::nullopt),
+      contactFriction(2, NormalForm::kFischerBurmeister, 2.5),
+      contactFriction(1, NormalForm::kCompliant, std::nullopt)};
+  for (const auto& law : laws)
     for (bool condensed : {true, false}) {
       HbModel model = test::chainWithFriction(7.2, CoulombForm::kMinMax, 10, 0.4, 512, HarmonicKind::kAll);
+      Eigen::MatrixXd t = 2.0 * Eigen::MatrixXd::Identity(3, 3);
+      t(0, 1) = t(1, 0) = t(1, 2) = t(2, 1) = -1.0;
+      t(2, 2) = 1.0;
+      model.structure = LinearStructure(Eigen::MatrixXd::Identity(3, 3), 0.02 * t, t);
+      model.structure.loads.push_back({0, 1, 20.0, 0.0});
+      std::vector<int> dofs;
+      for (int a = 0; a < law->dimension(); ++a) dofs.push_back(3 - law->dimension() + a);
       model.laws = {{dofs, law}};
+      const std::string label = law->type() + " on " + std::to_string(dofs.size()) + " DOFs" +
+                                (condensed ? ", condensed" : ", full");
       const long at_start = allocations.load();
       auto system = makeHbSystem(model, condensed);
       ASSERT_GT(allocations.load(), at_start) << "the counter must see the construction's buffers";
       const Eigen::VectorXd z = Eigen::VectorXd::Constant(system->size(), 0.3);
       Eigen::VectorXd g(system->size());
       Eigen::MatrixXd j(system->size(), system->size());
+      SparseMatrix sparse = system->jacobianPattern();
       system->residualAndJacobian(z, g, j);  // warm-up
+      system->residualAndSparseJacobian(z, g, sparse);
       const long before = allocations.load();
       for (int i = 0; i < 3; ++i) {
         system->residual(z, g);
         system->residualAndJacobian(z, g, j);
       }
-      EXPECT_EQ(allocations.load() - before, 0) << law->type() << (condensed ? " condensed" : " full");
+      EXPECT_EQ(allocations.load() - before, 0) << label << ", dense Jacobian";
+      const long before_sparse = allocations.load();
+      for (int i = 0; i < 3; ++i) system->residualAndSparseJacobian(z, g, sparse);
+      EXPECT_EQ(allocations.load() - before_sparse, 0) << label << ", sparse Jacobian";
     }
 }
 
