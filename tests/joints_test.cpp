@@ -293,6 +293,29 @@ TEST(ContactFriction, SceneLiftsOffAndKeepsTheDisc) {
   }
 }
 
+// Compliant normal contact p = k_n max(0, −g) tends to the exact Signorini
+// law as k_n grows, and each layer stiffness is solved from rest (the form
+// min(ρ(g + p/k_n), p) keeps its rows at the min form's scale; written as
+// p − k_n max(0, −g) the dogleg stalled from k_n = 10 on).
+TEST(ContactFriction, CompliantNormalTendsToSignoriniAsTheLayerStiffens) {
+  for (bool condensed : {true, false}) {
+    const SceneSolve exact = solveScene("contact-friction-2d.toml", condensed);
+    ASSERT_TRUE(exact.result.converged()) << exact.result.summary();
+    const int n = exact.model.structure.dofs() * exact.model.basis.size();
+    std::vector<double> distances;
+    for (const char* k_n : {"1e1", "1e2", "1e3", "1e4"}) {
+      const SceneSolve compliant =
+          solveScene("contact-friction-2d.toml", condensed, {"law.form=\"compliant\"", std::string("law.k_n=") + k_n});
+      ASSERT_TRUE(compliant.result.converged()) << "k_n = " << k_n << ": " << compliant.result.summary();
+      distances.push_back((compliant.full.head(n) - exact.full.head(n)).norm() / exact.full.head(n).norm());
+    }
+    // Each tenfold stiffening brings the answer closer by a clear factor.
+    for (std::size_t i = 0; i + 1 < distances.size(); ++i)
+      EXPECT_LT(distances[i + 1], 0.5 * distances[i]) << "k_n step " << i << (condensed ? " condensed" : " full");
+    EXPECT_LT(distances.back(), 1e-3) << (condensed ? "condensed" : "full");
+  }
+}
+
 // Relative distance between two solutions' displacement coefficients.
 double displacementDistance(const SceneSolve& a, const SceneSolve& b) {
   const int n = a.model.structure.dofs() * a.model.basis.size();

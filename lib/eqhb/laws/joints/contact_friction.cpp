@@ -76,10 +76,11 @@ void ContactFriction::evaluate(LawSamples& s, bool with_derivatives) const {
         break;
       }
       case NormalForm::kCompliant: {
-        const double penetration = x_n - p_.gap;
-        psi = pressure - (penetration > 0.0 ? *p_.normal_stiffness * penetration : 0.0);
-        d_p = 1.0;
-        d_x = penetration > 0.0 ? -*p_.normal_stiffness : 0.0;
+        // p = k_n max(0, −g) is the complementarity 0 <= p ⊥ g + p/k_n >= 0:
+        // the min form on the gap of the layer's far side.
+        const double a = p_.rho * (p_.gap - x_n + pressure / *p_.normal_stiffness);
+        if (a < pressure) psi = a, d_x = -p_.rho, d_p = p_.rho / *p_.normal_stiffness;
+        else psi = pressure, d_p = 1.0;
         break;
       }
     }

@@ -8,7 +8,11 @@
 // it. Gap g = g0 − x_n, a = ρg. Normal forms:
 //   min:                 Ψ_n = min(a, p)
 //   fischer-burmeister:  Ψ_n = a + p − sqrt(a² + p²)
-//   compliant:           Ψ_n = p − k_n max(0, x_n − g0)   (elastic layer, no impact law)
+//   compliant:           Ψ_n = min(ρ(g + p/k_n), p)  (elastic layer, no impact law)
+// The compliant form is p = k_n max(0, −g) written as the complementarity
+// 0 <= p ⊥ g + p/k_n >= 0: rows of the same scale as the min form's for any
+// k_n, and the min form itself in the limit k_n → ∞ (the direct form
+// p − k_n max(0, −g) has rows growing like k_n and stalls the solvers).
 // Tangential (friction_kernels.h) with the varying limit L = μ max(p, 0) and
 // slip velocity u = ẋ_t, or u = ẋ_t + ṙ_t/k_t when a tangential stiffness
 // k_t is given (elastic dry friction in series, Jenkins, under p(t)).
