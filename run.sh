@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-PACKAGES=(cmake g++ make pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libnlopt-dev
+PACKAGES=(cmake g++ make pkg-config libeigen3-dev libspectra-dev libceres-dev libnlopt-cxx-dev libnlopt-dev
   coinor-libipopt-dev libsuitesparse-dev libfftw3-dev libbenchmark-dev libgtest-dev
   libcminpack-dev libcli11-dev nlohmann-json3-dev libtoml11-dev python3 python3-matplotlib
   python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest
