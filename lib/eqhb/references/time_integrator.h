@@ -51,7 +51,11 @@ struct TimeReference {
 TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& options,
                                      const Eigen::VectorXd& initial_full = Eigen::VectorXd());
 
-// Distances between a harmonic-balance solution and a reference.
+// Distances between a harmonic-balance solution and a reference. Each is
+// relative to the reference channel's own size, floored at kChannelFloor
+// times the largest channel of the same kind (displacements, velocities,
+// forces): a channel that stays near zero is not divided by its noise.
+constexpr double kChannelFloor = 1e-3;
 struct ChannelError {
   std::string label;
   double relative_l2 = 0.0;            // ‖hb − ref‖₂ / ‖ref‖₂ over the period
