@@ -368,8 +368,9 @@ int main(int argc, char** argv) {
     const size_t scene_index = &path - scenes.data();
     maps_line.update(static_cast<double>(scene_index) / scenes.size(), count("scene", scene_index + 1, scenes.size()),
                      stem);
-    if (quick ? stem != "friction-1d" : (stem != "friction-1d" && stem != "friction-2d" && stem != "contact" && stem != "cubic"))
-      continue;
+    static const std::vector<std::string> mapped = {"friction-1d", "friction-2d", "contact", "cubic",
+                                                    "contact-friction-2d", "jenkins-1d", "damper"};
+    if (quick ? stem != "friction-1d" : std::find(mapped.begin(), mapped.end(), stem) == mapped.end()) continue;
     std::vector<std::string> available;
     for (const auto& b : map_backends)
       if (std::find(all_backends.begin(), all_backends.end(), b) != all_backends.end()) available.push_back(b);
