@@ -23,6 +23,9 @@ class Stribeck : public Law {
   // w = |u_free| − D L(w) (bracketed bisection–Newton), λ = −L(w) sign(u_free).
   LocalVector solveStep(const StepProblem& step) const override;
   double limit(double v) const;
+  double dynamicLimit() const { return dynamic_; }        // μ_d N
+  double staticLimit() const { return dynamic_ + drop_; }  // μ_s N = L(0)
+  double slidingVelocity() const { return v_s_; }         // v_s
 
  private:
   double dynamic_, drop_, v_s_, rho_;

@@ -106,7 +106,8 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
       site.gap = contact->gap();
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
-                      "exact orbits handle coulomb-1d and signorini (event-driven), cubic and sliding coulomb-2d (smooth) laws, not mixed");
+                      "exact orbits handle coulomb-1d, signorini (closed form), cubic, coulomb-2d and stribeck "
+                      "(smooth phases) laws, not mixed");
     }
     sites_.push_back(site);
   }
