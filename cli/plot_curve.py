@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Frequency-response chart of an `eqhb sweep` CSV: max|x| per DOF vs omega,
-folds marked, failed points shown.
+folds marked, failed points shown; with a `stable` column (sweep --stability)
+stable branches solid, unstable ones dashed, bifurcations marked by kind.
 Usage: plot_curve.py CSV PREFIX [TITLE] [--log-amplitude]"""
 import argparse
 import csv
@@ -9,6 +10,47 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+
+# Marker per bifurcation kind (sweep --stability).
+MARKERS = {"fold": ("kx", "fold"), "branch-point": ("k+", "branch point (real +1)"),
+           "period-doubling": ("rs", "period doubling"), "neimark-sacker": ("m^", "Neimark-Sacker")}
+labelled_kinds = set()
+
+
+def draw_by_stability(ax, rows, key, label):
+    """One DOF's curve: runs of equal stability, solid if stable, dashed if
+    not (a run ends at a failed point), bifurcations marked."""
+    color = None
+    run, run_stable = [], None
+
+    def flush():
+        nonlocal color
+        if len(run) >= 1:
+            line, = ax.plot([p[0] for p in run], [p[1] for p in run], "-" if run_stable else "--", lw=1.2,
+                            color=color, label=label if color is None else None)
+            color = line.get_color()
+
+    for r in rows:
+        if r["converged"] != "true" or r["stable"] == "":
+            flush()
+            run, run_stable = [], None
+            continue
+        point = (float(r["omega"]), float(r[key]))
+        stable = r["stable"] == "1"
+        if run_stable is not None and stable != run_stable:
+            run.append(point)  # join the two runs at the change
+            flush()
+            run = [point]
+        else:
+            run.append(point)
+        run_stable = stable
+        kind = r.get("bifurcation", "")
+        if kind in MARKERS:
+            style, name = MARKERS[kind]
+            ax.plot([point[0]], [point[1]], style, ms=8, label=None if kind in labelled_kinds else name)
+            labelled_kinds.add(kind)
+    flush()
 
 
 def main():
@@ -22,10 +64,15 @@ def main():
     if not rows:
         parser.exit(1, f"{args.csv}: no points to plot\n")
     dofs = sorted(k for k in rows[0] if k.startswith("max_abs_x"))
+    with_stability = "stable" in rows[0]
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for key in dofs:
+        label = key.replace("max_abs_", "max|") + "|"
+        if with_stability:
+            draw_by_stability(ax, rows, key, label)
+            continue
         ok = [(float(r["omega"]), float(r[key])) for r in rows if r["converged"] == "true"]
-        ax.plot([p[0] for p in ok], [p[1] for p in ok], "-", lw=1.2, label=key.replace("max_abs_", "max|") + "|")
+        ax.plot([p[0] for p in ok], [p[1] for p in ok], "-", lw=1.2, label=label)
         folds = [(float(r["omega"]), float(r[key])) for r in rows if r["fold"] == "true" and r["converged"] == "true"]
         if folds:
             ax.plot([p[0] for p in folds], [p[1] for p in folds], "kx", ms=8)
@@ -39,7 +86,10 @@ def main():
     ax.set_xlabel("forcing frequency ω")
     ax.set_ylabel("max |x| over one period" + (" (log scale)" if args.log_amplitude else ""))
     has_folds = any(r["fold"] == "true" for r in rows)
-    ax.set_title(f"{args.title}: frequency response" + (" (x: folds)" if has_folds else ""))
+    if with_stability:
+        ax.set_title(f"{args.title}: frequency response (solid: stable, dashed: unstable)")
+    else:
+        ax.set_title(f"{args.title}: frequency response" + (" (x: folds)" if has_folds else ""))
     ax.grid(True, alpha=0.3, which="both" if args.log_amplitude else "major")
     ax.legend()
     fig.tight_layout()

@@ -15,6 +15,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/invariants.h"
 #include "eqhb/scenes/scene.h"
+#include "eqhb/stability/hill_stability.h"
 #include "eqhb/backends/registry.h"
 
 namespace eqhb::cli {
@@ -29,6 +30,31 @@ void addSolveCommand(CLI::App& app, SolveArguments& a) {
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--from-harmonics", a.from_harmonics,
                   "Start from the solution at H0, 2H0, ... (continuation in H: for large H where a cold start fails)");
+  addStabilityFlag(cmd, a);
+}
+
+void addStabilityFlag(CLI::App* cmd, SolveArguments& a) {
+  cmd->add_flag("--stability", a.stability,
+                "Stability of the solution(s): Floquet multipliers by Hill's method on the full system's weak "
+                "Jacobian (stable iff all inside the unit circle)");
+}
+
+nlohmann::json stabilityJson(const HillResult& hill) {
+  nlohmann::json multipliers = nlohmann::json::array(), exponents = nlohmann::json::array();
+  for (const auto& e : hill.exponents) {
+    multipliers.push_back({e.multiplier.real(), e.multiplier.imag()});
+    exponents.push_back({e.exponent.real(), e.exponent.imag()});
+  }
+  nlohmann::json out = {{"stable", hill.stable},
+                        {"spectral_radius", hill.spectral_radius},
+                        {"multipliers", multipliers},
+                        {"exponents", exponents},
+                        {"state_dimension", hill.state_dimension},
+                        {"pencil_size", hill.pencil_size},
+                        {"eigensolver", hill.sparse ? "sparse" : "dense"},
+                        {"seconds", hill.seconds}};
+  if (!hill.failure.empty()) out["failure"] = hill.failure;
+  return out;
 }
 
 void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
@@ -164,6 +190,10 @@ int runSolve(const SolveArguments& a) {
   getrusage(RUSAGE_SELF, &usage);
   const double peak_rss_mib = usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
 
+  // Stability of the converged solution (Hill's method, full system).
+  HillResult hill;
+  const bool with_stability = a.stability && result.converged();
+  if (with_stability) hill = hillStability(model, system->fullCoefficients(result.solution));
   if (a.json) {
     nlohmann::json out;
     out["scene"] = scene.name;
@@ -204,6 +234,7 @@ int runSolve(const SolveArguments& a) {
       invariants.push_back({{"law", report.law + 1}, {"type", report.type}, {"violations", measures}});
     }
     out["invariants"] = invariants;
+    if (with_stability) out["stability"] = stabilityJson(hill);
     if (a.trajectory) {
       // One period on the model's N samples: t, x per DOF, λ per law component.
       nlohmann::json t = nlohmann::json::array();
@@ -235,6 +266,17 @@ int runSolve(const SolveArguments& a) {
       std::cout << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";
       for (const auto& [name, value] : report.violations) std::cout << " " << name << " " << value;
       std::cout << "\n";
+    }
+    if (with_stability) {
+      if (!hill.failure.empty()) {
+        std::cout << "stability: not computed (" << hill.failure << ")\n";
+      } else {
+        std::cout << "stability: " << (hill.stable ? "stable" : "UNSTABLE") << ", spectral radius "
+                  << hill.spectral_radius << " (Hill, " << hill.pencil_size << " unknowns, " << hill.seconds
+                  << " s); multipliers:";
+        for (const auto& e : hill.exponents) std::cout << " " << e.multiplier.real() << (e.multiplier.imag() < 0 ? "" : "+") << e.multiplier.imag() << "i";
+        std::cout << "\n";
+      }
     }
   }
   if (!result.converged())

@@ -12,6 +12,7 @@
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/solvers/solver.h"
+#include "eqhb/stability/hill_stability.h"
 #include "scene_arguments.h"
 
 namespace eqhb::cli {
@@ -30,6 +31,7 @@ struct SolveArguments {
   int repeat = 1;
   std::optional<int> from_harmonics;  // seed by continuation in H from this H₀
   std::string linear_algebra = "auto";  // --linear-algebra: auto, dense or sparse
+  bool stability = false;  // --stability: Floquet multipliers by Hill's method
 };
 
 // One harmonic-balance solve (repeated --repeat times) and what it used.
@@ -52,6 +54,11 @@ nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd&
 nlohmann::json solutionJson(const HbModel& model, const HbSolution& solution);
 
 void addSolveCommand(CLI::App& app, SolveArguments& args);
+// The --stability flag (solve and sweep).
+void addStabilityFlag(CLI::App* command, SolveArguments& args);
+// A Hill analysis as JSON: stable, spectral_radius, multipliers and
+// exponents ([re, im], largest |multiplier| first), counts and time.
+nlohmann::json stabilityJson(const HillResult& hill);
 // Solver options and the backend's pass-through options from the flags;
 // throws InputError.
 void addSolverOptions(CLI::App* command, SolveArguments& args);

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/backends/registry.h"
+#include "eqhb/stability/curve_stability.h"
 #include "terminal/progress.h"
 #include "terminal/run_program.h"
 #include "terminal/verbosity.h"
@@ -30,6 +32,7 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
   cmd->add_option("--out", w.out, "Write the curve as CSV");
   cmd->add_option("--chart", w.chart, "Write a chart of the curve: PREFIX.png and PREFIX.svg (matplotlib)");
   cmd->add_flag("--log-amplitude", w.log_amplitude, "Chart: logarithmic amplitude axis");
+  addStabilityFlag(cmd, s);
   cmd->add_flag("--json", w.json,
                 "Print the curve as one JSON object: settings, stop reason, folds, and per point the counts, "
                 "amplitudes and Fourier coefficients of every DOF and law force");
@@ -38,7 +41,7 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
 namespace {
 
 nlohmann::json curveJson(const Scene& scene, const Solver& solver, const ContinuationOptions& options,
-                         bool arclength, const Curve& curve) {
+                         bool arclength, const Curve& curve, const CurveStability* stability) {
   const HbModel& model = scene.model;
   nlohmann::json points = nlohmann::json::array();
   for (const CurvePoint& p : curve.points) {
@@ -54,6 +57,19 @@ nlohmann::json curveJson(const Scene& scene, const Solver& solver, const Continu
                             {"energy", p.energy},
                             {"max_abs", p.max_abs},
                             {"first_harmonic", p.first_harmonic}};
+    if (stability) {
+      const size_t i = points.size();
+      point["stable"] = p.stable >= 0 ? nlohmann::json(p.stable == 1) : nlohmann::json(nullptr);
+      if (!p.bifurcation.empty()) point["bifurcation"] = p.bifurcation;
+      if (p.stable >= 0) {
+        // The leading multipliers (largest modulus first, at most four).
+        const nlohmann::json all = stabilityJson(stability->points[i]);
+        nlohmann::json leading = nlohmann::json::array();
+        for (size_t j = 0; j < all["multipliers"].size() && j < 4; ++j) leading.push_back(all["multipliers"][j]);
+        point["spectral_radius"] = all["spectral_radius"];
+        point["multipliers"] = leading;
+      }
+    }
     if (p.full.size() > 0) {
       HbModel at = model;
       at.omega = p.omega;
@@ -63,7 +79,7 @@ nlohmann::json curveJson(const Scene& scene, const Solver& solver, const Continu
     }
     points.push_back(point);
   }
-  return {{"scene", scene.name},
+  nlohmann::json out = {{"scene", scene.name},
           {"solver", solver.name()},
           {"method", arclength ? "arclength" : "sequential"},
           {"from", options.from},
@@ -79,6 +95,15 @@ nlohmann::json curveJson(const Scene& scene, const Solver& solver, const Continu
           {"failed_points", curve.failed_points},
           {"seconds", curve.seconds},
           {"points", points}};
+  if (stability) {
+    nlohmann::json bifurcations = nlohmann::json::array();
+    for (const auto& b : stability->bifurcations)
+      bifurcations.push_back({{"omega", b.omega}, {"kind", b.kind}, {"point", b.point}});
+    out["bifurcations"] = bifurcations;
+    out["stability_seconds"] = stability->seconds;
+    out["solve_seconds"] = stability->solve_seconds;
+  }
+  return out;
 }
 
 }  // namespace
@@ -123,11 +148,13 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     line.update(fraction, "point " + std::to_string(index + 1) + (expected ? "/" + std::to_string(expected) : ""),
                 detail);
   };
-  const Curve curve = w.arclength ? sweepArclength(scene.model, *solver, solver_options, options, progress)
+  Curve curve = w.arclength ? sweepArclength(scene.model, *solver, solver_options, options, progress)
                                   : sweepSequential(scene.model, *solver, solver_options, options, progress);
   line.finish(std::to_string(curve.points.size()) + " points, " + std::to_string(curve.failed_points) + " failed");
+  std::optional<CurveStability> stability;
+  if (s.stability) stability = analyseCurveStability(scene.model, curve);
 
-  if (w.json) std::cout << curveJson(scene, *solver, options, w.arclength, curve).dump(2) << "\n";
+  if (w.json) std::cout << curveJson(scene, *solver, options, w.arclength, curve, stability ? &*stability : nullptr).dump(2) << "\n";
   // With --json, stdout is the JSON object alone; the summary goes to stderr.
   std::ostream& summary = w.json ? std::cerr : std::cout;
   const CurvePoint* peak = nullptr;
@@ -145,6 +172,17 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     summary << "\n";
   } else if (w.arclength) {
     summary << "  no fold\n";
+  }
+  if (stability) {
+    int stable = 0, analysed = 0;
+    for (const auto& p : curve.points) {
+      analysed += p.stable >= 0;
+      stable += p.stable == 1;
+    }
+    summary << "  stability (Hill): " << stable << " of " << analysed << " points stable, " << stability->seconds
+            << " s (" << (stability->solve_seconds > 0 ? 100.0 * stability->seconds / stability->solve_seconds : 0.0)
+            << " % of the solve time)\n";
+    for (const auto& b : stability->bifurcations) summary << "  " << b.kind << " at omega = " << b.omega << "\n";
   }
   if (!w.out.empty()) writeCurveCsv(w.out, curve, dofs);
   if (!w.chart.empty()) {

@@ -54,14 +54,18 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
   out << "omega,converged,termination,iterations,residual_evaluations,jacobian_evaluations,seconds";
   for (int i = 1; i <= dofs; ++i) out << ",max_abs_x" << i;
   for (int i = 1; i <= dofs; ++i) out << ",first_harmonic_x" << i;
-  out << ",energy,fold\n";
+  bool with_stability = false;
+  for (const auto& p : curve.points) with_stability = with_stability || p.stable >= 0;
+  out << ",energy,fold" << (with_stability ? ",stable,bifurcation" : "") << "\n";
   out.precision(10);
   for (const auto& p : curve.points) {
     out << p.omega << "," << (p.converged ? "true" : "false") << "," << p.termination << "," << p.iterations << ","
         << p.residual_evaluations << "," << p.jacobian_evaluations << "," << p.seconds;
     for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.max_abs[i] : NAN);
     for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.first_harmonic[i] : NAN);
-    out << "," << (p.converged ? p.energy : NAN) << "," << (p.fold ? "true" : "false") << "\n";
+    out << "," << (p.converged ? p.energy : NAN) << "," << (p.fold ? "true" : "false");
+    if (with_stability) out << "," << (p.stable >= 0 ? std::to_string(p.stable) : "") << "," << p.bifurcation;
+    out << "\n";
   }
 }
 
@@ -304,6 +308,7 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
     curve.stop_reason = "no tangent at the start (singular bordered Jacobian)";
     return curve;
   }
+  curve.points.back().tangent_omega = tangent[n];
   watchDirection(tangent[n]);
   BorderedSystem bordered(*system, sz, sw);
   double ds = options.step;
@@ -333,6 +338,7 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
     y = y_new;
     tangent = tangent_new;
     record(y, r);
+    curve.points.back().tangent_omega = tangent[n];
     watchDirection(tangent[n]);
     const double omega = y[n] * sw;
     if (omega > hi + 1e-12 || omega < lo - 1e-12) {

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -35,6 +36,9 @@ struct CurvePoint {
   std::vector<double> first_harmonic;  // per DOF, |(a₁, b₁)|
   double energy = 0.0;                 // period mean of ½ẋᵀMẋ + ½xᵀKx
   bool fold = false;                   // a turning point lies just before this point
+  double tangent_omega = NAN;          // arclength: ω-component of the unit tangent here
+  int stable = -1;                     // Hill stability: 1, 0, or −1 (not computed)
+  std::string bifurcation;             // stability analysis: kind, between the previous point and this
   Eigen::VectorXd full;                // [x; λ] coefficients
 };
 
@@ -67,8 +71,9 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
                      const ContinuationOptions& options, const Progress& progress = nullptr);
 
 // The curve as CSV: ω, converged, termination, counts, time, max|x_i|,
-// first-harmonic amplitude of x_i, energy, fold. Throws InputError if the
-// file cannot be written.
+// first-harmonic amplitude of x_i, energy, fold, and when stability was
+// computed for some point: stable (1/0, empty if not computed) and
+// bifurcation. Throws InputError if the file cannot be written.
 void writeCurveCsv(const std::string& path, const Curve& curve, int dofs);
 
 // Physical summary of a solution (max|x|, first harmonic, energy).

@@ -1,0 +1,66 @@
+#include "eqhb/stability/curve_stability.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace eqhb {
+
+namespace {
+
+// The ω-direction of the tangent changes sign between points lo and hi.
+bool turnsBetween(const Curve& curve, int lo, int hi) {
+  double first = NAN;
+  for (int i = std::max(lo, 0); i <= std::min(hi, static_cast<int>(curve.points.size()) - 1); ++i) {
+    const double t = curve.points[i].tangent_omega;
+    if (std::isnan(t)) continue;
+    if (std::isnan(first)) first = t;
+    else if ((t >= 0.0) != (first >= 0.0)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const HillOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CurveStability out;
+  out.points.resize(curve.points.size());
+  bool has_tangents = false;
+  for (size_t i = 0; i < curve.points.size(); ++i) {
+    CurvePoint& p = curve.points[i];
+    out.solve_seconds += p.seconds;
+    has_tangents = has_tangents || !std::isnan(p.tangent_omega);
+    p.stable = -1;
+    p.bifurcation.clear();
+    if (!p.converged || p.full.size() == 0) continue;
+    HbModel at = model;
+    at.omega = p.omega;
+    out.points[i] = hillStability(at, p.full, options);
+    if (out.points[i].failure.empty()) p.stable = out.points[i].stable ? 1 : 0;
+  }
+  std::vector<double> folds;
+  int previous = -1;
+  for (int i = 0; i < static_cast<int>(curve.points.size()); ++i) {
+    curve.points[i].fold = false;
+    if (curve.points[i].stable < 0) continue;
+    if (previous >= 0) {
+      std::string kind = bifurcationKind(out.points[previous], out.points[i], options.unit_tolerance);
+      if (kind == "fold" && has_tangents && !turnsBetween(curve, previous - 1, i + 1)) kind = "branch-point";
+      if (!kind.empty()) {
+        const double omega = 0.5 * (curve.points[previous].omega + curve.points[i].omega);
+        out.bifurcations.push_back({i, omega, kind});
+        curve.points[i].bifurcation = kind;
+        if (kind == "fold") {
+          curve.points[i].fold = true;
+          folds.push_back(omega);
+        }
+      }
+    }
+    previous = i;
+  }
+  curve.fold_omegas = folds;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace eqhb
