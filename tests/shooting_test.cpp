@@ -403,6 +403,40 @@ TEST(Shooting, StribeckWithoutDropIsTheClosedFormCoulombOrbit) {
   }
 }
 
+TEST(Shooting, NearGrazingImpactInsideOneGridIntervalIsFound) {
+  // x'' + x = 0 from x = 0, v = 1: x = sin t reaches 1 at t = π/2. A wall at
+  // 1 − δ is crossed only for |t − π/2| < sqrt(2δ) ≈ 0.014, far inside one
+  // grid interval (0.2): both ends of that interval are clear of the wall.
+  HbModel model;
+  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
+                                    Eigen::MatrixXd::Identity(1, 1));
+  model.structure.loads.push_back({0, 1, 0.0, 0.0});
+  model.basis = HarmonicSet(HarmonicKind::kAll, 1);
+  model.samples = 16;
+  model.omega = 0.5;
+  Eigen::VectorXd start(2);
+  start << 0.0, 1.0;
+  for (double delta : {1e-4, 1e-8}) {
+    model.laws = {{{0}, std::make_shared<Signorini>(1.0 - delta, SignoriniForm::kMin)}};
+    const PiecewiseLinearFlow flow(model, 1.0);
+    const auto run = flow.integrate(start, 0.0, 2.0, true);
+    ASSERT_TRUE(run.ok) << run.failure;
+    EXPECT_EQ(run.events.at("impact"), 1) << delta;
+    EXPECT_LE(run.max_abs[0], 1.0 - delta + 1e-14) << delta;
+    // Elastic bounce at t* = asin(1 − δ): x(2) = (1 − δ) cos(2 − t*) − v* sin(2 − t*),
+    // v* = cos t*; t* is conditioned as 1/sqrt(2δ) near grazing.
+    const double hit = std::asin(1.0 - delta), speed = std::cos(hit);
+    EXPECT_NEAR(run.end[0], (1.0 - delta) * std::cos(2.0 - hit) - speed * std::sin(2.0 - hit), 1e-14 / std::sqrt(delta))
+        << delta;
+  }
+  // A wall just beyond the amplitude is never touched.
+  model.laws = {{{0}, std::make_shared<Signorini>(1.0 + 1e-9, SignoriniForm::kMin)}};
+  const auto clear = PiecewiseLinearFlow(model, 1.0).integrate(start, 0.0, 2.0, false);
+  ASSERT_TRUE(clear.ok);
+  EXPECT_EQ(clear.events.count("impact"), 0u);
+  EXPECT_NEAR(clear.end[0], std::sin(2.0), 1e-13);
+}
+
 TEST(Shooting, RejectsLawsItCannotIntegrate) {
   const HbModel model = loadScene(test::problem("jenkins-1d.toml")).model;
   EXPECT_FALSE(PiecewiseLinearFlow::supports(model));

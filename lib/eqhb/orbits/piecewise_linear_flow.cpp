@@ -343,10 +343,22 @@ FlowResult PiecewiseLinearFlow::integrate(const Eigen::VectorXd& y0, double t0, 
                                       : Eigen::VectorXd((p.generator * (tau_b - tau_a)).exp() * z_a);
       for (size_t e = 0; e < watch.size(); ++e) {
         const double g_a = watch[e].functional.dot(z_a), g_b = watch[e].functional.dot(z_b);
-        if (g_b > 0.0) continue;
         Eigen::VectorXd z_root;
         double tau = 0.0;
-        if (!(g_a > 0.0)) {
+        if (g_b > 0.0) {
+          // Positive at both ends, g may still dip below 0 inside (a pair of
+          // zeros closer than the grid: a near-grazing impact, a brief
+          // excursion of the stick force). ġ = cᵀÂ z is a linear functional
+          // too: where it goes from − to +, its zero is the minimum of g; if
+          // g <= 0 there, the first zero lies between the start and it.
+          if (!(g_a > 0.0)) continue;
+          const Eigen::RowVectorXd slope = watch[e].functional * p.generator;
+          if (!(slope.dot(z_a) < 0.0 && slope.dot(z_b) > 0.0)) continue;
+          Eigen::VectorXd z_min;
+          const double tau_min = locateZero(-slope, p.generator, z_a, tau_a, tau_b, time_scale, &z_min);
+          if (watch[e].functional.dot(z_min) > 0.0) continue;  // passes by without reaching 0
+          tau = locateZero(watch[e].functional, p.generator, z_a, tau_a, tau_min, time_scale, &z_root);
+        } else if (!(g_a > 0.0)) {
           // A phase that leaves its set at once (a tie resolved one order
           // too low): the event fires at its start.
           if (tau_a != 0.0 || g_b == 0.0) continue;
