@@ -64,6 +64,7 @@ case "${1:-}" in
       beam-damper-elastic
     ./build/eqhb-convergence --out results $quick | tee results/convergence.txt
     ./build/eqhb-orbits --out results $quick >/dev/null
+    ./build/eqhb-hill --out results $quick >/dev/null
     ./build/eqhb-micro --benchmark_min_time=0.02 --benchmark_out=results/micro.json \
       --benchmark_out_format=json >/dev/null
     /usr/bin/python3 bench/micro_slopes.py results/micro.json results/micro.md
