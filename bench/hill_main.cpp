@@ -171,7 +171,6 @@ void curveTables(std::ostream& md, bool quick) {
     options.from = c.from;
     options.to = c.to;
     options.step = c.step;
-    options.condensed = !isContact(scene.model);
     auto solver = makeSolver("dogleg");
     SolverOptions solver_options;
     Curve curve = c.arclength ? sweepArclength(scene.model, *solver, solver_options, options)

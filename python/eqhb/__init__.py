@@ -17,9 +17,9 @@ import math
 import numbers
 
 from ._eqhb import InputError, Model, __version__, solvers
-from ._eqhb import _shoot, _simulate, _solve, _sweep
+from ._eqhb import _shoot, _simulate, _solve, _stability, _sweep
 
-__all__ = ["InputError", "Model", "__version__", "load_scene", "model", "shoot", "simulate", "solve", "solvers",
+__all__ = ["InputError", "Model", "__version__", "load_scene", "model", "shoot", "simulate", "solve", "solvers", "stability",
            "sweep"]
 
 
@@ -75,6 +75,21 @@ def solve(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", s
     coefficient vector to pass as `initial` to a later solve)."""
     return _solve(model, omega, harmonics, samples, solver, system, tolerance, max_iterations, max_evaluations,
                   time_limit, _options(options), _vector(initial, "initial"))
+
+
+def stability(model, solution, *, omega=None, harmonics=None, samples=None):
+    """Stability of a harmonic-balance solution by Hill's method on the full
+    system's weak Jacobian. `solution` is what solve returned (its omega is
+    used), its "solution" dict, or the "full" coefficient vector; give the
+    harmonics/samples (and omega) it was solved with. Returns a dict: stable,
+    spectral_radius, multipliers and exponents (complex, largest |multiplier|
+    first), pencil_size, seconds, failure (empty when computed)."""
+    if isinstance(solution, dict) and "solution" in solution:
+        omega = solution["omega"] if omega is None else omega
+        solution = solution["solution"]
+    if isinstance(solution, dict):
+        solution = solution["full"]
+    return _stability(model, _vector(solution, "full"), omega, harmonics, samples)
 
 
 def sweep(model, start=None, stop=None, *, step=0.01, method="sequential", harmonics=None, samples=None,

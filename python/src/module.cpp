@@ -1,6 +1,7 @@
 // The Python module eqhb._eqhb (wrapped by the package eqhb): models from
 // scene files or arrays, backends by name, solve, sweep, simulate. Bad input
 // raises eqhb.InputError (a ValueError) whose message names the field.
+#include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -18,6 +19,7 @@
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
+#include "eqhb/stability/hill_stability.h"
 #include "eqhb/structures/structure_matrices.h"
 #include "eqhb/version.h"
 
@@ -146,6 +148,37 @@ py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int>
   d["unknowns"] = hb->size();
   d["omega"] = model.omega;
   d["solution"] = solutionDict(model, hb->fullCoefficients(result.solution));
+  return d;
+}
+
+// Floquet multipliers of a harmonic-balance solution by Hill's method.
+py::dict stability(const PyModel& m, const Eigen::VectorXd& full, std::optional<double> omega,
+                   std::optional<int> harmonics, std::optional<int> samples) {
+  const HbModel model = withSettings(m.scene.model, omega, harmonics, samples);
+  const Eigen::Index full_size =
+      static_cast<Eigen::Index>(model.basis.size()) * (model.structure.dofs() + model.lawComponents());
+  if (full.size() != full_size || !full.allFinite())
+    throwInputError("full", "(" + std::to_string(full.size()) + " values)",
+                    "must be a finite full coefficient vector [x; lambda] of " + std::to_string(full_size) +
+                        " values (the \"full\" entry of a solution at these settings)");
+  HillResult hill;
+  {
+    py::gil_scoped_release unlocked;
+    hill = hillStability(model, full);
+  }
+  std::vector<std::complex<double>> multipliers, exponents;
+  for (const auto& e : hill.exponents) {
+    multipliers.push_back(e.multiplier);
+    exponents.push_back(e.exponent);
+  }
+  py::dict d;
+  d["stable"] = hill.stable;
+  d["spectral_radius"] = hill.spectral_radius;
+  d["multipliers"] = multipliers;
+  d["exponents"] = exponents;
+  d["pencil_size"] = hill.pencil_size;
+  d["seconds"] = hill.seconds;
+  d["failure"] = hill.failure;
   return d;
 }
 
@@ -344,6 +377,8 @@ PYBIND11_MODULE(_eqhb, m) {
         py::arg("harmonics"), py::arg("samples"), py::arg("solver"), py::arg("system"), py::arg("tolerance"),
         py::arg("max_iterations"), py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"),
         py::arg("max_points"));
+  m.def("_stability", &stability, py::arg("model"), py::arg("full"), py::arg("omega"), py::arg("harmonics"),
+        py::arg("samples"));
   m.def("_shoot", &shoot, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),
         py::arg("solver"), py::arg("restitution"), py::arg("tolerance"), py::arg("max_iterations"));
   m.def("_simulate", &simulate, py::arg("model"), py::arg("omega"), py::arg("step"), py::arg("periods"),

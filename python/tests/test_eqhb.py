@@ -127,6 +127,20 @@ def test_shoot_finds_the_exact_orbit_near_harmonic_balance():
     np.testing.assert_allclose(orbit["max_abs_x"], hb["max_abs_x"], rtol=0.05)
 
 
+def test_stability_by_hill_matches_the_shooting_multipliers_on_cubic():
+    model = eqhb.load_scene(PROBLEMS / "cubic.toml")
+    result = eqhb.solve(model, omega=0.5, system="full")
+    hill = eqhb.stability(model, result)
+    orbit = eqhb.shoot(model, omega=0.5)
+    assert hill["stable"] and orbit["stable"] and hill["failure"] == ""
+    assert hill["spectral_radius"] == pytest.approx(orbit["spectral_radius"], rel=1e-5)
+    exact = sorted(orbit["multipliers"], key=lambda z: (round(abs(z), 6), z.imag))
+    found = sorted(hill["multipliers"], key=lambda z: (round(abs(z), 6), z.imag))
+    np.testing.assert_allclose(found, exact, atol=1e-5)
+    with pytest.raises(eqhb.InputError, match="full"):
+        eqhb.stability(model, np.zeros(3), omega=0.5)
+
+
 BAD = [
     (lambda: arrays_model(laws=[dict(LAWS[0], muN=-1.0)]), "law[0].muN"),
     (lambda: arrays_model(laws=[dict(LAWS[0], muN=float("nan"))]), "law[0].muN"),
