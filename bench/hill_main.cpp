@@ -155,7 +155,8 @@ void curveTables(std::ostream& md, bool quick) {
       {"cubic.toml", true, 0.4, 1.6, 0.02, quick ? 60 : 10, 0.0},
       {"friction-1d.toml", false, 0.1, 0.8, quick ? 0.05 : 0.01, 1, 0.0},
       {"friction-2d-sliding.toml", false, 0.3, 1.2, quick ? 0.1 : 0.02, 1, 0.0},
-      {"contact.toml", false, 0.3, 0.9, quick ? 0.1 : 0.02, 1, 1.0}};
+      {"contact.toml", false, 0.3, 0.9, quick ? 0.1 : 0.02, 1, 1.0},
+      {"stribeck.toml", false, 0.1, 0.8, quick ? 0.05 : 0.01, 1, 0.0}};
   std::ostringstream cost;
   md << "## Stability along curves: Hill against shooting\n\n"
      << "Each checked point: Hill's verdict on the harmonic-balance solution vs the shooting orbit started from "
