@@ -135,5 +135,64 @@ TEST(Scene, MissingFileIsAnInputError) {
   EXPECT_THROW(loadScene("/nonexistent/scene.toml"), InputError);
 }
 
+TEST(Scene, ADirectoryIsNotAScene) {
+  try {
+    loadScene(EQHB_PROBLEMS_DIR);
+    FAIL() << "a directory was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scene, InvalidUtf8IsRefusedBeforeParsing) {
+  // A literal string with a stray byte: the parser read past its buffer.
+  expectError("a = 'x\xff'\n", "line 1: not valid UTF-8");
+  expectError(replaced("name = \"t\"", "name = \"t\"\ndescription = \"\xc0\x80\""), "line 3: not valid UTF-8");
+  expectError(replaced("name = \"t\"", "# \xed\xa0\x80"), "not valid UTF-8");     // a surrogate
+  expectError(replaced("name = \"t\"", "# \xf4\x90\x80\x80"), "not valid UTF-8");  // above U+10FFFF
+  expectError(replaced("name = \"t\"", "# \xe2\x82"), "not valid UTF-8");          // cut short
+  // Well-formed UTF-8 of every length still loads.
+  const Scene scene = parseScene(replaced("name = \"t\"", "name = 'ω ≥ 0 – \xf0\x9f\x99\x82'"), "scene.toml");
+  EXPECT_EQ(scene.name, "ω ≥ 0 – \xf0\x9f\x99\x82");
+}
+
+TEST(Scene, DeepNestingIsRefusedBeforeParsing) {
+  const int deep = 10000;
+  expectError("a = " + std::string(deep, '[') + std::string(deep, ']') + "\n", "nested deeper than");
+  std::string tables = "a = ";
+  for (int i = 0; i < deep; ++i) tables += "{b=";
+  tables += "1" + std::string(deep, '}') + "\n";
+  expectError(tables, "nested deeper than");
+  expectError(kValid, "--set: line 1: arrays or inline tables nested deeper than",
+              {"law.muN=" + std::string(deep, '[') + std::string(deep, ']')});
+  // Brackets inside strings and comments are text, not nesting.
+  const std::string brackets(100, '[');
+  EXPECT_NO_THROW(parseScene(replaced("name = \"t\"", "name = \"t\"\ndescription = '" + brackets + "' # " + brackets),
+                             "scene.toml"));
+  EXPECT_NO_THROW(parseScene(replaced("name = \"t\"", "name = \"t\"\ndescription = \"\"\"\n" + brackets + "\\\"\n\"\"\""),
+                             "scene.toml"));
+}
+
+TEST(Scene, OversizedTextIsRefused) {
+  std::string text = kValid;
+  text += std::string(16u << 20, '#');
+  expectError(text, "a scene file is at most");
+}
+
+TEST(Scene, IntegersAreRangeCheckedBeforeNarrowing) {
+  // 4294967306 = 2^32 + 10 used to become 10.
+  expectError(replaced("harmonics = 10", "harmonics = 4294967306"),
+              "harmonic_balance.harmonics = 4294967306: must be <= 1048576");
+  expectError(replaced("harmonics = 10", "harmonics = 2147483647"),
+              "harmonic_balance.harmonics = 2147483647: must be <= 1048576");
+  expectError(replaced("samples = 64", "samples = 4294967360"), "harmonic_balance.samples = 4294967360: must be <=");
+  expectError(replaced("samples = 64", "samples = 100000000"), "harmonic_balance.samples = 100000000: must be <=");
+  expectError(replaced("d = 0.02", "d = 0.02\ndofs = 4294967298"), "structure.dofs = 4294967298: must be <=");
+  expectError(replaced("dof = 1", "dof = 4294967297"), "forcing[0].dof = 4294967297: must be <=");
+  expectError(replaced("cos = 20.0", "cos = 20.0\nharmonic = 4294967297"), "forcing[0].harmonic = 4294967297: must be <=");
+  expectError(replaced("dofs = [2]", "dofs = [4294967298]"), "law[0].dofs = 4294967298: no such DOF");
+  expectError(replaced("harmonics = 10", "harmonics = -9223372036854775808"), "harmonic_balance.harmonics = -9223372036854775808");
+}
+
 }  // namespace
 }  // namespace eqhb

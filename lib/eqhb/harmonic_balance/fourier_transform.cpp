@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "eqhb/error.h"
+#include "eqhb/size_limits.h"
 
 namespace eqhb {
 
@@ -59,6 +60,8 @@ FourierTransform::FourierTransform(const HarmonicSet& basis, int samples)
     throwInputError("samples", std::to_string(samples),
                     "must be >= 2 k_max + 1 = " + std::to_string(basis.minimumSamples()) +
                         " to resolve the highest harmonic k_max = " + std::to_string(basis.highest()));
+  if (samples > kMaxSamples)
+    throwInputError("samples", std::to_string(samples), "must be <= " + std::to_string(kMaxSamples));
   plans_ = std::make_unique<Plans>(samples);
 }
 

@@ -3,14 +3,17 @@
 #include <algorithm>
 
 #include "eqhb/error.h"
+#include "eqhb/size_limits.h"
 
 namespace eqhb {
 
-HarmonicSet::HarmonicSet(HarmonicKind kind, int count)
-    : kind_(kind), count_(count), highest_(kind == HarmonicKind::kOdd ? 2 * count - 1 : count) {
+HarmonicSet::HarmonicSet(HarmonicKind kind, int count) : kind_(kind), count_(count), highest_(0) {
   if (kind == HarmonicKind::kOdd && count < 1)
     throwInputError("harmonics", std::to_string(count), "an odd harmonic set needs H >= 1");
   if (count < 0) throwInputError("harmonics", std::to_string(count), "must be >= 0");
+  if (count > kMaxHarmonics)
+    throwInputError("harmonics", std::to_string(count), "must be <= " + std::to_string(kMaxHarmonics));
+  highest_ = kind == HarmonicKind::kOdd ? 2 * count - 1 : count;
   const int first = kind == HarmonicKind::kOdd ? 1 : 0;
   const int stride = kind == HarmonicKind::kOdd ? 2 : 1;
   for (int k = first; k <= highest_; k += stride) {

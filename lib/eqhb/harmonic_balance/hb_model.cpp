@@ -4,6 +4,7 @@
 #include <set>
 
 #include "eqhb/error.h"
+#include "eqhb/size_limits.h"
 
 namespace eqhb {
 
@@ -11,6 +12,8 @@ void HbModel::validate() const {
   structure.validate();
   if (!(omega > 0.0) || !std::isfinite(omega))
     throwInputError("omega", formatNumber(omega), "must be finite and > 0");
+  if (samples > kMaxSamples)
+    throwInputError("samples", std::to_string(samples), "must be <= " + std::to_string(kMaxSamples));
   if (samples < basis.minimumSamples())
     throwInputError("samples", std::to_string(samples),
                     "must be >= 2 k_max + 1 = " + std::to_string(basis.minimumSamples()) +

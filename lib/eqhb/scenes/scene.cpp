@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -19,6 +22,8 @@
 #include "eqhb/structures/beam.h"
 #include "eqhb/structures/matrix_market.h"
 #include "eqhb/structures/structure_matrices.h"
+#include "eqhb/scenes/toml_guard.h"
+#include "eqhb/size_limits.h"
 
 namespace eqhb {
 
@@ -62,11 +67,17 @@ class TableReader {
     return x;
   }
 
-  int integer(const std::string& key, std::optional<int> fallback = std::nullopt) {
+  // Range-checked before narrowing: TOML integers are 64-bit.
+  int integer(const std::string& key, std::optional<int> fallback = std::nullopt,
+              int max = std::numeric_limits<int>::max()) {
     if (!has(key) && fallback) return *fallback;
     const toml::value& v = raw(key);
     if (!v.is_integer()) fail(path(key), describe(v), "must be an integer");
-    return static_cast<int>(v.as_integer());
+    const std::int64_t x = v.as_integer();
+    if (x > max) fail(path(key), std::to_string(x), "must be <= " + std::to_string(max));
+    if (x < std::numeric_limits<int>::min())
+      fail(path(key), std::to_string(x), "must be >= " + std::to_string(std::numeric_limits<int>::min()));
+    return static_cast<int>(x);
   }
 
   std::string text(const std::string& key, std::optional<std::string> fallback = std::nullopt) {
@@ -396,6 +407,7 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
 // ------------------------------------------------------------ overrides
 
 toml::value parseOverrideValue(const std::string& text) {
+  checkTomlText(text, "--set");
   try {
     std::istringstream in("v = " + text);
     return toml::find(toml::parse(in, "--set"), "v");
@@ -526,7 +538,7 @@ Scene buildScene(toml::value root, const std::string& source,
   }
 
   TableReader hb(top.raw("harmonic_balance"), "harmonic_balance", source);
-  const int harmonics = hb.integer("harmonics");
+  const int harmonics = hb.integer("harmonics", std::nullopt, kMaxHarmonics);
   const std::string set = hb.text("set", std::string("odd"));
   if (set != "odd" && set != "all")
     hb.fail("harmonic_balance.set", "\"" + set + "\"", "must be \"odd\" or \"all\"");
@@ -535,7 +547,7 @@ Scene buildScene(toml::value root, const std::string& source,
             "must be >= 1 for set = \"odd\"");
   if (harmonics < 0) hb.fail("harmonic_balance.harmonics", std::to_string(harmonics), "must be >= 0");
   scene.model.basis = HarmonicSet(HarmonicSet::parseKind(set), harmonics);
-  scene.model.samples = hb.integer("samples");
+  scene.model.samples = hb.integer("samples", std::nullopt, kMaxSamples);
   if (scene.model.samples < scene.model.basis.minimumSamples())
     hb.fail("harmonic_balance.samples", std::to_string(scene.model.samples),
             "must be >= 2 k_max + 1 = " + std::to_string(scene.model.basis.minimumSamples()) +
@@ -598,6 +610,7 @@ std::vector<std::string> lawOverrides(const HbModel& model, const std::string& k
 
 Scene parseScene(const std::string& text, const std::string& source_name,
                  const std::vector<std::string>& overrides) {
+  checkTomlText(text, source_name);
   toml::value root;
   try {
     std::istringstream in(text);
@@ -609,11 +622,20 @@ Scene parseScene(const std::string& text, const std::string& source_name,
 }
 
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream file(path);
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw InputError(path + ": is a directory, not a scene file");
+  std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot open the scene file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parseScene(text.str(), path, overrides);
+  // At most one byte more than a scene may have: enough to refuse a larger
+  // file (or an endless device) without reading it whole.
+  std::string text(kMaxSceneBytes + 1, '\0');
+  file.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (file.bad()) throw InputError(path + ": cannot read the scene file");
+  text.resize(static_cast<size_t>(file.gcount()));
+  if (text.size() > kMaxSceneBytes)
+    throw InputError(path + ": larger than " + std::to_string(kMaxSceneBytes) + " bytes: not a scene file");
+  return parseScene(text, path, overrides);
 }
 
 }  // namespace eqhb
