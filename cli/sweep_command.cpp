@@ -111,18 +111,23 @@ nlohmann::json curveJson(const Scene& scene, const Solver& solver, const Continu
 int runSweep(const SolveArguments& s, const SweepArguments& w) {
   const Scene scene = loadSceneWith(s.scene);
   ContinuationOptions options;
-  options.from = w.from ? *w.from : scene.sweep_from.value_or(0.0);
-  options.to = w.to ? *w.to : scene.sweep_to.value_or(0.0);
   if (!w.from && !scene.sweep_from) throwInputError("--from", "(missing)", "the scene has no [sweep]: give --from and --to");
+  if (!w.to && !scene.sweep_to) throwInputError("--to", "(missing)", "the scene has no [sweep]: give --from and --to");
+  options.from = w.from ? *w.from : *scene.sweep_from;
+  options.to = w.to ? *w.to : *scene.sweep_to;
+  if (!(w.step > 0.0) || !std::isfinite(w.step)) throwInputError("--step", formatNumber(w.step), "must be finite and > 0");
   options.step = w.step;
   options.min_step = std::min(1e-6, w.step);
   options.max_step = std::max(1.0, w.step);
   options.max_points = w.max_points;
   options.condensed = !s.full;
+  // Every option checked before any count is derived from them.
+  if (w.arclength) options.validate();
+  else options.validateGrid();
   const SolverOptions solver_options = solverOptions(s);
   auto solver = makeSolver(s.solver);
   const int dofs = scene.model.structure.dofs();
-  const int expected = w.arclength ? 0 : static_cast<int>(std::abs(options.to - options.from) / options.step) + 1;
+  const int expected = w.arclength ? 0 : static_cast<int>(options.gridPoints());
   ProgressLine line(verbosity().progress, scene.name + " sweep");
   const bool verbose = verbosity().verbose;
   if (verbose)
@@ -193,7 +198,7 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     if (runProgram(command) != 0)
       throw std::runtime_error("--chart: plotting failed (needs " + command[0] + " with matplotlib)");
   }
-  return curve.failed_points == 0 && !curve.points.empty() ? 0 : 1;
+  return curve.complete && curve.failed_points == 0 && !curve.points.empty() ? 0 : 1;
 }
 
 }  // namespace eqhb::cli

@@ -126,5 +126,40 @@ TEST(Continuation, OptionsAreValidated) {
   EXPECT_THROW(options.validate(), InputError);
 }
 
+TEST(Continuation, AGridBeyondMaxPointsIsRefusedUpFront) {
+  // It used to stop silently at max_points and report the end of the range.
+  const Scene scene = loadScene(test::problem("friction-1d.toml"));
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.from = 0.1;
+  options.to = 0.10003;
+  options.step = 1e-9;
+  options.min_step = 1e-9;
+  EXPECT_NEAR(options.gridPoints(), 30001, 1);
+  try {
+    sweepSequential(scene.model, *solver, {}, options);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than max_points = 20000"), std::string::npos) << e.what();
+  }
+  options.step = 1e-5;  // 4 points
+  options.min_step = 1e-6;
+  const Curve curve = sweepSequential(scene.model, *solver, {}, options);
+  EXPECT_EQ(curve.points.size(), 4u);
+  EXPECT_TRUE(curve.complete);
+}
+
+TEST(Continuation, ArclengthStoppedByMaxPointsIsNotComplete) {
+  const Scene scene = loadScene(test::problem("friction-1d.toml"), {"harmonic_balance.harmonics=3",
+                                                                      "harmonic_balance.samples=64"});
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.max_points = 3;
+  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  EXPECT_EQ(curve.points.size(), 3u);
+  EXPECT_FALSE(curve.complete);
+  EXPECT_NE(curve.stop_reason.find("max_points = 3 reached"), std::string::npos) << curve.stop_reason;
+}
+
 }  // namespace
 }  // namespace eqhb

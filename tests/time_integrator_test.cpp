@@ -116,6 +116,20 @@ TEST(TimeIntegrator, RejectsBadOptions) {
   EXPECT_THROW(integrateToSteadyState(model, options), InputError);
 }
 
+TEST(TimeIntegrator, AStepTooSmallForThePeriodIsRefusedBeforeCountingSteps) {
+  // T / h beyond int used to wrap to a negative step count.
+  const HbModel model = dampedLinearChain();
+  TimeOptions options;
+  options.step = 1e-12;
+  try {
+    integrateToSteadyState(model, options);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("step = 1e-12: gives"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("steps per period"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace eqhb
 

@@ -22,6 +22,18 @@ void ContinuationOptions::validate() const {
   if (max_points < 1) throwInputError("max_points", std::to_string(max_points), "must be >= 1");
 }
 
+double ContinuationOptions::gridPoints() const { return std::floor(std::abs(to - from) / step + 1e-9) + 1.0; }
+
+void ContinuationOptions::validateGrid() const {
+  validate();
+  const double points = gridPoints();
+  if (points > max_points)
+    throwInputError("step", formatNumber(step),
+                    "the grid " + formatNumber(from) + " -> " + formatNumber(to) + " needs " + formatNumber(points) +
+                        " points, more than max_points = " + std::to_string(max_points) +
+                        " (give a larger step or max_points)");
+}
+
 namespace {
 
 void fillCounts(CurvePoint& p, const SolverResult& r) {
@@ -94,17 +106,17 @@ CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full) {
 
 Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
                       const ContinuationOptions& options, const Progress& progress) {
-  options.validate();
+  options.validateGrid();
   const auto start = std::chrono::steady_clock::now();
   Curve curve;
   HbModel m = model;
   m.omega = options.from;
   auto system = makeHbSystem(m, options.condensed, solver_options.linear_algebra);
   const double direction = options.to > options.from ? 1.0 : -1.0;
-  const int grid = static_cast<int>(std::floor(std::abs(options.to - options.from) / options.step + 1e-9));
+  const int grid = static_cast<int>(options.gridPoints()) - 1;
   Eigen::VectorXd z = Eigen::VectorXd::Zero(system->size());
   double last_converged_omega = NAN;
-  for (int i = 0; i <= grid && i < options.max_points; ++i) {
+  for (int i = 0; i <= grid; ++i) {
     const double target = options.from + direction * i * options.step;
     CurvePoint point;
     point.omega = target;
@@ -351,7 +363,9 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
                                          std::max(1, r.iterations), 0.5, 2.0);
     ds = std::clamp(ds * factor, options.min_step, options.max_step);
   }
-  if (curve.stop_reason.empty()) curve.stop_reason = "max_points reached";
+  if (curve.stop_reason.empty())
+    curve.stop_reason = "max_points = " + std::to_string(options.max_points) + " reached at omega = " +
+                        formatNumber(y[n] * sw) + ", before the end of the range";
   curve.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return curve;
 }

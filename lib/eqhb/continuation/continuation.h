@@ -44,7 +44,7 @@ struct CurvePoint {
 
 struct Curve {
   std::vector<CurvePoint> points;
-  bool complete = false;        // reached the end of the range
+  bool complete = false;        // reached the end of the range (exit status 0 needs it)
   std::string stop_reason;
   std::vector<double> fold_omegas;
   double seconds = 0.0;
@@ -61,6 +61,12 @@ struct ContinuationOptions {
   bool condensed = true;
   // Throws InputError naming the field.
   void validate() const;
+  // Points of the sequential grid, floor(|to − from| / step) + 1, as a
+  // double (it may lie far beyond int). Call after validate().
+  double gridPoints() const;
+  // validate(), and for a sequential sweep a grid of at most max_points:
+  // refused up front with the count, never cut short.
+  void validateGrid() const;
 };
 
 using Progress = std::function<void(const CurvePoint&, int index)>;

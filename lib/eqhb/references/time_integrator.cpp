@@ -41,7 +41,12 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
   const LinearStructure& s = model.structure;
   const int n = s.dofs();
   const double period = 2.0 * M_PI / model.omega;
-  const int steps = std::max(1, static_cast<int>(std::ceil(period / options.step)));
+  const double wanted = std::ceil(period / options.step);  // checked before it becomes an int
+  if (wanted > kMaxStepsPerPeriod)
+    throwInputError("step", formatNumber(options.step),
+                    "gives " + formatNumber(wanted) + " steps per period T = " + formatNumber(period) +
+                        ", more than " + formatNumber(kMaxStepsPerPeriod));
+  const int steps = std::max(1, static_cast<int>(wanted));
   const double h = period / steps, theta = options.theta;
 
   // Constant operators of the step.

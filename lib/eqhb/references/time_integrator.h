@@ -22,6 +22,9 @@
 
 namespace eqhb {
 
+// Most steps in one period (the last period is kept sample by sample).
+inline constexpr double kMaxStepsPerPeriod = 1e7;
+
 struct TimeOptions {
   double step = 1e-4;              // requested h > 0; the used one divides T
   double theta = 0.5;              // in [½, 1]
