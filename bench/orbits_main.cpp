@@ -154,23 +154,29 @@ int main(int argc, char** argv) {
   std::string out_dir;
   bool quick = false;
   app.add_option("--out", out_dir, "Directory for orbits.md");
+  std::string only;
   app.add_flag("--quick", quick, "Fewer steps and harmonics");
+  app.add_option("--only", only, "Only the scenes whose file name contains this text");
   CLI11_PARSE(app, argc, argv);
   const std::string dir = EQHB_PROBLEMS_DIR;
   const std::vector<Case> cases = {{"friction-1d.toml", 0.308, 0.0}, {"friction-1d.toml", 0.4, 0.0},
                                    {"friction-1d.toml", 0.55, 0.0},  {"coulomb-oscillator.toml", 0.6, 0.0},
                                    {"contact.toml", 0.5, 0.0},       {"contact.toml", 0.5, 1.0},
                                    {"friction-2d-sliding.toml", 0.6, 0.0}, {"friction-2d.toml", 0.1, 0.0},
+                                   {"stribeck.toml", 0.2, 0.0},      {"stribeck.toml", 0.4, 0.0},
                                    {"cubic.toml", 0.5, 0.0}};
   const std::vector<int> steps = quick ? std::vector<int>{250, 1000} : std::vector<int>{250, 500, 1000, 2000, 4000};
   const std::vector<int> harmonics = quick ? std::vector<int>{5, 20} : std::vector<int>{5, 10, 20, 40, 80, 160};
   std::ostringstream md;
   md << "# Exact periodic orbits as references of truth\n\n"
-     << "Shooting from harmonic balance (H = the scene's), event-driven closed-form phases. "
+     << "Shooting from harmonic balance (H = the scene's), event-driven: closed-form phases (Coulomb 1D, "
+     << "Signorini), Gauss–Legendre order 6 (cubic, Coulomb 2D with stick–slip, Stribeck). "
      << "Errors are relative to max|x| of the exact orbit: `sup` = max over the period and DOFs of |x − x_exact|, "
      << "`max|x|` = relative error of the largest displacement. Moreau–Jean θ = ½ is started from harmonic "
      << "balance and run to periodicity (1e-11) or the period limit.\n\n";
+  bool first = true;
   for (const Case& c : cases) {
+    if (c.file.find(only) == std::string::npos) continue;
     const Scene scene = loadScene(dir + "/" + c.file, {"harmonic_balance.omega=" + number(c.omega, 17)});
     const HbModel& model = scene.model;
     bool hb_ok = false;
@@ -192,7 +198,8 @@ int main(int argc, char** argv) {
       const std::string text = md.str();
       md.str("");
       std::cout << text << std::flush;
-      if (!out_dir.empty()) std::ofstream(out_dir + "/orbits.md", std::ios::app) << text;
+      if (!out_dir.empty()) std::ofstream(out_dir + "/orbits.md", first ? std::ios::trunc : std::ios::app) << text;
+      first = false;
       continue;
     }
     md << "\n\n| Moreau–Jean steps per period | periodic (periods) | sup error | max\\|x\\| error | rate | seconds |\n|---|---|---|---|---|---|\n";
@@ -222,9 +229,10 @@ int main(int argc, char** argv) {
     std::cout << text << std::flush;
     if (!out_dir.empty()) {
       // Appended per scene: a long run keeps what it has done.
-      std::ofstream file(out_dir + "/orbits.md", &c == &cases[0] ? std::ios::trunc : std::ios::app);
+      std::ofstream file(out_dir + "/orbits.md", first ? std::ios::trunc : std::ios::app);
       file << text;
     }
+    first = false;
   }
   return 0;
 }

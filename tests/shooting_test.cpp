@@ -7,6 +7,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
+#include "eqhb/laws/coulomb_2d.h"
 #include "eqhb/laws/stribeck.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/references/time_integrator.h"
@@ -345,7 +346,7 @@ TEST(Shooting, PlanarStickSlipOrbit) {
     EXPECT_LT(jacobianMismatch(*flow, orbit.state, orbit.start_time, part * flow->period()), 1e-4) << part;
   // Independent check: Moreau–Jean converges to the same orbit.
   std::vector<double> errors;
-  for (int steps : {250, 500, 1000}) {
+  for (int steps : {250, 1000}) {
     TimeOptions options;
     options.step = flow->period() / steps;
     options.periodic_tolerance = 1e-11;
@@ -353,8 +354,8 @@ TEST(Shooting, PlanarStickSlipOrbit) {
     ASSERT_TRUE(ref.periodic);
     errors.push_back(orbits::distanceToOrbit(*flow, orbit, ref.displacement));
   }
-  EXPECT_GT(std::log2(errors[0] / errors[2]) / 2.0, 0.9);
-  EXPECT_LT(errors[2], 5e-3);
+  EXPECT_GT(std::log2(errors[0] / errors[1]) / 2.0, 0.9);
+  EXPECT_LT(errors[1], 5e-3);
 }
 
 TEST(Shooting, StribeckOrbitsAndTheirMonodromy) {
@@ -435,6 +436,38 @@ TEST(Shooting, NearGrazingImpactInsideOneGridIntervalIsFound) {
   ASSERT_TRUE(clear.ok);
   EXPECT_EQ(clear.events.count("impact"), 0u);
   EXPECT_NEAR(clear.end[0], std::sin(2.0), 1e-13);
+}
+
+TEST(Shooting, BriefPlanarReleaseInsideOneStepIsFound) {
+  // A stuck planar mass (M = K = I) under f = (10 cos t, 0) with μN just
+  // below 10: the force it needs, |10 cos t|, exceeds μN only for
+  // |t − π| < sqrt(2δ), far inside one step (up to 0.2 while stuck, where
+  // the field is 0 and the error control lets the steps grow).
+  for (double delta : {1e-6, 1e-8, 1e-10}) {
+    HbModel model;
+    model.structure = LinearStructure(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Zero(2, 2),
+                                      Eigen::MatrixXd::Identity(2, 2));
+    model.structure.loads.push_back({0, 1, 10.0, 0.0});
+    model.laws.push_back({{0, 1}, std::make_shared<Coulomb2D>(10.0 * (1.0 - delta), Coulomb2DForm::kMax)});
+    model.basis = HarmonicSet(HarmonicKind::kOdd, 1);
+    model.samples = 16;
+    model.omega = 1.0;
+    const orbits::SmoothFlow flow(model);
+    const auto run = flow.integrate(Eigen::VectorXd::Zero(4), 0.05, 4.0, false);
+    if (delta == 1e-10) {
+      // A slide whose speed would stay below 1e-14 is not integrated: said so.
+      EXPECT_FALSE(run.ok);
+      EXPECT_NE(run.failure.find("below round-off"), std::string::npos) << run.failure;
+      continue;
+    }
+    ASSERT_TRUE(run.ok) << run.failure;
+    EXPECT_EQ(run.events.count("slip"), 1u) << delta;
+    EXPECT_EQ(run.events.count("stick"), 1u) << delta;
+    // Near t = π the load 10 cos t ≈ −10 pushes it towards −x: it slipped
+    // there by a little and stuck again.
+    EXPECT_LT(run.end[0], 0.0) << delta;
+    EXPECT_EQ(run.end[2], 0.0);
+  }
 }
 
 TEST(Shooting, RejectsLawsItCannotIntegrate) {

@@ -87,6 +87,11 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
                          (mass_inverse_ * damping_).cwiseAbs().rowwise().sum().maxCoeff());
   for (const auto& load : loads_) rate = std::max(rate, load.harmonic * omega_);
   rate_ = std::max(rate, omega_);
+  double force = 0.0;
+  for (const auto& load : loads_) force += std::abs(load.cos_amplitude) + std::abs(load.sin_amplitude);
+  for (const Site& site : sites_)
+    if (site.kind != Kind::kCubic) force += site.coefficient + site.drop;
+  acceleration_scale_ = mass_inverse_.cwiseAbs().rowwise().sum().maxCoeff() * force;
 }
 
 const SmoothFlow::Constraint& SmoothFlow::constraint(const Modes& modes) const {
@@ -373,9 +378,10 @@ bool SmoothFlow::step(double t, const Eigen::VectorXd& y, double h, const Modes&
     k -= delta;
     if (!k.allFinite()) return false;
     // Converged at round-off of the stage derivatives, whose scale is at
-    // least the state's times the fastest rate (forces cancelling at rest
-    // leave round-off of that size).
-    const double k_scale = std::max(k.cwiseAbs().maxCoeff(), rate_ * y.cwiseAbs().maxCoeff());
+    // least the state's times the fastest rate and the accelerations the
+    // loads and friction limits give (forces that cancel near rest leave
+    // round-off of that size).
+    const double k_scale = std::max({k.cwiseAbs().maxCoeff(), rate_ * y.cwiseAbs().maxCoeff(), acceleration_scale_});
     if (delta.cwiseAbs().maxCoeff() <= 4.0 * std::numeric_limits<double>::epsilon() * (k_scale + 1e-300)) {
       converged = true;
       if (dy1) {
@@ -480,6 +486,11 @@ FlowResult SmoothFlow::integrate(const Eigen::VectorXd& y0, double t0, double du
     const double span = std::min({h, t_end - t, rest_limit, max_step});
     if (++steps > kMaxSteps || span <= 1e-15 * time_scale) {
       result.failure = "step size underflow at t = " + formatNumber(t);
+      for (size_t s = 0; s < sites_.size(); ++s)
+        if (sites_[s].kind == Kind::kPlanar && modes[s] == Mode::kSlide && y[n_ + sites_[s].dof] == 0.0 &&
+            y[n_ + sites_[s].second_dof] == 0.0)
+          result.failure = "planar slide from rest at t = " + formatNumber(t) + " (law " + std::to_string(s + 1) +
+                           ") too brief: its speed stays below round-off";
       return result;
     }
     // Step doubling: one step of h against two of h/2.
@@ -511,23 +522,52 @@ FlowResult SmoothFlow::integrate(const Eigen::VectorXd& y0, double t0, double du
       rest_limit = std::min(rest_limit, h);
       continue;
     }
-    // Sign-change events: bracketed at the half and the end of the step
-    // (a pair of zeros inside one half is below the step's resolution).
+    // Sign-change events: bracketed at the half and the end of the step.
     const std::vector<Watch> watch = watches(modes);
     int fired = -1;
     double tau_event = span;
     for (size_t e = 0; e < watch.size(); ++e) {
       const double g_half = eventValue(watch[e], t + 0.5 * span, half, modes, nullptr, nullptr);
       const double g_end = eventValue(watch[e], t + span, small, modes, nullptr, nullptr);
-      if (g_half > 0.0 && g_end > 0.0) continue;
-      // g(τ) on the Gauss solution: two steps of τ/2 from t, as the step.
-      auto g = [&](double tau) {
-        if (tau <= 0.0) return eventValue(watch[e], t, y, modes, nullptr, nullptr);
+      // y(τ) on the Gauss solution: two steps of τ/2 from t, as the step.
+      auto state = [&](double tau) -> const Eigen::VectorXd* {
+        if (tau <= 0.0) return &y;
         if (!step(t, y, 0.5 * tau, modes, quarter, nullptr) || !step(t + 0.5 * tau, quarter, 0.5 * tau, modes, big, nullptr))
-          return std::numeric_limits<double>::quiet_NaN();
-        return eventValue(watch[e], t + tau, big, modes, nullptr, nullptr);
+          return nullptr;
+        return &big;
       };
-      double lo = 0.0, hi = g_half > 0.0 ? span : 0.5 * span, g_lo = g(0.0), g_hi = g(hi);
+      auto g = [&](double tau) {
+        const Eigen::VectorXd* at = state(tau);
+        return at ? eventValue(watch[e], t + tau, *at, modes, nullptr, nullptr) : std::numeric_limits<double>::quiet_NaN();
+      };
+      double lo = 0.0, hi = g_half > 0.0 ? span : 0.5 * span;
+      if (g_half > 0.0 && g_end > 0.0) {
+        // Positive at the three points, g may still dip below 0 inside a
+        // half (a pair of zeros closer than the step: a brief excursion of
+        // the stick force, a velocity just touching 0). Where ġ goes from −
+        // to + lies a minimum; if g <= 0 there, the first zero is before it.
+        auto slope = [&](double tau, const Eigen::VectorXd& at) {
+          Eigen::RowVectorXd gradient;
+          double time_derivative = 0.0;
+          Eigen::VectorXd f;
+          eventValue(watch[e], t + tau, at, modes, &gradient, &time_derivative);
+          return field(t + tau, at, modes, f, nullptr) ? time_derivative + gradient.dot(f) : 0.0;
+        };
+        const double s0 = slope(0.0, y), s1 = slope(0.5 * span, half), s2 = slope(span, small);
+        double a = 0.0, b = 0.0;
+        if (s0 < 0.0 && s1 > 0.0) b = 0.5 * span;
+        else if (s1 < 0.0 && s2 > 0.0) a = 0.5 * span, b = span;
+        else continue;
+        for (int it = 0; it < 100 && b - a > 4.0 * std::numeric_limits<double>::epsilon() * time_scale; ++it) {
+          const double mid = 0.5 * (a + b);
+          const Eigen::VectorXd* at = state(mid);
+          if (!at) break;
+          (slope(mid, *at) < 0.0 ? a : b) = mid;
+        }
+        if (!(g(b) <= 0.0)) continue;  // passes by without reaching 0
+        hi = b;
+      }
+      double g_lo = g(0.0), g_hi = g(hi);
       if (!(g_hi <= 0.0)) continue;
       if (!(g_lo > 0.0)) {
         // Leaves its set at once: the event fires at the start.
@@ -628,7 +668,11 @@ FlowResult SmoothFlow::integrate(const Eigen::VectorXd& y0, double t0, double du
       const double speed = v.norm(), rate = v.dot(a) / speed;
       if (!(rate < 0.0)) continue;
       const double to_rest = speed / -rate;
-      if (to_rest > kRestTime * time_scale || t + to_rest >= t_end) {
+      // Rest when the predicted time to it is tiny, or the speed is within
+      // a hundred times the round-off floor of the field (slow approaches).
+      const bool resting = to_rest <= kRestTime * time_scale ||
+                           speed <= 100.0 * kRestSpeed * (1.0 + y.tail(n_).cwiseAbs().maxCoeff());
+      if (!resting || t + to_rest >= t_end) {
         rest_limit = std::min(rest_limit, 0.9 * to_rest);
         continue;
       }
