@@ -273,8 +273,11 @@ int runSolve(const SolveArguments& a) {
       } else {
         std::cout << "stability: " << (hill.stable ? "stable" : "UNSTABLE") << ", spectral radius "
                   << hill.spectral_radius << " (Hill, " << hill.pencil_size << " unknowns, " << hill.seconds
-                  << " s); multipliers:";
-        for (const auto& e : hill.exponents) std::cout << " " << e.multiplier.real() << (e.multiplier.imag() < 0 ? "" : "+") << e.multiplier.imag() << "i";
+                  << " s); leading multipliers:";
+        for (size_t i = 0; i < hill.exponents.size() && i < 8; ++i) {
+          const auto& e = hill.exponents[i];
+          std::cout << " " << e.multiplier.real() << (e.multiplier.imag() < 0 ? "" : "+") << e.multiplier.imag() << "i";
+        }
         std::cout << "\n";
       }
     }

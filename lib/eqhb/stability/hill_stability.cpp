@@ -270,7 +270,7 @@ HillResult hillStability(const HbModel& model, const Eigen::VectorXd& full, cons
   result.sparse = pencil.size > options.dense_limit;
 
   Spectrum spectrum;
-  const int wanted = options.sparse_eigenvalues > 0 ? options.sparse_eigenvalues : std::max(24, 8 * n);
+  const int wanted = options.sparse_eigenvalues > 0 ? options.sparse_eigenvalues : 40;
   const bool ok = result.sparse ? sparseSpectrum(pencil, model.omega, wanted, &spectrum, &result.failure)
                                 : denseSpectrum(pencil, model.omega, &spectrum, &result.failure);
   if (ok) {

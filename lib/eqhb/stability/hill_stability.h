@@ -47,8 +47,9 @@ namespace eqhb {
 struct HillOptions {
   // Pencils up to this many unknowns are solved dense, larger ones sparse.
   int dense_limit = 1500;
-  // Sparse: exponents requested from the Arnoldi solver (0: automatic,
-  // max(24, 4·(2n)) capped by the size).
+  // Sparse: eigenvalues requested from the Arnoldi solver, the exponents
+  // nearest the shift σ = 0 (0: 40, capped by the size); only these are
+  // candidates, so a large structure reports its least damped exponents.
   int sparse_eigenvalues = 0;
   // A multiplier counts as on the unit circle within this margin; stable
   // means spectral radius < 1 + unit_tolerance.
