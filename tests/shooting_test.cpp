@@ -6,6 +6,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/cubic_stiffness.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/coulomb_2d.h"
 #include "eqhb/laws/stribeck.h"
@@ -320,7 +321,7 @@ TEST(Shooting, PlanarStickSlipOrbit) {
   // Exact Coulomb in the plane along the orbit: the force stays in the disc
   // ‖λ‖ <= μN = 8; at rest it may be inside, while sliding it is on the
   // circle and opposite to v.
-  const int count = 2000;
+  const int count = 500;
   orbits::FlowSamples samples;
   for (int s = 0; s < count; ++s) samples.times.push_back(orbit.start_time + flow->period() * s / count);
   ASSERT_TRUE(flow->integrate(orbit.state, orbit.start_time, flow->period(), false, &samples).ok);
@@ -420,6 +421,38 @@ TEST(Shooting, StribeckWithoutDropIsTheClosedFormCoulombOrbit) {
     EXPECT_LT((a.max_abs - b.max_abs).cwiseAbs().maxCoeff(), 1e-9 * a.max_abs.maxCoeff()) << omega;
     EXPECT_LT((a.monodromy - b.monodromy).cwiseAbs().maxCoeff(), 1e-7 * a.monodromy.cwiseAbs().maxCoeff()) << omega;
   }
+}
+
+TEST(Shooting, CoulombMixedWithCubicGoesWithTheSmoothPhases) {
+  // friction-1d plus a cubic spring on DOF 1: with ε = 0 the smooth-phase
+  // flow (Coulomb 1D taken as Stribeck without drop) gives the closed-form
+  // orbit; with ε = 0.002 it still shoots, stick-slip included.
+  HbModel coulomb = loadScene(test::problem("friction-1d.toml")).model;
+  coulomb.omega = 0.308;
+  const PiecewiseLinearFlow exact(coulomb, 0.0);
+  const Eigen::VectorXd hb = harmonicBalance(coulomb);
+  const double t0 = orbits::quietStartTime(coulomb, hb);
+  const auto a = shootPeriodicOrbit(exact, orbits::harmonicState(coulomb, hb, t0), t0, ShootingOptions());
+  ASSERT_TRUE(a.converged) << a.failure;
+  for (double epsilon : {0.0, 0.002}) {
+    HbModel mixed = coulomb;
+    mixed.laws.push_back({{0}, std::make_shared<CubicStiffness>(epsilon)});
+    const auto flow = orbits::makeFlow(mixed, 0.0);
+    ASSERT_NE(dynamic_cast<const orbits::SmoothFlow*>(flow.get()), nullptr);
+    const auto b = shootPeriodicOrbit(*flow, orbits::harmonicState(coulomb, hb, t0), t0, ShootingOptions());
+    ASSERT_TRUE(b.converged) << b.failure;
+    EXPECT_GE(b.events.at("stick"), 1);
+    if (epsilon == 0.0) {
+      EXPECT_EQ(a.events, b.events);
+      EXPECT_LT((a.state - b.state).cwiseAbs().maxCoeff(), 1e-9 * a.state.cwiseAbs().maxCoeff());
+    } else {
+      EXPECT_GT((a.state - b.state).cwiseAbs().maxCoeff(), 1e-3 * a.state.cwiseAbs().maxCoeff());
+    }
+  }
+  // Signorini does not mix with smooth laws.
+  HbModel contact = loadScene(test::problem("contact.toml")).model;
+  contact.laws.push_back({{0}, std::make_shared<CubicStiffness>(0.1)});
+  EXPECT_THROW(orbits::makeFlow(contact, 0.0), InputError);
 }
 
 TEST(Shooting, NearGrazingImpactInsideOneGridIntervalIsFound) {

@@ -106,8 +106,8 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
       site.gap = contact->gap();
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
-                      "exact orbits handle coulomb-1d, signorini (closed form), cubic, coulomb-2d and stribeck "
-                      "(smooth phases) laws, not mixed");
+                      "exact orbits handle coulomb-1d, signorini (closed form), cubic, coulomb-2d, stribeck "
+                      "and coulomb-1d (smooth phases) laws; signorini does not mix with the smooth ones");
     }
     sites_.push_back(site);
   }

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/laws/coulomb_2d.h"
 #include "eqhb/laws/cubic_stiffness.h"
 #include "eqhb/laws/stribeck.h"
@@ -34,7 +35,7 @@ bool SmoothFlow::supports(const HbModel& model) {
   for (const auto& attached : model.laws) {
     const Law* law = attached.law.get();
     if (!dynamic_cast<const CubicStiffness*>(law) && !dynamic_cast<const Coulomb2D*>(law) &&
-        !dynamic_cast<const Stribeck*>(law))
+        !dynamic_cast<const Stribeck*>(law) && !dynamic_cast<const Coulomb1D*>(law))
       return false;
   }
   return true;
@@ -43,7 +44,9 @@ bool SmoothFlow::supports(const HbModel& model) {
 std::unique_ptr<Flow> makeFlow(const HbModel& model, double restitution) {
   if (!(restitution >= 0.0 && restitution <= 1.0))
     throwInputError("restitution", formatNumber(restitution), "must be in [0, 1]");
-  if (SmoothFlow::supports(model)) return std::make_unique<SmoothFlow>(model);
+  // Closed form where every law allows it; Coulomb 1D mixed with smooth
+  // laws goes with them (a Stribeck law without drop).
+  if (!PiecewiseLinearFlow::supports(model) && SmoothFlow::supports(model)) return std::make_unique<SmoothFlow>(model);
   return std::make_unique<PiecewiseLinearFlow>(model, restitution);
 }
 
@@ -70,6 +73,9 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
       site.kind = Kind::kPlanar;
       site.second_dof = model.laws[l].dofs[1];
       site.coefficient = planar->muN();
+    } else if (const auto* coulomb = dynamic_cast<const Coulomb1D*>(law)) {
+      site.kind = Kind::kStribeck;  // constant limit μN: no drop
+      site.coefficient = coulomb->muN();
     } else if (const auto* stribeck = dynamic_cast<const Stribeck*>(law)) {
       site.kind = Kind::kStribeck;
       site.coefficient = stribeck->dynamicLimit();
@@ -77,8 +83,8 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
       site.v_s = stribeck->slidingVelocity();
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
-                      "exact orbits handle coulomb-1d, signorini (closed form), cubic, coulomb-2d and stribeck "
-                      "(smooth phases) laws, not mixed");
+                      "exact orbits handle coulomb-1d, signorini (closed form), cubic, coulomb-2d, stribeck "
+                      "and coulomb-1d (smooth phases) laws; signorini does not mix with the smooth ones");
     }
     components_ += site.components();
     sites_.push_back(site);

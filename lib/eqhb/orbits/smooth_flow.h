@@ -5,7 +5,8 @@
 // with force −μN v/‖v‖, sticks while the force it needs stays in the disc
 // ‖λ‖ <= μN) and Stribeck friction on one DOF (slides with force
 // −L(|v|) sgn v, L(v) = μ_d N + (μ_s − μ_d) N exp(−|v|/v_s); sticks while
-// |λ| <= μ_s N).
+// |λ| <= μ_s N; Coulomb 1D is the case μ_s = μ_d, taken here when it is
+// mixed with the laws above).
 //
 // Stuck DOFs G are held by the constraint force λ_G, as in the closed-form
 // flow: with P their selection and b the other forces,
@@ -50,7 +51,8 @@ constexpr double kRestTime = 1e-11;
 
 class SmoothFlow : public Flow {
  public:
-  // Throws InputError unless every law is cubic, Coulomb 2D or Stribeck.
+  // Throws InputError unless every law is cubic, Coulomb 2D, Stribeck or
+  // Coulomb 1D.
   explicit SmoothFlow(const HbModel& model);
   static bool supports(const HbModel& model);
 
@@ -120,8 +122,8 @@ class SmoothFlow : public Flow {
 };
 
 // The flow for a model's laws: piecewise linear (Coulomb 1D, Signorini) or
-// smooth phases (cubic, Coulomb 2D, Stribeck). Throws InputError for other
-// laws or mixes.
+// smooth phases (cubic, Coulomb 2D, Stribeck, and Coulomb 1D with those).
+// Throws InputError for other laws or Signorini mixed with smooth laws.
 std::unique_ptr<Flow> makeFlow(const HbModel& model, double restitution);
 
 }  // namespace eqhb::orbits
