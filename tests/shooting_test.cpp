@@ -338,6 +338,13 @@ TEST(Shooting, PlanarStickSlipOrbit) {
   }
   EXPECT_GT(stuck, count / 20);
   EXPECT_LT(stuck, count - count / 20);
+}
+
+TEST(Shooting, PlanarStickSlipMonodromyMatchesFiniteDifferences) {
+  const HbModel model = loadScene(test::problem("friction-2d.toml")).model;
+  const auto flow = orbits::makeFlow(model, 0.0);
+  const auto orbit = shootSmooth(model, *flow, harmonicBalance(model));
+  ASSERT_TRUE(orbit.converged) << orbit.failure;
   // The monodromy (stop and release saltations) against central
   // differences, over parts of the period and the whole. The differences
   // carry ~1e-9 of noise (event location, step control), large against the
