@@ -1,0 +1,149 @@
+// The error estimate (one more solve at 2H) and the accuracy-targeted choice
+// of H, against the true error measured on the exact periodic orbit found by
+// shooting.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "eqhb/accuracy/accuracy_target.h"
+#include "eqhb/accuracy/error_estimate.h"
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/orbits/shooting.h"
+#include "eqhb/orbits/smooth_flow.h"
+#include "eqhb/scenes/scene.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+struct Solved {
+  HbModel model;
+  Eigen::VectorXd full;
+};
+
+Solved solve(const HbModel& scene_model, int harmonics, Solver& solver, const SolverOptions& options) {
+  Solved s{withHarmonics(scene_model, harmonics), {}};
+  auto system = makeHbSystem(s.model, true);
+  const SolverResult r = solver.solve(*system, Eigen::VectorXd::Zero(system->size()), options);
+  EXPECT_TRUE(r.converged()) << "H = " << harmonics;
+  s.full = system->fullCoefficients(r.solution);
+  return s;
+}
+
+// max|x_i| of the exact orbit, shot from a harmonic-balance solution.
+Eigen::VectorXd exactMaxAbs(const Solved& hb) {
+  const auto flow = orbits::makeFlow(hb.model, 0.0);
+  const double t0 = orbits::quietStartTime(hb.model, hb.full);
+  const auto orbit = orbits::shootPeriodicOrbit(*flow, orbits::harmonicState(hb.model, hb.full, t0), t0,
+                                                orbits::ShootingOptions());
+  EXPECT_TRUE(orbit.converged) << orbit.failure;
+  return orbit.max_abs;
+}
+
+double trueError(const Solved& hb, const Eigen::VectorXd& exact) {
+  return worstRelativeDifference(peakDisplacements(hb.model, hb.full), exact);
+}
+
+SolverOptions tightOptions() {
+  SolverOptions options;
+  options.residual_tolerance = 1e-10;
+  options.max_iterations = 400;
+  return options;
+}
+
+HbModel scene(const std::string& file, double omega) {
+  return loadScene(test::problem(file), {"harmonic_balance.omega=" + formatNumber(omega)}).model;
+}
+
+TEST(ErrorEstimate, WithinFactorThreeOfTheExactOrbitError) {
+  auto solver = makeSolver("dogleg");
+  const SolverOptions options = tightOptions();
+  for (const auto& [file, omega, harmonics] :
+       {std::tuple{"coulomb-oscillator.toml", 0.6, 5}, std::tuple{"coulomb-oscillator.toml", 0.6, 20},
+        std::tuple{"friction-1d.toml", 0.4, 10}, std::tuple{"friction-1d.toml", 0.55, 20},
+        std::tuple{"cubic.toml", 0.5, 5}}) {
+    const Solved hb = solve(scene(file, omega), harmonics, *solver, options);
+    const double truth = trueError(hb, exactMaxAbs(hb));
+    const ErrorEstimate e = estimateError(hb.model, hb.full, *solver, options, true);
+    ASSERT_TRUE(e.available) << file;
+    EXPECT_EQ(e.refined_harmonics, 2 * harmonics);
+    EXPECT_GT(truth, 1e-9) << file << " H = " << harmonics << ": the true error must be above rounding";
+    EXPECT_GT(e.max_abs / truth, 1.0 / 3) << file << " H = " << harmonics << ": estimate " << e.max_abs
+                                          << ", true " << truth;
+    EXPECT_LT(e.max_abs / truth, 3.0) << file << " H = " << harmonics << ": estimate " << e.max_abs << ", true "
+                                      << truth;
+    EXPECT_NEAR(e.max_abs, kDifferenceFactor * e.max_abs_difference, 1e-15);
+  }
+}
+
+TEST(ErrorEstimate, SpectralForASmoothLaw) {
+  // Cubic stiffness: the series converges spectrally; at H = 10 the estimate
+  // is at rounding, at H = 5 it is not.
+  auto solver = makeSolver("dogleg");
+  const SolverOptions options = tightOptions();
+  const HbModel cubic = scene("cubic.toml", 0.5);
+  const Solved coarse = solve(cubic, 5, *solver, options), fine = solve(cubic, 10, *solver, options);
+  EXPECT_GT(estimateError(coarse.model, coarse.full, *solver, options, true).max_abs, 1e-8);
+  EXPECT_LT(estimateError(fine.model, fine.full, *solver, options, true).max_abs, 1e-12);
+}
+
+TEST(ErrorEstimate, SamplesFollowHarmonicsAndADofAtRestUsesTheFloor) {
+  const HbModel m = scene("friction-1d.toml", 0.4);  // H = 10 odd (k_max 19), N = 1024
+  const HbModel doubled = withHarmonics(m, 20);
+  EXPECT_EQ(doubled.basis.count(), 20);
+  EXPECT_EQ(doubled.samples, 2102);  // 1024 · 39/19 rounded up to even
+  EXPECT_GE(withHarmonics(m, 1).samples, withHarmonics(m, 1).basis.minimumSamples());
+  Eigen::VectorXd reference(2), value(2);
+  reference << 1.0, 0.0;
+  value << 1.0, 1e-5;  // DOF 2 at rest: 1e-5 against 1e-3 of the largest
+  EXPECT_NEAR(worstRelativeDifference(value, reference), 1e-2, 1e-15);
+}
+
+TEST(AccuracyTarget, ChoosesTheFirstRungWhoseEstimateMeetsTheTolerance) {
+  auto solver = makeSolver("dogleg");
+  const SolverOptions options = tightOptions();
+  const HbModel m = scene("coulomb-oscillator.toml", 0.6);
+  const double tolerance = 5e-3;
+  const AccuracyChoice c = chooseHarmonics(m, tolerance, 5, 320, *solver, options, true);
+  ASSERT_TRUE(c.reached) << c.failure;
+  const int chosen = c.model.basis.count();
+  EXPECT_LE(c.estimate.max_abs, tolerance);
+  // Rungs 5, 10, ... up to the chosen one, then its check at 2H.
+  ASSERT_GE(c.ladder.size(), 2u);
+  EXPECT_EQ(c.ladder.back().harmonics, 2 * chosen);
+  for (size_t i = 0; i + 2 < c.ladder.size(); ++i) {
+    EXPECT_TRUE(c.ladder[i].estimated);
+    EXPECT_GT(c.ladder[i].estimate, tolerance) << "H = " << c.ladder[i].harmonics << " was enough";
+  }
+  // Against the exact orbit: the chosen H meets the tolerance (within the
+  // estimate's factor), and half of it did not.
+  const Solved at{c.model, c.full};
+  const Eigen::VectorXd exact = exactMaxAbs(at);
+  EXPECT_LT(trueError(at, exact), 1.5 * tolerance);
+  ASSERT_GT(chosen, 5);
+  const Solved half = solve(m, chosen / 2, *solver, options);
+  EXPECT_GT(trueError(half, exact), tolerance);
+}
+
+TEST(AccuracyTarget, NotReachedBelowTheLargestH) {
+  auto solver = makeSolver("dogleg");
+  const AccuracyChoice c =
+      chooseHarmonics(scene("coulomb-oscillator.toml", 0.6), 1e-5, 5, 20, *solver, tightOptions(), true);
+  EXPECT_FALSE(c.reached);
+  EXPECT_NE(c.failure.find("--max-harmonics = 20"), std::string::npos) << c.failure;
+}
+
+TEST(AccuracyTarget, RejectsAToleranceThatIsNotARelativeError) {
+  auto solver = makeSolver("dogleg");
+  const HbModel m = scene("coulomb-oscillator.toml", 0.6);
+  for (double bad : {0.0, -1e-3, 1.0, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()})
+    EXPECT_THROW(chooseHarmonics(m, bad, 5, 320, *solver, tightOptions(), true), InputError) << bad;
+  EXPECT_THROW(chooseHarmonics(m, 1e-3, 5, 0, *solver, tightOptions(), true), InputError);
+  EXPECT_THROW(chooseHarmonics(m, 1e-3, 40, 20, *solver, tightOptions(), true), InputError);
+}
+
+}  // namespace
+}  // namespace eqhb
