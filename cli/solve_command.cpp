@@ -28,6 +28,7 @@ void addSolveCommand(CLI::App& app, SolveArguments& a) {
   cmd->add_flag("--trajectory", a.trajectory, "With --json: add the samples of x and of the law forces over one period");
   cmd->add_option("--repeat", a.repeat, "Repeat the solve and report the median time")
       ->check(CLI::Range(1, 100000));
+  addAccuracyOptions(cmd, a.accuracy);
   cmd->add_option("--from-harmonics", a.from_harmonics,
                   "Start from the solution at H0, 2H0, ... (continuation in H: for large H where a cold start fails)");
   addStabilityFlag(cmd, a);
@@ -159,6 +160,7 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
                 << terminationName(r.termination) << "); starting from its last iterate\n";
     z0 = system->fromFullCoefficients(transferCoefficients(seed_model, model, seed));
   }
+  if (a.start_full.size()) z0 = system->fromFullCoefficients(a.start_full);
   for (int i = 0; i < a.repeat; ++i) {
     run.result = solver->solve(*system, z0, options);
     if (run.result.termination == Termination::kInvalidOptions)
@@ -170,7 +172,30 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
   return run;
 }
 
-int runSolve(const SolveArguments& a) {
+namespace {
+// The ladder of --accuracy on the scene with every override; the first H is
+// --harmonics if given, else min(5, the scene's H).
+AccuracyChoice chooseHarmonicsFor(const SolveArguments& a) {
+  const Scene scene = loadSceneWith(a.scene);
+  const int start = a.scene.harmonics ? *a.scene.harmonics : std::min(5, scene.model.basis.count());
+  const SolverOptions options = solverOptions(a);
+  auto solver = makeSolver(a.solver);
+  return chooseHarmonics(scene.model, *a.accuracy.tolerance, start, a.accuracy.max_harmonics, *solver, options,
+                         !a.full);
+}
+}  // namespace
+
+int runSolve(const SolveArguments& given) {
+  SolveArguments a = given;
+  // --accuracy: choose H and N first, then report the chosen solution as usual.
+  std::optional<AccuracyChoice> choice;
+  if (a.accuracy.tolerance) {
+    choice = chooseHarmonicsFor(a);
+    a.scene.harmonics = choice->model.basis.count();
+    a.scene.samples = choice->model.samples;
+    a.from_harmonics.reset();
+    a.start_full = choice->full;
+  }
   const HbRun run = solveHarmonicBalance(a);
   const Scene& scene = run.scene;
   const HbModel& model = scene.model;
@@ -194,6 +219,12 @@ int runSolve(const SolveArguments& a) {
   HillResult hill;
   const bool with_stability = a.stability && result.converged();
   if (with_stability) hill = hillStability(model, system->fullCoefficients(result.solution));
+  std::optional<ErrorEstimate> estimate;
+  if (choice && choice->estimate.refined_harmonics) estimate = choice->estimate;
+  else if (a.accuracy.error_estimate && result.converged()) {
+    auto solver = makeSolver(a.solver);
+    estimate = estimateError(model, system->fullCoefficients(result.solution), *solver, options, !a.full);
+  }
   if (a.json) {
     nlohmann::json out;
     out["scene"] = scene.name;
@@ -235,6 +266,11 @@ int runSolve(const SolveArguments& a) {
     }
     out["invariants"] = invariants;
     if (with_stability) out["stability"] = stabilityJson(hill);
+    if (choice) {
+      out["rho"] = a.scene.rho ? nlohmann::json(*a.scene.rho) : nlohmann::json("scene");
+      out["accuracy"] = accuracyJson(*choice, *a.accuracy.tolerance);
+    }
+    if (estimate) out["error_estimate"] = errorEstimateJson(*estimate);
     if (a.trajectory) {
       // One period on the model's N samples: t, x per DOF, λ per law component.
       nlohmann::json t = nlohmann::json::array();
@@ -262,6 +298,13 @@ int runSolve(const SolveArguments& a) {
     for (const auto& c : solution.displacements)
       std::cout << "  max|" << c.label << "| = " << c.max_abs << "\n";
     for (const auto& c : solution.forces) std::cout << "  max|" << c.label << "| = " << c.max_abs << "\n";
+    if (estimate)
+      std::cout << "estimated relative error of max|x|: " << estimate->max_abs << " (solve at H = "
+                << estimate->refined_harmonics << (estimate->available ? "" : ", which did NOT converge") << ")\n";
+    if (choice)
+      std::cout << "--accuracy " << *a.accuracy.tolerance << ": " << (choice->reached ? "reached" : "NOT reached")
+                << " at H = " << model.basis.count() << ", N = " << model.samples << " in " << choice->seconds
+                << " s of solves\n";
     for (const auto& report : checkInvariants(model, system->fullCoefficients(result.solution))) {
       std::cout << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";
       for (const auto& [name, value] : report.violations) std::cout << " " << name << " " << value;
@@ -286,6 +329,13 @@ int runSolve(const SolveArguments& a) {
     std::cerr << "eqhb: the solve did not converge: " << terminationName(result.termination)
               << ", |g| = " << result.final_norm << " > tolerance " << options.residual_tolerance
               << (result.native_message.empty() ? "" : " (" + result.native_message + ")") << "\n";
+  if (choice && !choice->reached) {
+    std::cerr << "eqhb: --accuracy " << *a.accuracy.tolerance << " not reached: " << choice->failure << "\n";
+    return 1;
+  }
+  if (estimate && !estimate->available)
+    std::cerr << "eqhb: warning: the error estimate's solve at H = " << estimate->refined_harmonics
+              << " did not converge: the estimate is not reliable\n";
   return result.converged() ? 0 : 1;
 }
 

@@ -13,6 +13,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/solvers/solver.h"
 #include "eqhb/stability/hill_stability.h"
+#include "accuracy_options.h"
 #include "scene_arguments.h"
 
 namespace eqhb::cli {
@@ -32,6 +33,8 @@ struct SolveArguments {
   std::optional<int> from_harmonics;  // seed by continuation in H from this H₀
   std::string linear_algebra = "auto";  // --linear-algebra: auto, dense or sparse
   bool stability = false;  // --stability: Floquet multipliers by Hill's method
+  AccuracyArguments accuracy;           // --error-estimate, --accuracy (solve only)
+  Eigen::VectorXd start_full;           // initial guess, FullSystem layout (empty: zero)
 };
 
 // One harmonic-balance solve (repeated --repeat times) and what it used.
