@@ -18,6 +18,7 @@
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"
+#include "error_estimates.h"
 
 namespace {
 
@@ -157,6 +158,8 @@ int main(int argc, char** argv) {
   std::string only;
   app.add_flag("--quick", quick, "Fewer steps and harmonics");
   app.add_option("--only", only, "Only the scenes whose file name contains this text");
+  bool estimates_only = false;
+  app.add_flag("--estimates-only", estimates_only, "Only the exact orbits and the error estimates of harmonic balance");
   CLI11_PARSE(app, argc, argv);
   const std::string dir = EQHB_PROBLEMS_DIR;
   const std::vector<Case> cases = {{"friction-1d.toml", 0.308, 0.0}, {"friction-1d.toml", 0.4, 0.0},
@@ -168,6 +171,12 @@ int main(int argc, char** argv) {
   const std::vector<int> steps = quick ? std::vector<int>{250, 1000} : std::vector<int>{250, 500, 1000, 2000, 4000};
   const std::vector<int> harmonics = quick ? std::vector<int>{5, 20} : std::vector<int>{5, 10, 20, 40, 80, 160};
   std::ostringstream md;
+  bench::EstimateTally tally;
+  auto flush = [&](std::ostringstream& text, bool truncate) {
+    std::cout << text.str() << std::flush;
+    if (!out_dir.empty()) std::ofstream(out_dir + "/orbits.md", truncate ? std::ios::trunc : std::ios::app) << text.str();
+    text.str("");
+  };
   md << "# Exact periodic orbits as references of truth\n\n"
      << "Shooting from harmonic balance (H = the scene's), event-driven: closed-form phases (Coulomb 1D, "
      << "Signorini), Gauss–Legendre order 6 (cubic, Coulomb 2D with stick–slip, Stribeck). "
@@ -199,6 +208,14 @@ int main(int argc, char** argv) {
       md.str("");
       std::cout << text << std::flush;
       if (!out_dir.empty()) std::ofstream(out_dir + "/orbits.md", first ? std::ios::trunc : std::ios::app) << text;
+      first = false;
+      continue;
+    }
+    const std::vector<int> estimate_harmonics = quick ? std::vector<int>{5, 20} : std::vector<int>{5, 10, 20, 40, 80};
+    md << "\n\nerror estimates of harmonic balance (see the summary at the end):\n\n"
+       << bench::errorEstimateTable(model, o.max_abs, estimate_harmonics, scene.name + " ω=" + number(c.omega), &tally);
+    if (estimates_only) {
+      flush(md, first);
       first = false;
       continue;
     }
@@ -234,5 +251,7 @@ int main(int argc, char** argv) {
     }
     first = false;
   }
+  md << errorEstimateSummary(tally);
+  flush(md, false);
   return 0;
 }
