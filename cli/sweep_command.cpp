@@ -33,6 +33,9 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
   cmd->add_option("--chart", w.chart, "Write a chart of the curve: PREFIX.png and PREFIX.svg (matplotlib)");
   cmd->add_flag("--log-amplitude", w.log_amplitude, "Chart: logarithmic amplitude axis");
   addStabilityFlag(cmd, s);
+  cmd->add_flag("--error-estimate", s.accuracy.error_estimate,
+                "Per converged point, the estimated relative error of max|x| by one more solve at 2H "
+                "(error_estimate column and JSON key)");
   cmd->add_flag("--json", w.json,
                 "Print the curve as one JSON object: settings, stop reason, folds, and per point the counts, "
                 "amplitudes and Fourier coefficients of every DOF and law force");
@@ -57,6 +60,7 @@ nlohmann::json curveJson(const Scene& scene, const Solver& solver, const Continu
                             {"energy", p.energy},
                             {"max_abs", p.max_abs},
                             {"first_harmonic", p.first_harmonic}};
+    if (!std::isnan(p.error_estimate)) point["error_estimate"] = p.error_estimate;
     if (stability) {
       const size_t i = points.size();
       point["stable"] = p.stable >= 0 ? nlohmann::json(p.stable == 1) : nlohmann::json(nullptr);
@@ -104,6 +108,18 @@ nlohmann::json curveJson(const Scene& scene, const Solver& solver, const Continu
     out["solve_seconds"] = stability->solve_seconds;
   }
   return out;
+}
+
+// Each converged point's error estimate (NaN where the solve at 2H fails).
+void addErrorEstimates(const HbModel& model, Solver& solver, const SolverOptions& options, bool condensed,
+                       Curve* curve) {
+  for (CurvePoint& p : curve->points) {
+    if (!p.converged) continue;
+    HbModel at = model;
+    at.omega = p.omega;
+    const ErrorEstimate e = estimateError(at, p.full, solver, options, condensed);
+    p.error_estimate = e.available ? e.max_abs : NAN;
+  }
 }
 
 }  // namespace
@@ -156,6 +172,7 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   Curve curve = w.arclength ? sweepArclength(scene.model, *solver, solver_options, options, progress)
                                   : sweepSequential(scene.model, *solver, solver_options, options, progress);
   line.finish(std::to_string(curve.points.size()) + " points, " + std::to_string(curve.failed_points) + " failed");
+  if (s.accuracy.error_estimate) addErrorEstimates(scene.model, *solver, solver_options, options.condensed, &curve);
   std::optional<CurveStability> stability;
   if (s.stability) stability = analyseCurveStability(scene.model, curve);
 
@@ -177,6 +194,18 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     summary << "\n";
   } else if (w.arclength) {
     summary << "  no fold\n";
+  }
+  if (s.accuracy.error_estimate) {
+    double worst = 0.0;
+    int missing = 0;
+    for (const auto& p : curve.points)
+      if (p.converged) {
+        if (std::isnan(p.error_estimate)) ++missing;
+        else worst = std::max(worst, p.error_estimate);
+      }
+    summary << "  largest estimated relative error of max|x|: " << worst
+            << (missing ? " (" + std::to_string(missing) + " points without an estimate: the solve at 2H failed)" : "")
+            << "\n";
   }
   if (stability) {
     int stable = 0, analysed = 0;

@@ -68,7 +68,10 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
   for (int i = 1; i <= dofs; ++i) out << ",first_harmonic_x" << i;
   bool with_stability = false;
   for (const auto& p : curve.points) with_stability = with_stability || p.stable >= 0;
-  out << ",energy,fold" << (with_stability ? ",stable,bifurcation" : "") << "\n";
+  bool with_estimate = false;
+  for (const auto& p : curve.points) with_estimate = with_estimate || !std::isnan(p.error_estimate);
+  out << ",energy,fold" << (with_stability ? ",stable,bifurcation" : "") << (with_estimate ? ",error_estimate" : "")
+      << "\n";
   out.precision(10);
   for (const auto& p : curve.points) {
     out << p.omega << "," << (p.converged ? "true" : "false") << "," << p.termination << "," << p.iterations << ","
@@ -77,6 +80,7 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
     for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.first_harmonic[i] : NAN);
     out << "," << (p.converged ? p.energy : NAN) << "," << (p.fold ? "true" : "false");
     if (with_stability) out << "," << (p.stable >= 0 ? std::to_string(p.stable) : "") << "," << p.bifurcation;
+    if (with_estimate) out << "," << p.error_estimate;
     out << "\n";
   }
 }

@@ -39,6 +39,7 @@ struct CurvePoint {
   double tangent_omega = NAN;          // arclength: ω-component of the unit tangent here
   int stable = -1;                     // Hill stability: 1, 0, or −1 (not computed)
   std::string bifurcation;             // stability analysis: kind, between the previous point and this
+  double error_estimate = NAN;         // estimated relative error of max|x| (sweep --error-estimate)
   Eigen::VectorXd full;                // [x; λ] coefficients
 };
 
