@@ -212,7 +212,7 @@ TEST(SparsePath, DenseOnlyBackendsRefuseSparseAndLargeSystems) {
   SolverOptions sparse_options;
   sparse_options.linear_algebra = LinearAlgebra::kSparse;
   const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(small.size());
-  for (const char* name : {"minpack", "nlopt-newuoa", "nlopt-slsqp", "ceres-lm"}) {
+  for (const char* name : {"minpack", "nlopt-newuoa", "nlopt-slsqp"}) {
     if (!test::registered(name)) continue;
     const SolverResult r = makeSolver(name)->solve(small, z0, sparse_options);
     EXPECT_EQ(r.termination, Termination::kInvalidOptions) << name;
@@ -242,7 +242,7 @@ TEST(SparsePath, SparseBackendsSolveTheFullSystem) {
   const SolverResult reference =
       makeSolver("dogleg-newton")->solve(system, Eigen::VectorXd::Zero(system.size()), options);
   ASSERT_TRUE(reference.converged()) << reference.summary();
-  for (const char* name : {"ipopt-square", "ipopt-ls", "nlopt-lbfgs"}) {
+  for (const char* name : {"ipopt-square", "ipopt-ls", "nlopt-lbfgs", "ceres-lm", "ceres-dogleg"}) {
     if (!test::registered(name)) continue;
     // From a nearby point: the backends' own globalisation is not under test.
     const Eigen::VectorXd start = reference.solution + 1e-3 * Eigen::VectorXd::Ones(system.size());

@@ -1,6 +1,10 @@
 #include "eqhb/backends/ceres/ceres_backend.h"
 
 #include <ceres/ceres.h>
+#include <ceres/evaluation_callback.h>
+
+#include <memory>
+#include <vector>
 
 namespace eqhb {
 
@@ -30,6 +34,61 @@ class SystemCost : public ceres::CostFunction {
  private:
   MonitoredSystem& system_;
   mutable Eigen::MatrixXd jacobian_;
+};
+
+// The sparse path. Ceres derives the sparsity of the Jacobian from the block
+// structure of the problem, not from a matrix: every unknown is its own
+// parameter block and every equation its own residual block, which depends
+// on exactly the unknowns of its row of the system's Jacobian pattern. The
+// system is evaluated once per point (residual, or residual and sparse
+// Jacobian) in PrepareForEvaluation, before Ceres asks the row blocks, which
+// only copy their entries out; Ceres then assembles the compressed-row
+// Jacobian and factors JᵀJ with SuiteSparse (SPARSE_NORMAL_CHOLESKY).
+class SharedEvaluation : public ceres::EvaluationCallback {
+ public:
+  SharedEvaluation(MonitoredSystem& system, const Eigen::VectorXd& z)
+      : system_(system), z_(z), g_(system.size()), jacobian_(system.jacobianPattern()) {}
+  void PrepareForEvaluation(bool evaluate_jacobians, bool new_evaluation_point) override {
+    // Ceres has written the point into z_ (the user's parameter blocks).
+    if (!new_evaluation_point && (!evaluate_jacobians || have_jacobian_)) return;
+    have_jacobian_ = evaluate_jacobians;
+    ok_ = evaluate_jacobians ? system_.residualAndSparseJacobian(z_, g_, jacobian_) : system_.residual(z_, g_);
+  }
+  bool ok() const { return ok_; }
+  double residual(int row) const { return g_[row]; }
+  double entry(int index) const { return jacobian_.valuePtr()[index]; }
+
+ private:
+  MonitoredSystem& system_;
+  const Eigen::VectorXd& z_;
+  Eigen::VectorXd g_;
+  SparseMatrix jacobian_;  // the pattern's copy; values overwritten
+  bool ok_ = false, have_jacobian_ = false;
+};
+
+// Row `row` of g(z) = 0 as a residual block over the unknowns of its pattern;
+// slots_[k] is the entry of the k-th of them in the sparse Jacobian's values
+// (−1: an equation on no unknown, given one block with a zero derivative).
+class RowCost : public ceres::CostFunction {
+ public:
+  RowCost(const SharedEvaluation& shared, int row, std::vector<int> slots)
+      : shared_(shared), row_(row), slots_(std::move(slots)) {
+    set_num_residuals(1);
+    for (size_t k = 0; k < slots_.size(); ++k) mutable_parameter_block_sizes()->push_back(1);
+  }
+  bool Evaluate(double const* const*, double* residuals, double** jacobians) const override {
+    if (!shared_.ok()) return false;
+    residuals[0] = shared_.residual(row_);
+    if (jacobians == nullptr) return true;
+    for (size_t k = 0; k < slots_.size(); ++k)
+      if (jacobians[k] != nullptr) jacobians[k][0] = slots_[k] < 0 ? 0.0 : shared_.entry(slots_[k]);
+    return true;
+  }
+
+ private:
+  const SharedEvaluation& shared_;
+  int row_;
+  std::vector<int> slots_;
 };
 
 // Stops Ceres once ‖g‖ = sqrt(2 cost) meets the tolerance, or a limit is hit.
@@ -88,17 +147,31 @@ std::string CeresBackend::description() const {
 
 void CeresBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
                        const SolverOptions& options, SolverResult& result) {
-  // One parameter block of size n: Ceres sees a dense n x n Jacobian block.
-  if (!denseBackendAccepts(name(), system.size(), kDenseMostUnknowns, options, result)) return;
+  // Dense: one parameter block of size n, a dense n x n Jacobian block.
+  // Sparse: one block per unknown and per equation (see RowCost).
+  const bool sparse = useSparseAlgebra(system, options);
+  const bool have_suitesparse = ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE);
+  if (sparse && !have_suitesparse) {
+    result.termination = Termination::kInvalidOptions;
+    result.native_message = name() + ": the sparse path needs SuiteSparse, which this Ceres lacks";
+    return;
+  }
+  if (!sparse && !denseBackendAccepts(name(), system.size(), kDenseMostUnknowns, options, result)) return;
   ceres::Solver::Options o;
-  o.linear_solver_type = ceres::DENSE_QR;
+  o.linear_solver_type = sparse ? ceres::SPARSE_NORMAL_CHOLESKY : ceres::DENSE_QR;
+  o.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
   for (const auto& [key, text] : options.backend) {
-    if (key == "linear_solver" && text == "dense_qr") {
+    if (sparse && key == "linear_solver" && text != "sparse_normal_cholesky") {
+      result.termination = Termination::kInvalidOptions;
+      result.native_message = "linear_solver = " + text +
+                              ": the sparse path (sparse Jacobian) takes only sparse_normal_cholesky";
+      return;
+    } else if (key == "linear_solver" && text == "dense_qr") {
       o.linear_solver_type = ceres::DENSE_QR;
     } else if (key == "linear_solver" && text == "dense_normal_cholesky") {
       o.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     } else if (key == "linear_solver" && text == "sparse_normal_cholesky") {
-      if (!ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
+      if (!have_suitesparse) {
         result.termination = Termination::kInvalidOptions;
         result.native_message = "linear_solver = sparse_normal_cholesky: this Ceres has no SuiteSparse";
         return;
@@ -151,13 +224,45 @@ void CeresBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
   Eigen::VectorXd z = z0;
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  std::unique_ptr<SharedEvaluation> shared;
+  if (sparse) {
+    shared = std::make_unique<SharedEvaluation>(system, z);
+    problem_options.evaluation_callback = shared.get();
+  }
   ceres::Problem problem(problem_options);
-  problem.AddResidualBlock(new SystemCost(system), nullptr, z.data());
+  if (sparse) {
+    // Rows of the column-major pattern: (column, value slot) per row.
+    const SparseMatrix& pattern = system.jacobianPattern();
+    std::vector<std::vector<std::pair<int, int>>> rows(pattern.rows());
+    for (int j = 0; j < pattern.outerSize(); ++j)
+      for (int p = pattern.outerIndexPtr()[j]; p < pattern.outerIndexPtr()[j + 1]; ++p)
+        rows[pattern.innerIndexPtr()[p]].emplace_back(j, p);
+    std::vector<double*> blocks;
+    std::vector<int> slots;
+    for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
+      blocks.clear();
+      slots.clear();
+      for (const auto& [column, slot] : rows[i]) {
+        blocks.push_back(z.data() + column);
+        slots.push_back(slot);
+      }
+      if (blocks.empty()) {  // an equation on no unknown: its residual still counts
+        blocks.push_back(z.data() + i);
+        slots.push_back(-1);
+      }
+      problem.AddResidualBlock(new RowCost(*shared, i, slots), nullptr, blocks);
+    }
+    for (int j = 0; j < system.size(); ++j)  // unknowns no equation uses
+      if (!problem.HasParameterBlock(z.data() + j)) problem.AddParameterBlock(z.data() + j, 1);
+  } else {
+    problem.AddResidualBlock(new SystemCost(system), nullptr, z.data());
+  }
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);
 
   result.native_code = static_cast<int>(summary.termination_type);
   result.native_message = summary.message;
+  if (sparse) result.native_message += " (sparse Jacobian, SPARSE_NORMAL_CHOLESKY on SuiteSparse)";
   result.termination = ceresTermination(summary.termination_type);
   if (summary.termination_type == ceres::USER_FAILURE) result.termination = guard.reason;
   if (summary.termination_type == ceres::NO_CONVERGENCE && system.timeLimitReached())

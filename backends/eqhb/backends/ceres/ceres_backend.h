@@ -1,12 +1,15 @@
 // Ceres Solver trust-region adapter: the square system as the least-squares
-// problem min ½‖g(z)‖² with the analytic (weak) Jacobian, one dense
-// parameter block. Strategies: Levenberg–Marquardt, traditional dogleg,
-// subspace dogleg.
+// problem min ½‖g(z)‖² with the analytic (weak) Jacobian. Dense path: one
+// parameter block (a dense Jacobian). Sparse path: one block per unknown and
+// per equation, so that Ceres sees the Jacobian's pattern, factored by
+// SPARSE_NORMAL_CHOLESKY on SuiteSparse. Strategies: Levenberg–Marquardt,
+// traditional dogleg, subspace dogleg.
 //
 // The residual tolerance, the evaluation limit and the time limit are
 // enforced from an iteration callback (Ceres has no absolute ‖g‖ test).
 // Backend options: linear_solver = dense_qr (default) | dense_normal_cholesky
-// | sparse_normal_cholesky (SuiteSparse), threads >= 1 (default 1).
+// | sparse_normal_cholesky (SuiteSparse; the only one on the sparse path),
+// threads >= 1 (default 1).
 #pragma once
 
 #include "eqhb/solvers/solver.h"
