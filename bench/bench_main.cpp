@@ -194,6 +194,18 @@ std::string cat(const Args&... args) {
   return text.str();
 }
 
+std::vector<std::string> scaleBackends(bool quick) {
+  if (quick) return {"dogleg"};
+  return {"dogleg", "dogleg-newton", "minpack", "ceres-dogleg", "ipopt-square", "nlopt-lbfgs"};
+}
+
+std::string scaleIntroduction() {
+  return "Generated chains (`eqhb generate`), friction limit 0.2, forced at the free end at omega = 0.3 (inside "
+         "the pass band of every chain), solved from zero. Each case runs in its own child process: peak memory is "
+         "the growth of its getrusage maximum resident set over the benchmark's own pages inherited at the fork. A "
+         "backend that does not converge or takes more than 20 s at one size is not run at the larger ones. ";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -205,6 +217,8 @@ int main(int argc, char** argv) {
   app.add_option("--problems", problems, "Folder of scene files");
   app.add_option("--out", out, "Output folder");
   app.add_flag("--quick", quick, "Short run: fewer backends, forms and repeats");
+  bool scale_only = false;
+  app.add_flag("--scale-only", scale_only, "Run the scale study alone (scale.csv, scale.md)");
   app.add_option("--repeats", repeats, "Solves per case for the median time (capped at ~1 s per case)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--reference-step", reference_step, "Time step of the time-domain references");
@@ -221,6 +235,13 @@ int main(int argc, char** argv) {
   };
   if (quick) repeats = std::min(repeats, 3);
   fs::create_directories(out);
+  if (scale_only) {
+    const std::vector<bench::ScaleRow> scale = bench::runScaleStudy(quick, scaleBackends(quick), problems);
+    bench::writeScaleCsv(out + "/scale.csv", scale);
+    std::ofstream(out + "/scale.md") << "# eqhb scale study\n\n" << scaleIntroduction() << bench::scaleReport(scale);
+    std::cout << "scale study: " << out << "/scale.md, " << out << "/scale.csv\n";
+    return 0;
+  }
 
   std::vector<fs::path> scenes;
   for (const auto& entry : fs::directory_iterator(problems))
@@ -487,10 +508,7 @@ int main(int argc, char** argv) {
   ProgressLine scale_line(verbosity.progress, "bench 5/5 scale study");
   scale_line.update(-1.0, "running");
   const std::vector<bench::ScaleRow> scale = bench::runScaleStudy(
-      quick,
-      quick ? std::vector<std::string>{"dogleg"}
-            : std::vector<std::string>{"dogleg", "dogleg-newton", "minpack", "ceres-lm", "ipopt-square", "nlopt-lbfgs"},
-      problems);
+      quick, scaleBackends(quick), problems);
   scale_line.finish(std::to_string(scale.size()) + " cases");
   bench::writeScaleCsv(out + "/scale.csv", scale);
   std::string structure_names;
@@ -529,10 +547,7 @@ int main(int argc, char** argv) {
          << "\nCharts: curve_SCENE_*.png/.svg, work_precision_SCENE.png/.svg, convergence_*.png/.svg, "
          << "micro-benchmark slopes in micro.md.\n"
          << "\n## Own dogleg vs MINPACK hybrj on the Moré–Garbow–Hillstrom problems\n\n" << mgh_table
-         << "\n## Scale study\n\nGenerated chains (`eqhb generate`), friction limit 0.2, forced at the free end at 0.8 x "
-         << "the first eigenfrequency, solved from zero. Each case runs in its own child process: peak memory is the "
-         << "growth of its getrusage maximum resident set over the benchmark's own pages inherited at the fork. A backend "
-         << "that does not converge or takes more than 20 s at one size is not run at the larger ones. Structure "
+         << "\n## Scale study\n\n" << scaleIntroduction() << "Structure "
          << "scenes measured here rather than in the scene tables: " << (structure_names.empty() ? "none" : structure_names)
          << ". Data: scale.csv; chart: scale.png/.svg.\n" << bench::scaleReport(scale)
          << "\n![scale study](scale.png)\n";

@@ -244,6 +244,7 @@ std::vector<ScaleRow> runScaleStudy(bool quick, const std::vector<std::string>& 
         spec.chain.dofs = condensed ? 200 : size;
         spec.chain.contacts = condensed ? size : 5;
         spec.chain.mu_n = 0.2;
+        spec.chain.omega = kScaleOmega;
         spec.condensed = condensed;
         spec.solver = solver;
         const int unknowns = (condensed ? size : size + 5) * 20;
@@ -296,6 +297,7 @@ std::vector<ScaleRow> runScaleStudy(bool quick, const std::vector<std::string>& 
     // Brake–Reuss-sized: 481 DOFs, 122 contacts, harmonics 0..3, N = 128.
     CaseSpec spec;
     spec.chain.dofs = 481;
+    spec.chain.omega = kScaleOmega;
     spec.chain.contacts = 122;
     spec.chain.harmonics = 3;
     spec.chain.set = "all";
@@ -312,7 +314,7 @@ std::vector<ScaleRow> runScaleStudy(bool quick, const std::vector<std::string>& 
     CaseSpec spec;
     spec.chain.dofs = 200;
     spec.chain.contacts = 5;
-    spec.solver = "dogleg";
+    spec.solver = "dogleg";  // the generator's default omega: the case as first reported
     spec.condensed = false;
     structure("200 DOFs, 5 contacts, H=10, full (4,100 unknowns)", spec);
   }
