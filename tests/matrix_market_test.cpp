@@ -159,7 +159,7 @@ TEST_F(MatrixMarketFiles, SceneErrorsNameTheFileOrTheField) {
   write("m.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 2\n3 3 3\n");
   write("m2.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n2 2 2\n");
   const std::string k_asym =
-      write("ka.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 4\n1 1 2\n2 1 -1\n1 2 -1.001\n3 3 1\n");
+      write("ka.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 5\n1 1 2\n2 1 -1\n1 2 -1.001\n2 2 1\n3 3 1\n");
   expectError([&] { loadScene(write("a.toml", scene("mass = \"m.mtx\"\nstiffness = \"nope.mtx\""))); },
               {"nope.mtx", "cannot open"});
   expectError([&] { loadScene(write("b.toml", scene("mass = \"m2.mtx\"\nstiffness = \"k.mtx\""))); },
