@@ -24,3 +24,7 @@ eqhb_cli_expect(sweep_from_without_to 2 "--to = \\(missing\\): the scene has no 
 eqhb_cli_expect(sweep_to_without_from 2 "--from = \\(missing\\)" sweep ${CMAKE_CURRENT_SOURCE_DIR}/cli/no-sweep.toml --to 0.5)
 eqhb_cli_expect(sweep_without_range_solves 0 "stop: reached the end of the range" sweep ${CMAKE_CURRENT_SOURCE_DIR}/cli/no-sweep.toml --from 0.5 --to 0.6 --step 0.05)
 eqhb_cli_expect(sweep_arclength_point_cap 1 "stop: max_points = 3 reached at omega" sweep ${SCENE} --arclength --max-points 3 --harmonics 3 --samples 64)
+eqhb_cli_expect(samples_by_memory 2 "harmonics = 100000: the model .* needs about" solve ${SCENE} --harmonics 100000 --samples 400000)
+eqhb_cli_expect(chain_dense_by_memory 2 "the condensed system with dense factors of A_k \\(100000 DOFs.* needs about"
+                solve ${SCENE} --set structure.dofs=100000 --linear-algebra dense)
+eqhb_cli_expect(negative_stiffness_matrix 2 "structure.stiffness: must be positive semidefinite" solve ${BAD}/negative-stiffness.toml)

@@ -110,6 +110,26 @@ std::string scene(const std::string& structure_keys, const std::string& law_dof 
          "]\nmuN = 0.5\n[harmonic_balance]\nharmonics = 3\nsamples = 64\nomega = 0.5\n";
 }
 
+TEST_F(MatrixMarketFiles, DeclaredSizesAreBoundedBeforeAnythingIsAllocated) {
+  // 2^30 columns: 4 GiB of column offsets would be allocated for one entry.
+  expectError([&] {
+    readMatrixMarket(write("wide.mtx", "%%MatrixMarket matrix coordinate real general\n1073741824 1073741824 1\n1 1 1\n"));
+  }, {"wide.mtx:2: a 1073741824 x 1073741824 matrix of 1 entries needs about", "GiB limit"});
+  expectError([&] {
+    readMatrixMarket(write("many.mtx", "%%MatrixMarket matrix coordinate real symmetric\n1000 1000 400000000\n1 1 1\n"));
+  }, {"many.mtx:2: a 1000 x 1000 matrix of 400000000 entries needs about"});
+  expectError([&] {
+    readMatrixMarket(write("array.mtx", "%%MatrixMarket matrix array real general\n100000 100000\n1\n"));
+  }, {"array.mtx:2: a 100000 x 100000 matrix of dense array storage needs about"});
+}
+
+TEST_F(MatrixMarketFiles, OnlyRegularFilesAreRead) {
+  // A directory, or a device that would be read without end.
+  expectError([&] { readMatrixMarket(dir_.string()); }, {dir_.string() + ": not a regular file"});
+  expectError([&] { readMatrixMarket("/dev/zero"); }, {"/dev/zero: not a regular file"});
+  expectError([&] { readMatrixMarket((dir_ / "missing.mtx").string()); }, {"cannot open the Matrix Market file"});
+}
+
 TEST_F(MatrixMarketFiles, SceneReadsPathsRelativeToTheSceneFileAndBuildsRayleighDamping) {
   write("k.mtx", kStiffness);
   write("m.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 2\n3 3 3\n");

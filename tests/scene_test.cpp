@@ -194,5 +194,49 @@ TEST(Scene, IntegersAreRangeCheckedBeforeNarrowing) {
   expectError(replaced("harmonics = 10", "harmonics = -9223372036854775808"), "harmonic_balance.harmonics = -9223372036854775808");
 }
 
+TEST(Scene, SizesAreBoundedByTheMemoryTheyImply) {
+  // A 100,000-DOF chain is sparse (a few MB; 224 GiB as dense M, C, K): it loads.
+  const Scene chain = parseScene(replaced("d = 0.02", "d = 0.02\ndofs = 100000"), "s.toml");
+  EXPECT_EQ(chain.model.structure.dofs(), 100000);
+  expectError(replaced("d = 0.02", "d = 0.02\ndofs = 2147483647"),
+              "structure.dofs = 2147483647: a chain's sparse M, C and K needs about");
+  // H = 100000: the law's nb x nb Jacobian blocks alone need 640 GB.
+  expectError(replaced("harmonics = 10\nsamples = 64", "harmonics = 100000\nsamples = 400000"),
+              "harmonics = 100000: the model (2 DOFs, 1 law components, 200000 coefficients and 400000 samples");
+  // A large but affordable basis still loads.
+  EXPECT_NO_THROW(parseScene(replaced("harmonics = 10\nsamples = 64", "harmonics = 2000\nsamples = 8192"), "s.toml"));
+}
+
+TEST(Scene, MatricesFollowTheChainRules) {
+  const std::string matrices = R"(
+name = "m"
+[structure]
+type = "matrices"
+mass = [[1.0, 0.0], [0.0, 1.0]]
+damping = [[0.1, 0.0], [0.0, 0.1]]
+stiffness = [[2.0, -1.0], [-1.0, 1.0]]
+[[forcing]]
+dof = 1
+cos = 1.0
+[harmonic_balance]
+harmonics = 3
+samples = 64
+omega = 1.0
+)";
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = matrices;
+    return text.replace(text.find(from), from.size(), to);
+  };
+  EXPECT_NO_THROW(parseScene(matrices, "m.toml"));
+  expectError(with("[[2.0, -1.0], [-1.0, 1.0]]", "[[-1.0, 0.0], [0.0, 1.0]]"),
+              "structure.stiffness: must be positive semidefinite");
+  expectError(with("[[2.0, -1.0], [-1.0, 1.0]]", "[[1.0, -2.0], [-2.0, 1.0]]"),
+              "structure.stiffness: must be positive semidefinite (it has a negative direction");
+  expectError(with("[[0.1, 0.0], [0.0, 0.1]]", "[[0.1, 0.0], [0.0, -0.5]]"),
+              "structure.damping: must be positive semidefinite");
+  // The chain's own matrices pass the same rule (k = 0, d = 0 included).
+  EXPECT_NO_THROW(parseScene(replaced("k = 1.0\nd = 0.02", "k = 0.0\nd = 0.0"), "scene.toml"));
+}
+
 }  // namespace
 }  // namespace eqhb

@@ -8,6 +8,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/scenes/scene.h"
 #include "test_support.h"
 
@@ -36,6 +37,37 @@ TEST(SizeLimits, SampleCountIsBoundedBeforeFftwPlans) {
   const HarmonicSet basis(HarmonicKind::kOdd, 3);
   EXPECT_NE(messageOf([&] { FourierTransform(basis, kMaxSamples + 1); }).find("samples = 16777217: must be <="),
             std::string::npos);
+}
+
+TEST(SizeLimits, TheDensePathIsBoundedWhereTheSparsePathFits) {
+  // A 20,000-DOF chain: dense A_k factors would need about 72 GiB; the
+  // sparse factors and the full system's sparse Jacobian fit in a few MB.
+  HbModel model = loadScene(test::problem("friction-1d.toml"), {"structure.dofs=20000"}).model;
+  model.basis = HarmonicSet(HarmonicKind::kOdd, 3);
+  model.samples = 64;
+  EXPECT_GT(condensedBytes(model, false), kMaxModelBytes);
+  EXPECT_LT(condensedBytes(model, true), 0.01 * kMaxModelBytes);
+  EXPECT_LT(fullBytes(model), 0.1 * kMaxModelBytes);
+  EXPECT_NE(messageOf([&] { makeHbSystem(model, true, LinearAlgebra::kDense); })
+                .find("harmonics = 3: the condensed system with dense factors of A_k (20000 DOFs"),
+            std::string::npos);
+  const auto sparse = makeHbSystem(model, true, LinearAlgebra::kSparse);
+  EXPECT_EQ(sparse->size(), 6);
+}
+
+TEST(SizeLimits, TheFullSystemIsRefusedWhereOnlyTheCondensedOneFits) {
+  HbModel model = loadScene(test::problem("friction-1d.toml")).model;
+  model.basis = HarmonicSet(HarmonicKind::kOdd, 4000);  // nb = 8000
+  model.samples = 16384;
+  // Condensed: 8000 dense unknowns; full: the law rows' 8000 x 8000 blocks
+  // twice over in the sparse Jacobian and its copies.
+  EXPECT_LT(condensedBytes(model, false), kMaxModelBytes);
+  EXPECT_GT(fullBytes(model), kMaxModelBytes);
+  EXPECT_NE(messageOf([&] { makeHbSystem(model, false); }).find("harmonics = 4000: the full system (2 DOFs"),
+            std::string::npos);
+  model.basis = HarmonicSet(HarmonicKind::kOdd, 40000);
+  model.samples = 160001;
+  EXPECT_NE(messageOf([&] { model.validate(); }).find("harmonics = 40000: the model"), std::string::npos);
 }
 
 }  // namespace

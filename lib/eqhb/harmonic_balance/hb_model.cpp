@@ -4,6 +4,7 @@
 #include <set>
 
 #include "eqhb/error.h"
+#include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/size_limits.h"
 
 namespace eqhb {
@@ -54,6 +55,8 @@ void HbModel::validate() const {
         throwInputError(field + ".dofs", std::to_string(dof + 1), "listed twice");
     }
   }
+  // Bounded by the memory every system of the model needs, before any is built.
+  checkBytes("harmonics", std::to_string(basis.count()), "the model " + describeSizes(*this), modelBytes(*this));
 }
 
 int HbModel::lawComponents() const {

@@ -4,6 +4,8 @@
 #include <stdexcept>
 
 #include "eqhb/error.h"
+#include "eqhb/harmonic_balance/system_memory.h"
+#include "eqhb/size_limits.h"
 
 namespace eqhb {
 
@@ -27,8 +29,8 @@ Eigen::VectorXd forcingCoefficients(const HbModel& model) {
   return f;
 }
 
-HbSystem::HbSystem(HbModel model)
-    : model_((model.validate(), std::move(model))), laws_(model_), nb_(model_.basis.size()) {}
+HbSystem::HbSystem(HbModel model, const std::function<void(const HbModel&)>& fits)
+    : model_((model.validate(), fits(model), std::move(model))), laws_(model_), nb_(model_.basis.size()) {}
 
 // ---------------------------------------------------------------- full system
 
@@ -51,7 +53,10 @@ Eigen::VectorXd valuesOnPattern(const SparseMatrix& m, const SparseMatrix& p) {
 }
 }  // namespace
 
-FullSystem::FullSystem(HbModel model) : HbSystem(std::move(model)) {
+FullSystem::FullSystem(HbModel model)
+    : HbSystem(std::move(model), [](const HbModel& m) {
+        checkBytes("harmonics", std::to_string(m.basis.count()), "the full system " + describeSizes(m), fullBytes(m));
+      }) {
   const int n = model_.structure.dofs();
   dynamic_rows_ = n * nb_;
   size_ = (n + model_.lawComponents()) * nb_;
@@ -237,10 +242,20 @@ bool sparseCondensation(const HbModel& model, LinearAlgebra algebra) {
     return model.structure.dofs() >= kSparseCondensationFromDofs;
   return algebra == LinearAlgebra::kSparse;
 }
+
+// The condensed system fits on the chosen path: dense A_k factors count
+// (w n)² each, sparse ones their entries.
+void checkCondensedFits(const HbModel& model, LinearAlgebra algebra) {
+  const bool sparse = sparseCondensation(model, algebra);
+  checkBytes("harmonics", std::to_string(model.basis.count()),
+             std::string("the condensed system with ") + (sparse ? "sparse" : "dense") + " factors of A_k " +
+                 describeSizes(model),
+             condensedBytes(model, sparse));
+}
 }  // namespace
 
 CondensedSystem::CondensedSystem(HbModel model, LinearAlgebra algebra)
-    : HbSystem(std::move(model)),
+    : HbSystem(std::move(model), [algebra](const HbModel& m) { checkCondensedFits(m, algebra); }),
       factors_(model_.structure, model_.basis, sparseCondensation(model_, algebra)) {
   components_ = model_.lawComponents();
   size_ = components_ * nb_;

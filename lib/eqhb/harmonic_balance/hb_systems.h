@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -29,7 +30,9 @@ Eigen::VectorXd forcingCoefficients(const HbModel& model);
 // back to full coefficients.
 class HbSystem : public SquareSystem {
  public:
-  explicit HbSystem(HbModel model);
+  // Validates the model and checks with `fits` (which throws InputError)
+  // that the system fits in memory, before anything of it is allocated.
+  HbSystem(HbModel model, const std::function<void(const HbModel&)>& fits);
   const HbModel& model() const { return model_; }
   double omega() const { return model_.omega; }
   // Changes ω; throws (std::runtime_error) where the condensed system's

@@ -195,6 +195,16 @@ void readDampingModel(TableReader& s, StructureMatrices& matrices) {
   }
 }
 
+// Runs a size check, its message prefixed with the scene's name.
+template <typename Check>
+void bounded(const std::string& source, Check check) {
+  try {
+    check();
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+}
+
 ReadStructure readStructure(TableReader& top, const std::string& source) {
   TableReader s(top.raw("structure"), "structure", source);
   ReadStructure read;
@@ -203,6 +213,12 @@ ReadStructure readStructure(TableReader& top, const std::string& source) {
   if (type == "chain") {
     const int n = s.integer("dofs", 2);
     if (n < 1) s.fail("structure.dofs", std::to_string(n), "must be >= 1");
+    // Sparse: n entries in M, 3n − 2 in C and K (a dense M, C, K would take 24 n²
+    // bytes; the dense path is bounded where it is chosen).
+    bounded(source, [&] {
+      checkBytes("structure.dofs", std::to_string(n), "a chain's sparse M, C and K",
+                 sparseBytes(n, n) + 2.0 * sparseBytes(n, 3.0 * n));
+    });
     const double m = s.number("m"), k = s.number("k"), d = s.number("d");
     if (!(m > 0.0)) s.fail("structure.m", formatNumber(m), "mass must be > 0");
     if (k < 0.0) s.fail("structure.k", formatNumber(k), "stiffness must be >= 0");
@@ -245,6 +261,13 @@ ReadStructure readStructure(TableReader& top, const std::string& source) {
   } else if (type == "beam") {
     BeamParameters beam;
     beam.elements = s.integer("elements");
+    // Two DOFs per node, 16 entries per element in M and K (and C), and the
+    // assembly's triplets: bounded before they are built.
+    bounded(source, [&] {
+      const double e = std::max(beam.elements, 0);
+      checkBytes("structure.elements", std::to_string(beam.elements), "a beam's sparse M, C and K",
+                 3.0 * sparseBytes(2.0 * e, 16.0 * e) + 2.0 * 16.0 * 16.0 * e);
+    });
     beam.youngs_modulus = s.number("E");
     beam.second_moment = s.number("I");
     beam.mass_per_length = s.number("rhoA");

@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <vector>
 
 #include "eqhb/error.h"
+#include "eqhb/size_limits.h"
 
 namespace eqhb {
 
@@ -23,7 +26,13 @@ std::string lower(std::string s) {
 // Reads the file line by line with line numbers for the messages.
 class MarketReader {
  public:
-  explicit MarketReader(const std::string& path) : path_(path), in_(path) {
+  explicit MarketReader(const std::string& path) : path_(path) {
+    // A device or a pipe named as a matrix could be read without end.
+    std::error_code error;
+    const auto status = std::filesystem::status(path, error);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+      throw InputError(path + ": not a regular file (a Matrix Market file is expected)");
+    in_.open(path);
     if (!in_) throw InputError(path + ": cannot open the Matrix Market file");
   }
 
@@ -127,6 +136,19 @@ Eigen::SparseMatrix<double> readMatrixMarket(const std::string& path) {
   if (header.symmetric && rows != cols)
     reader.fail("a symmetric matrix must be square, not " + std::to_string(rows) + " x " + std::to_string(cols));
   if (rows > (1L << 30) || cols > (1L << 30)) reader.fail("sizes too large");
+  // Bounded by the memory the declared sizes imply (the triplets read and the
+  // compressed matrix), before anything of that size is allocated.
+  const double stored = (header.coordinate ? static_cast<double>(entries) : static_cast<double>(rows) * cols) *
+                        (header.symmetric ? 2.0 : 1.0);
+  const double bytes = 16.0 * stored + sparseBytes(static_cast<double>(cols), stored);
+  if (bytes > kMaxModelBytes) {
+    char size[64];
+    std::snprintf(size, sizeof size, "%.3g GiB", bytes / (1024.0 * 1024 * 1024));
+    reader.fail("a " + std::to_string(rows) + " x " + std::to_string(cols) + " matrix of " +
+                (header.coordinate ? std::to_string(entries) + " entries" : std::string("dense array storage")) +
+                " needs about " + size + ", more than the " +
+                formatNumber(kMaxModelBytes / (1024.0 * 1024 * 1024)) + " GiB limit");
+  }
 
   const long expected = !header.coordinate && header.symmetric ? rows * (rows + 1) / 2 : entries;
   std::vector<Eigen::Triplet<double>> triplets;

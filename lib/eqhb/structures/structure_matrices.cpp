@@ -77,6 +77,24 @@ Eigen::SparseMatrix<double> modalDamping(const StructureMatrices& s, double rati
   return symmetric.sparseView(1e-14 * symmetric.cwiseAbs().maxCoeff(), 1.0);
 }
 
+namespace {
+// xᵀ A x >= 0 for every x (K stores energy, C dissipates it; the chain's
+// k >= 0, d >= 0 in matrix form): the symmetric part shifted by
+// 1e-12 max|A| has a sparse Cholesky factor.
+void checkSemidefinite(const Eigen::SparseMatrix<double>& a, const std::string& name) {
+  const double scale = largestEntry(a);
+  if (scale == 0.0) return;
+  const Eigen::SparseMatrix<double> transposed = a.transpose();
+  Eigen::SparseMatrix<double> identity(a.rows(), a.cols());
+  identity.setIdentity();
+  const Eigen::SparseMatrix<double> shifted = 0.5 * (a + transposed) + 1e-12 * scale * identity;
+  const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> factor(shifted);
+  if (factor.info() != Eigen::Success)
+    throw InputError(name + ": must be positive semidefinite (it has a negative direction: negative stiffness "
+                            "or damping)");
+}
+}  // namespace
+
 void checkStructureMatrices(const StructureMatrices& s, double symmetry_tolerance, const MatrixNames& names) {
   const Eigen::Index n = s.mass.rows();
   if (n < 1) throw InputError(names.mass + ": the structure needs at least one DOF");
@@ -102,15 +120,18 @@ void checkStructureMatrices(const StructureMatrices& s, double symmetry_toleranc
       (mass_factor.vectorD().array() <= 1e-13 * m_scale).any())
     throw InputError(names.mass + ": must be positive semidefinite with a positive definite block on the DOFs "
                                   "that carry mass (found a zero or negative mass direction)");
-  if (massless.empty()) return;
-  const Eigen::SparseMatrix<double> k_massless = principal(s.stiffness, massless);
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> stiffness_factor(k_massless);
-  const double k_scale = largestEntry(s.stiffness);
-  if (stiffness_factor.info() != Eigen::Success || k_scale == 0.0 ||
-      (stiffness_factor.vectorD().array().abs() <= 1e-12 * k_scale).any())
-    throw InputError(names.stiffness + ": the " + std::to_string(massless.size()) +
-                     " massless DOF(s) (zero rows of the mass matrix, first DOF " + std::to_string(massless[0] + 1) +
-                     ") are not held by the stiffness: K restricted to them is singular, so the system is not regular");
+  if (!massless.empty()) {
+    const Eigen::SparseMatrix<double> k_massless = principal(s.stiffness, massless);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> stiffness_factor(k_massless);
+    const double k_scale = largestEntry(s.stiffness);
+    if (stiffness_factor.info() != Eigen::Success || k_scale == 0.0 ||
+        (stiffness_factor.vectorD().array().abs() <= 1e-12 * k_scale).any())
+      throw InputError(names.stiffness + ": the " + std::to_string(massless.size()) +
+                       " massless DOF(s) (zero rows of the mass matrix, first DOF " + std::to_string(massless[0] + 1) +
+                       ") are not held by the stiffness: K restricted to them is singular, so the system is not regular");
+  }
+  checkSemidefinite(s.stiffness, names.stiffness);
+  checkSemidefinite(s.damping, names.damping);
 }
 
 LinearStructure toLinearStructure(const StructureMatrices& s) {

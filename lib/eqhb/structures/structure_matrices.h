@@ -27,8 +27,8 @@ Eigen::SparseMatrix<double> modalDamping(const StructureMatrices& s, double rati
 
 // Throws InputError naming the matrix (by `names`, e.g. the file paths) if
 // the three are not square and of one size, not finite, asymmetric beyond
-// `symmetry_tolerance` (relative to the matrix's largest entry), if M has a
-// negative direction, or if the massless DOFs (zero rows of M) are not held
+// `symmetry_tolerance` (relative to the matrix's largest entry), if M, K or C
+// has a negative direction, or if the massless DOFs (zero rows of M) are not held
 // by K (K restricted to them must be regular, so that the dynamics stay a
 // regular DAE and every A_k can be factorised).
 struct MatrixNames {
