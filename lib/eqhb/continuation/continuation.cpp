@@ -211,6 +211,12 @@ class BorderedSystem : public SquareSystem {
     return true;
   }
 
+  // The inner equations in their own scales; the arclength row is scaled already.
+  void residualScales(Eigen::Ref<Eigen::VectorXd> scales) const override {
+    inner_.residualScales(scales.head(n_));
+    scales[n_] = 1.0;
+  }
+
  private:
   bool moveTo(double omega) {
     if (omega == current_) return true;

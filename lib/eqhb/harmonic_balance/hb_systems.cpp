@@ -1,11 +1,13 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/size_limits.h"
+#include "eqhb/harmonic_balance/problem_scales.h"
 
 namespace eqhb {
 
@@ -32,7 +34,29 @@ Eigen::VectorXd forcingCoefficients(const HbModel& model) {
 HbSystem::HbSystem(HbModel model, const std::function<void(const HbModel&)>& fits)
     : model_((model.validate(), fits(model), std::move(model))), laws_(model_), nb_(model_.basis.size()) {}
 
+void HbSystem::residualScales(Eigen::Ref<Eigen::VectorXd> scales) const {
+  const PhysicalScales physical = physicalScales(model_, responseAtLaws());
+  const int law_rows = model_.lawComponents() * nb_, first_law_row = size() - law_rows;
+  scales.head(first_law_row).setConstant(physical.force);  // full system: A x − f − W λ
+  for (int l = 0; l < static_cast<int>(model_.laws.size()); ++l)
+    for (int a = 0; a < model_.laws[l].law->dimension(); ++a)
+      scales.segment(first_law_row + model_.componentIndex(l, a) * nb_, nb_)
+          .setConstant(model_.laws[l].law->residualScale(physical, a));
+}
+
 // ---------------------------------------------------------------- full system
+
+double FullSystem::responseAtLaws() const {
+  if (response_omega_ != model_.omega) {
+    try {
+      response_ = linearResponseAtLaws(model_, model_.structure.dofs() >= kSparseCondensationFromDofs);
+    } catch (const std::exception&) {
+      response_ = 0.0;  // singular at this ω: the scales fall back on the loads and stiffness
+    }
+    response_omega_ = model_.omega;
+  }
+  return response_;
+}
 
 namespace {
 // Index of entry (row, col) in a compressed column-major matrix's values.
@@ -303,6 +327,17 @@ void CondensedSystem::setOmega(double omega) {
       }
     }
   }
+}
+
+double CondensedSystem::responseAtLaws() const {
+  double most = 0.0;
+  const auto& ks = model_.basis.harmonics();
+  for (const auto& c : offset_)
+    for (size_t h = 0; h < ks.size(); ++h) {
+      const int o = model_.basis.offset(static_cast<int>(h));
+      most = std::max(most, ks[h] == 0 ? std::abs(c[o]) : std::hypot(c[o], c[o + 1]));
+    }
+  return most;
 }
 
 bool CondensedSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z,

@@ -43,8 +43,14 @@ class HbSystem : public SquareSystem {
   // The solution vector of this system for a full coefficient vector.
   virtual Eigen::VectorXd fromFullCoefficients(const Eigen::VectorXd& full) const = 0;
   virtual bool condensed() const = 0;
+  // Dynamics rows (full system): the force scale F; law rows: each law's
+  // residual scale, in the model's physical scales at the current ω
+  // (problem_scales.h).
+  void residualScales(Eigen::Ref<Eigen::VectorXd> scales) const override;
 
  protected:
+  // The largest amplitude of the linear response at the laws' DOFs.
+  virtual double responseAtLaws() const = 0;
   HbModel model_;
   LawAssembly laws_;
   int nb_;
@@ -74,6 +80,9 @@ class FullSystem : public HbSystem {
   }
   bool condensed() const override { return false; }
 
+ protected:
+  double responseAtLaws() const override;
+
  private:
   // Residual into g; with `values`, the Jacobian's values in the order of
   // pattern_'s storage.
@@ -95,6 +104,8 @@ class FullSystem : public HbSystem {
   // Per law l, per (a, b): the nb x nb slots (column-major) of ∂Ψ_a/∂x_b
   // and ∂Ψ_a/∂λ_b in pattern_'s values.
   std::vector<std::vector<std::vector<int>>> displacement_slots_, force_slots_;
+  // responseAtLaws() at response_omega_ (one solve per ω, made when asked).
+  mutable double response_ = 0.0, response_omega_ = 0.0;
 };
 
 class CondensedSystem : public HbSystem {
@@ -116,6 +127,9 @@ class CondensedSystem : public HbSystem {
   bool condensed() const override { return true; }
   // The factorisations of A_k: dense or sparse, set-up time, memory.
   const DynamicStiffnessFactors& factors() const { return factors_; }
+
+ protected:
+  double responseAtLaws() const override;  // from the offsets: no new solve
 
  private:
   bool evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,

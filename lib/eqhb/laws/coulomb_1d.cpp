@@ -116,4 +116,14 @@ void Coulomb1D::evaluate(LawSamples& s, bool with_derivatives) const {
   }
 }
 
+double Coulomb1D::residualScale(const PhysicalScales& s, int) const {
+  switch (form_) {
+    case CoulombForm::kMinMax: return std::min(s.velocity, rho_ * s.force);     // v and ρ r
+    case CoulombForm::kProjection: return std::min(rho_ * s.velocity, s.force);  // ρ v and r
+    case CoulombForm::kTanh:
+    case CoulombForm::kPiecewise: break;
+  }
+  return s.force;  // r + μN φ(v)
+}
+
 }  // namespace eqhb

@@ -1,5 +1,6 @@
 #include "eqhb/laws/coulomb_2d.h"
 
+#include <algorithm>
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
@@ -133,6 +134,16 @@ std::vector<std::pair<std::string, double>> Coulomb2D::violations(const LawSampl
       sliding = std::max(sliding, (r + mu_n_ * v / v.norm()).norm() / mu_n_);
   }
   return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
+}
+
+double Coulomb2D::residualScale(const PhysicalScales& s, int) const {
+  switch (form_) {
+    case Coulomb2DForm::kMax:
+    case Coulomb2DForm::kSmoothed: return s.force * std::min(s.force, rho_ * s.velocity);  // r‖s‖ and μN s
+    case Coulomb2DForm::kProjection: return std::min(rho_ * s.velocity, s.force);         // ρ v and r
+    case Coulomb2DForm::kTanh: break;
+  }
+  return s.force * s.velocity;  // r‖v‖ + μN tanh(α‖v‖) v
 }
 
 }  // namespace eqhb

@@ -26,6 +26,8 @@ class Coulomb2D : public Law {
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  double forceLevel() const override { return mu_n_; }
+  double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess: max(‖r‖/μN − 1, 0); sliding_force_error: max over
   // clearly sliding samples of ‖r + μN v/‖v‖‖ / μN.
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;

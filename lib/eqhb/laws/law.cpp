@@ -14,4 +14,6 @@ void LawSamples::resize(int samples, int dimension) {
   dpsi_dforce_rate.setZero(samples, dimension * dimension);
 }
 
+double Law::residualScale(const PhysicalScales& scales, int) const { return scales.force; }
+
 }  // namespace eqhb

@@ -42,6 +42,12 @@ struct StepProblem {
   double restitution = 0.0;  // Newton impact coefficient (contact laws)
 };
 
+// The problem's own scales (harmonic_balance/problem_scales.h): a force, a
+// displacement and a velocity, each > 0 (all 1: the absolute measure).
+struct PhysicalScales {
+  double force = 1.0, displacement = 1.0, velocity = 1.0;
+};
+
 class Law {
  public:
   virtual ~Law() = default;
@@ -58,6 +64,16 @@ class Law {
   // so a basis without harmonic 0 could only meet the law by letting the
   // force change sign. Such a law needs the constant term in the basis.
   virtual bool needsConstantTerm() const { return false; }
+  // The law's own force and length parameters (μN, a preload, a gap; 0 when
+  // none), which enter the problem's scales.
+  virtual double forceLevel() const { return 0.0; }
+  virtual double displacementLevel() const { return 0.0; }
+  // The size of Ψ_component that stands for a unit relative error in the
+  // problem's scales. Ψ mixes force and velocity (or gap) through ρ, so a
+  // residual is small only when it is small against the smaller of the two,
+  // e.g. min(V, ρF) for a Coulomb min/max form (Ψ in velocity units). The
+  // default, F, is for a Ψ in force units.
+  virtual double residualScale(const PhysicalScales& scales, int component) const;
   // Ψ depends on λ̇ too (elastic friction: the slider moves at ẋ + λ̇/k_t).
   virtual bool usesForceRate() const { return false; }
   // Fills psi and, if with_derivatives, the partials of the used inputs.

@@ -1,5 +1,6 @@
 #include "eqhb/laws/signorini.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "eqhb/error.h"
@@ -86,6 +87,11 @@ std::vector<std::pair<std::string, double>> Signorini::violations(const LawSampl
   return {{"penetration", relative(std::max(0.0, -g.minCoeff()), g_scale)},
           {"negative_pressure", relative(std::max(0.0, -p.minCoeff()), p_scale)},
           {"complementarity", relative((g * p).abs().maxCoeff(), g_scale * p_scale)}};
+}
+
+double Signorini::residualScale(const PhysicalScales& s, int) const {
+  const double scale = std::min(rho_ * s.displacement, s.force);  // ρ g and p
+  return form_ == SignoriniForm::kSignSquare ? scale * scale : scale;
 }
 
 }  // namespace eqhb

@@ -8,6 +8,8 @@
 // derivative along a = p.
 #pragma once
 
+#include <cmath>
+
 #include "eqhb/laws/law.h"
 
 namespace eqhb {
@@ -28,6 +30,8 @@ class Signorini : public Law {
   bool usesVelocity() const override { return false; }
   bool needsConstantTerm() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  double displacementLevel() const override { return std::abs(gap_); }
+  double residualScale(const PhysicalScales& scales, int component) const override;
   // Relative to max|g| and max|p| over the period: penetration max(−g, 0),
   // negative_pressure max(−p, 0), complementarity max |g p| (0 when g ⊥ p).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;

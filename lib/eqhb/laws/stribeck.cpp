@@ -1,5 +1,6 @@
 #include "eqhb/laws/stribeck.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "eqhb/laws/coulomb_1d.h"
@@ -62,6 +63,10 @@ std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSample
   Eigen::VectorXd limits(s.velocity.rows());
   for (Eigen::Index i = 0; i < limits.size(); ++i) limits[i] = limit(s.velocity(i, 0));
   return frictionViolations(s.velocity.col(0), s.force.col(0), limits);
+}
+
+double Stribeck::residualScale(const PhysicalScales& s, int) const {
+  return std::min(s.velocity, rho_ * s.force);  // v and ρ r, as Coulomb's min/max form
 }
 
 }  // namespace eqhb

@@ -17,6 +17,8 @@ class Stribeck : public Law {
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  double forceLevel() const override { return dynamic_ + drop_; }
+  double residualScale(const PhysicalScales& scales, int component) const override;
   // As Coulomb1D, with the limit L(v) of each sample.
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
   // Stick if |u_free| <= D L(0); else slide with w = |u_end| > 0 solving

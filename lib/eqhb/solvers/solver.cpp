@@ -77,7 +77,14 @@ std::string SolverResult::summary() const {
 }
 
 MonitoredSystem::MonitoredSystem(SquareSystem& inner, const SolverOptions& options)
-    : inner_(inner), options_(options), start_(std::chrono::steady_clock::now()) {}
+    : inner_(inner), options_(options), start_(std::chrono::steady_clock::now()),
+      inverse_scales_(Eigen::VectorXd::Ones(inner.size())) {
+  inner.residualScales(inverse_scales_);
+  for (Eigen::Index i = 0; i < inverse_scales_.size(); ++i) {
+    const double s = inverse_scales_[i];
+    inverse_scales_[i] = s > 0.0 && std::isfinite(s) && std::isfinite(1.0 / s) ? 1.0 / s : 1.0;
+  }
+}
 
 void MonitoredSystem::record(const Eigen::Ref<Eigen::VectorXd>& g, bool ok) {
   ++residual_evaluations_;
@@ -90,6 +97,7 @@ bool MonitoredSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z,
   bool ok = false;
   try {
     ok = inner_.residual(z, g) && g.allFinite();
+    if (ok) g.array() *= inverse_scales_.array();
   } catch (const std::exception& e) {
     failure_ = e.what();
   } catch (...) {
@@ -105,6 +113,10 @@ bool MonitoredSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd
   bool ok = false;
   try {
     ok = inner_.residualAndJacobian(z, g, jacobian) && g.allFinite() && jacobian.allFinite();
+    if (ok) {
+      g.array() *= inverse_scales_.array();
+      jacobian.array().colwise() *= inverse_scales_.array();
+    }
   } catch (const std::exception& e) {
     failure_ = e.what();
   } catch (...) {
@@ -123,6 +135,11 @@ bool MonitoredSystem::residualAndSparseJacobian(const Eigen::Ref<const Eigen::Ve
   try {
     ok = inner_.residualAndSparseJacobian(z, g, jacobian) && g.allFinite() &&
          Eigen::Map<const Eigen::VectorXd>(jacobian.valuePtr(), jacobian.nonZeros()).allFinite();
+    if (ok) {
+      g.array() *= inverse_scales_.array();
+      for (int j = 0; j < jacobian.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(jacobian, j); it; ++it) it.valueRef() *= inverse_scales_[it.row()];
+    }
   } catch (const std::exception& e) {
     failure_ = e.what();
   } catch (...) {
@@ -188,7 +205,8 @@ SolverResult Solver::solve(SquareSystem& system, const Eigen::VectorXd& z0,
   } catch (...) {
     finite = false;
   }
-  result.final_norm = finite ? g.norm() : std::numeric_limits<double>::quiet_NaN();
+  result.final_norm =
+      finite ? g.cwiseProduct(monitored.inverseScales()).norm() : std::numeric_limits<double>::quiet_NaN();
   const bool within = finite && result.final_norm <= options.residual_tolerance;
   if (within && result.termination != Termination::kInvalidOptions) {
     result.termination = Termination::kConverged;

@@ -1,10 +1,13 @@
 // One result type and one option set for every nonlinear solver backend.
 //
 // A backend implements Solver::run against a MonitoredSystem, which counts
-// evaluations, enforces the evaluation and time limits and turns exceptions
-// into failed evaluations. Solver::solve then re-checks the returned point:
-// "converged" is reported only when ‖g(z)‖₂ <= residual_tolerance, whatever
-// the backend said.
+// evaluations, enforces the evaluation and time limits, turns exceptions
+// into failed evaluations and measures each equation in its own scale
+// (SquareSystem::residualScales): the backend sees S⁻¹g and its Jacobian.
+// Solver::solve then re-checks the returned point: "converged" is reported
+// only when ‖S⁻¹g(z)‖₂ <= residual_tolerance, whatever the backend said.
+// One rule for every backend: a problem and the same problem in other units
+// (forces and μN times 1e-11, or 1e6) get the same verdict and iterates.
 #pragma once
 
 #include <Eigen/Dense>
@@ -18,7 +21,7 @@
 namespace eqhb {
 
 enum class Termination {
-  kConverged,         // ‖g‖ <= residual_tolerance at the returned point
+  kConverged,         // ‖S⁻¹g‖ <= residual_tolerance at the returned point
   kIterationLimit,    // max_iterations reached
   kEvaluationLimit,   // max_evaluations residual evaluations reached
   kTimeLimit,         // time_limit seconds reached
@@ -37,7 +40,8 @@ const char* terminationName(Termination termination);
 const char* linearAlgebraName(LinearAlgebra algebra);
 
 struct SolverOptions {
-  // Accept z when ‖g(z)‖₂ <= residual_tolerance (absolute). >= 0.
+  // Accept z when ‖S⁻¹g(z)‖₂ <= residual_tolerance, S the equations' own
+  // scales (SquareSystem::residualScales; 1 for a system without). >= 0.
   double residual_tolerance = 1e-10;
   // Most iterations (trial steps or major iterations of the backend). >= 1.
   int max_iterations = 1000;
@@ -97,6 +101,8 @@ class MonitoredSystem : public SquareSystem {
   int failedEvaluations() const { return failed_evaluations_; }
   // Set when an evaluation threw; the evaluation then reported failure.
   const std::string& failure() const { return failure_; }
+  // 1 / s_i of the wrapped system's equations (made once per solve).
+  const Eigen::VectorXd& inverseScales() const { return inverse_scales_; }
 
  private:
   void record(const Eigen::Ref<Eigen::VectorXd>& g, bool ok);
@@ -108,6 +114,7 @@ class MonitoredSystem : public SquareSystem {
   double first_norm_ = std::numeric_limits<double>::quiet_NaN();
   int failed_evaluations_ = 0;
   std::string failure_;
+  Eigen::VectorXd inverse_scales_;
 };
 
 class Solver {

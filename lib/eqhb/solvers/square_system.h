@@ -23,6 +23,11 @@ class SquareSystem {
                                    Eigen::Ref<Eigen::VectorXd> residual,
                                    Eigen::Ref<Eigen::MatrixXd> jacobian) = 0;
 
+  // The scale s_i of each equation: the size of g_i that stands for a unit
+  // relative error in the problem's own units. Solvers see and judge g_i / s_i
+  // (solver.h). The default, 1, is the absolute measure.
+  virtual void residualScales(Eigen::Ref<Eigen::VectorXd> scales) const { scales.setOnes(); }
+
   // True when the system assembles its Jacobian sparse without ever forming
   // a dense size() x size() matrix. Others get the fallback below, which
   // evaluates densely and copies (every entry in the pattern).

@@ -211,4 +211,13 @@ std::vector<std::pair<std::string, double>> ContactFriction::violations(const La
   return out;
 }
 
+double ContactFriction::forceLevel() const { return p_.preload * std::max(1.0, p_.mu); }
+
+double ContactFriction::displacementLevel() const { return std::abs(p_.gap); }
+
+double ContactFriction::residualScale(const PhysicalScales& s, int component) const {
+  if (component == 0) return std::min(p_.rho * s.displacement, s.force);  // ρ g (+ p/k_n) and p
+  return frictionResidualScale(p_.friction, p_.rho, s);
+}
+
 }  // namespace eqhb

@@ -56,6 +56,9 @@ class ContactFriction : public Law {
   bool usesForceRate() const override { return p_.tangential_stiffness.has_value(); }
   bool needsConstantTerm() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  double forceLevel() const override;
+  double displacementLevel() const override;
+  double residualScale(const PhysicalScales& scales, int component) const override;
   // Relative measures (0 when the law holds): negative_pressure max(−p)/max p,
   // penetration max(−g)/max|g| (rigid forms), complementarity max|g p|/(max|g| max p)
   // (rigid forms) or compliance_error max|p − k_n max(0, −g)|/max p (compliant),

@@ -141,4 +141,13 @@ LocalVector minimiseOnDisc(const LocalMatrix& a, const LocalVector& b, double ra
   return lambda;
 }
 
+double frictionResidualScale(FrictionForm form, double rho, const PhysicalScales& s) {
+  switch (form) {
+    case FrictionForm::kMinMax: return std::min(s.velocity, rho * s.force);      // u and ρ r
+    case FrictionForm::kProjection: return std::min(rho * s.velocity, s.force);  // ρ u and r
+    case FrictionForm::kMax: break;
+  }
+  return s.force * std::min(s.force, rho * s.velocity);  // r‖s‖ and L s
+}
+
 }  // namespace eqhb

@@ -20,6 +20,10 @@ namespace eqhb {
 
 enum class FrictionForm { kMinMax, kProjection, kMax };
 
+// The size of Ψ for a unit relative error in the problem's scales (see
+// Law::residualScale): minmax min(V, ρF), projection min(ρV, F), max F·min(F, ρV).
+double frictionResidualScale(FrictionForm form, double rho, const PhysicalScales& scales);
+
 FrictionForm parseFrictionForm(const std::string& name, const std::string& field);
 std::string frictionFormName(FrictionForm form);
 

@@ -74,4 +74,8 @@ std::vector<std::pair<std::string, double>> Jenkins::violations(const LawSamples
   return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
 }
 
+double Jenkins::residualScale(const PhysicalScales& s, int) const {
+  return frictionResidualScale(form_, rho_, s);  // the slip velocity u in the velocity scale
+}
+
 }  // namespace eqhb

@@ -23,6 +23,8 @@ class Jenkins : public Law {
   bool usesVelocity() const override { return true; }
   bool usesForceRate() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  double forceLevel() const override { return mu_n_; }
+  double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess max(‖r‖/μN − 1, 0); sliding_force_error max over
   // samples clearly slipping (‖u‖ > 5% of max) of ‖r + μN u/‖u‖‖/μN.
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;

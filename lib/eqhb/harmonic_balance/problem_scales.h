@@ -1,0 +1,30 @@
+// The problem's own scales of force, displacement and velocity, in which
+// convergence is measured, so that a problem and the same problem in other
+// units get the same verdict:
+//
+//   F₀ = the largest load amplitude and law force level (μN, a preload),
+//   X₀ = the largest amplitude of the linear response (the structure without
+//        its laws under the loads) at the laws' DOFs, or a law length (a
+//        gap) when larger,
+//   s  = the dynamic stiffness at the laws' DOFs, max_i max(K_ii, ωC_ii, ω²M_ii),
+//   F  = F₀ (s X₀ without loads),  X = X₀ (F₀ / s without a response),  V = ωX.
+//
+// The response, not F₀ / s, sets X: a structure forced near a resonance moves
+// far more than its local stiffness says (a beam's tip). A problem without
+// any force or length has the zero solution; its scales are then 1, the
+// absolute measure.
+#pragma once
+
+#include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/laws/law.h"
+
+namespace eqhb {
+
+// `response` = X₀ from the linear response (0 when not known or unforced).
+PhysicalScales physicalScales(const HbModel& model, double response);
+
+// The largest |x_lin| at the laws' DOFs over the basis harmonics (amplitude
+// √(a² + b²)), x_lin = A_k⁻¹ f_k; one dense or sparse factorisation per harmonic.
+double linearResponseAtLaws(const HbModel& model, bool sparse);
+
+}  // namespace eqhb
