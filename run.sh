@@ -4,6 +4,8 @@
 #   ./run.sh test              install, build, run the test suite (ctest)
 #   ./run.sh perf-check        short benchmark compared with bench/baseline.json (CI)
 #   ./run.sh baseline          re-record bench/baseline.json (on purpose only)
+#   ./run.sh sanitize          the test suite under ASan + UBSan (clang), then the scene
+#                              fuzzer for FUZZ_SECONDS (60) from tests/fuzz/corpus (CI)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -11,7 +13,8 @@ PACKAGES=(cmake g++ make pkg-config libeigen3-dev libspectra-dev libceres-dev li
   coinor-libipopt-dev libsuitesparse-dev libfftw3-dev libbenchmark-dev libgtest-dev
   libcminpack-dev libcli11-dev nlohmann-json3-dev libtoml11-dev python3 python3-matplotlib
   python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest
-  libopenmpi-dev openmpi-bin)
+  libopenmpi-dev openmpi-bin
+  clang libclang-rt-14-dev)
 
 install_packages() {
   local missing=()
@@ -31,6 +34,17 @@ build() {
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
   cmake --build build -j"$(nproc)"
+}
+
+# Its own build directory: clang with ASan + UBSan and libFuzzer, only what
+# the tests need (no benchmark, no Python module, the optional backends off).
+sanitize_build() {
+  launcher=()
+  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+    -DEQHB_SANITIZE=ON -DEQHB_FUZZ=ON -DEQHB_BUILD_BENCH=OFF -DEQHB_BUILD_PYTHON=OFF -DEQHB_INSTALL=OFF \
+    -DEQHB_WITH_CERES=OFF -DEQHB_WITH_IPOPT=OFF -DEQHB_WITH_NLOPT=OFF -DEQHB_WITH_MPI=OFF "${launcher[@]}" >/dev/null
+  cmake --build build-sanitize -j"$(nproc)"
 }
 
 case "${1:-}" in
@@ -77,6 +91,26 @@ case "${1:-}" in
     ./build/eqhb-bench --quick --out build/perf >/dev/null
     /usr/bin/python3 bench/perf_check.py bench/baseline.json build/perf/bench.json
     ;;
+  sanitize)
+    install_packages
+    sanitize_build
+    export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+    ctest --test-dir build-sanitize --output-on-failure -j2
+    # New inputs go to a scratch copy; a finding is written to build-sanitize/fuzz-findings/.
+    rm -rf build-sanitize/fuzz-corpus build-sanitize/fuzz-findings
+    mkdir -p build-sanitize/fuzz-corpus build-sanitize/fuzz-findings
+    status=0
+    ./build-sanitize/eqhb-scene-fuzzer -max_total_time="${FUZZ_SECONDS:-60}" -timeout=10 -rss_limit_mb=3072 \
+      -print_final_stats=1 -artifact_prefix=build-sanitize/fuzz-findings/ \
+      build-sanitize/fuzz-corpus tests/fuzz/corpus >build-sanitize/fuzz.log 2>&1 || status=$?
+    grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb|Done )" build-sanitize/fuzz.log || true
+    if [ "$status" -ne 0 ] || [ -n "$(ls -A build-sanitize/fuzz-findings)" ]; then
+      tail -n 60 build-sanitize/fuzz.log
+      echo "scene fuzzer: finding in build-sanitize/fuzz-findings/" >&2
+      exit 1
+    fi
+    echo "scene fuzzer: no crash"
+    ;;
   baseline)
     install_packages
     build
@@ -85,7 +119,7 @@ case "${1:-}" in
     echo "bench/baseline.json re-recorded: commit it with the reason"
     ;;
   *)
-    echo "usage: $0 test | bench [--quick] | perf-check | baseline" >&2
+    echo "usage: $0 test | bench [--quick] | perf-check | baseline | sanitize" >&2
     exit 2
     ;;
 esac

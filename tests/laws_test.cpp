@@ -107,7 +107,7 @@ TEST(Laws, NonPhysicalParametersAreRejected) {
   EXPECT_THROW(Stribeck(-1.0, 1.0, 0.5), InputError);
   EXPECT_THROW(Stribeck(1.0, 0.5, 0.5), InputError);  // static below dynamic
   EXPECT_THROW(Stribeck(1.0, 1.5, 0.0), InputError);
-  EXPECT_THROW(CubicStiffness(std::numeric_limits<double>::infinity()), InputError);
+  EXPECT_THROW(CubicStiffness{std::numeric_limits<double>::infinity()}, InputError);
 }
 
 }  // namespace
