@@ -10,6 +10,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/scenes/scene.h"
 
 namespace {
@@ -19,7 +20,8 @@ namespace {
 constexpr double kSetUpBytes = 64.0 * 1024 * 1024;
 
 void setUp(const eqhb::HbModel& model, bool condensed) {
-  if (model.denseBytes(condensed) > kSetUpBytes) return;
+  const bool sparse = model.structure.dofs() >= eqhb::kSparseCondensationFromDofs;
+  if ((condensed ? eqhb::condensedBytes(model, sparse) : eqhb::fullBytes(model)) > kSetUpBytes) return;
   try {
     auto system = eqhb::makeHbSystem(model, condensed);
     Eigen::VectorXd z = Eigen::VectorXd::Zero(system->size()), g(system->size());
