@@ -269,19 +269,38 @@ TEST(StudyScheduler, ThreadsComputeEverySampleOnceWithTheSerialResults) {
   }
 }
 
-TEST(StudyScheduler, GuidedRunsShrinkAndCoverEverything) {
-  std::vector<int> ids(100);
-  std::iota(ids.begin(), ids.end(), 0);
+TEST(StudyScheduler, GuidedRunsOfWholeBlocksShrinkAndCoverEverything) {
+  // Pending samples with holes, as a resumed study has them.
+  std::vector<int> ids;
+  for (int i = 0; i < 1000; ++i)
+    if (i % 37 != 5) ids.push_back(i);
   GuidedScheduler scheduler(ids, 4);
-  std::vector<int> sizes, all;
+  std::vector<int> blocks_per_run, all;
   for (auto run = scheduler.next(); !run.empty(); run = scheduler.next()) {
-    sizes.push_back(static_cast<int>(run.size()));
+    std::set<int> blocks;
+    for (int id : run) blocks.insert(id / kWarmChain);
+    blocks_per_run.push_back(static_cast<int>(blocks.size()));
+    // Whole blocks: every pending sample of each block the run touches.
+    for (int b : blocks)
+      for (int id = b * kWarmChain; id < std::min(1000, (b + 1) * kWarmChain); ++id)
+        if (id % 37 != 5) EXPECT_NE(std::find(run.begin(), run.end(), id), run.end()) << id;
     all.insert(all.end(), run.begin(), run.end());
   }
   EXPECT_EQ(all, ids);
-  EXPECT_EQ(sizes.front(), 12);
-  EXPECT_EQ(sizes.back(), 1);
-  EXPECT_TRUE(std::is_sorted(sizes.rbegin(), sizes.rend()));
+  EXPECT_EQ(blocks_per_run.front(), 63 / 8);
+  EXPECT_EQ(blocks_per_run.back(), 1);
+  EXPECT_TRUE(std::is_sorted(blocks_per_run.rbegin(), blocks_per_run.rend()));
+}
+
+TEST(StudyPlan, EveryWarmChainBlockStartsCold) {
+  const StudyPlan grid = makeGridPlan({{"forcing[0].cos", 1, 2, 2}, {"law.muN", 0.5, 3, 40}});
+  const StudyPlan lhs = makeLatinHypercubePlan({{"law.muN", 0.5, 3, 0}, {"forcing[0].cos", 1, 2, 0}}, 50, 7);
+  for (const StudyPlan* plan : {&grid, &lhs})
+    for (std::size_t i = 0; i < plan->samples.size(); ++i)
+      if (i % kWarmChain == 0) EXPECT_FALSE(plan->continues[i]) << i;
+  EXPECT_TRUE(grid.continues[15]);
+  EXPECT_FALSE(grid.continues[40]);  // a new grid line
+  EXPECT_TRUE(grid.continues[41]);
 }
 
 }  // namespace

@@ -83,7 +83,7 @@ StudyPlan makeGridPlan(const std::vector<VariedParameter>& parameters, long max_
     std::vector<double> sample(n);
     for (int p = 0; p < n; ++p) sample[p] = value(p, digit[p]);
     plan.samples.push_back(std::move(sample));
-    plan.continues.push_back(digit[n - 1] != 0);
+    plan.continues.push_back(digit[n - 1] != 0 && s % kWarmChain != 0);
     for (int p = n - 1; p >= 0; --p) {
       if (++digit[p] < parameters[p].count) break;
       digit[p] = 0;
@@ -139,7 +139,7 @@ StudyPlan makeLatinHypercubePlan(const std::vector<VariedParameter>& parameters,
   StudyPlan plan;
   plan.parameters = parameters;
   for (int i : order) {
-    plan.continues.push_back(!plan.samples.empty());
+    plan.continues.push_back(plan.samples.size() % kWarmChain != 0);
     std::vector<double> sample(n);
     for (int p = 0; p < n; ++p) sample[p] = parameters[p].from + (parameters[p].to - parameters[p].from) * unit[i][p];
     plan.samples.push_back(std::move(sample));

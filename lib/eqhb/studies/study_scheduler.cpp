@@ -6,14 +6,20 @@
 
 namespace eqhb {
 
-GuidedScheduler::GuidedScheduler(std::vector<int> pending, int workers)
-    : pending_(std::move(pending)), workers_(std::max(1, workers)) {}
+GuidedScheduler::GuidedScheduler(std::vector<int> pending, int workers) : workers_(std::max(1, workers)) {
+  std::sort(pending.begin(), pending.end());
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    if (i == 0 || pending[i] / kWarmChain != pending[i - 1] / kWarmChain) blocks_.emplace_back();
+    blocks_.back().push_back(pending[i]);
+  }
+}
 
 std::vector<int> GuidedScheduler::next() {
   const std::lock_guard<std::mutex> lock(mutex_);
-  const std::size_t remaining = pending_.size() - position_;
+  const std::size_t remaining = blocks_.size() - position_;
   const std::size_t run = std::min(remaining, std::max<std::size_t>(1, remaining / (2 * workers_)));
-  std::vector<int> ids(pending_.begin() + position_, pending_.begin() + position_ + run);
+  std::vector<int> ids;
+  for (std::size_t b = position_; b < position_ + run; ++b) ids.insert(ids.end(), blocks_[b].begin(), blocks_[b].end());
   position_ += run;
   return ids;
 }

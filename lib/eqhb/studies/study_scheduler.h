@@ -1,9 +1,10 @@
 // Dynamic distribution of a study's pending samples over workers (threads
-// of one process, or MPI ranks). Guided self-scheduling: a worker asking
-// for work gets a run of consecutive pending samples, about
-// remaining / (2 · workers) long — long runs first (warm starts from
-// neighbour to neighbour), single samples near the end (balance, since
-// samples differ in cost).
+// of one process, or MPI ranks). Guided self-scheduling over the warm-start
+// blocks of the plan (kWarmChain samples, study_plan.h): a worker asking for
+// work gets a run of whole consecutive blocks, about remaining / (2 · workers)
+// of them — long runs first, single blocks near the end (balance, since
+// samples differ in cost). Never splitting a block keeps every sample's
+// start independent of the number of workers.
 #pragma once
 
 #include <functional>
@@ -21,7 +22,7 @@ class GuidedScheduler {
   std::vector<int> next();
 
  private:
-  std::vector<int> pending_;
+  std::vector<std::vector<int>> blocks_;  // pending samples, grouped by block
   std::size_t position_ = 0;
   int workers_;
   std::mutex mutex_;
