@@ -99,5 +99,43 @@ TEST(HarmonicSet, OddSetOfTenHarmonicsIsOneToNineteen) {
   EXPECT_THROW(HarmonicSet(HarmonicKind::kOdd, 0), InputError);
 }
 
+// Half-wave sampling against the full period: the first N/2 samples of the
+// synthesis, the projection of an antiperiodic signal from its first half,
+// and the Gram block of half-period periodic weights, each to rounding; and
+// the fallback to the full period where it does not apply.
+TEST(HalfWaveTransform, AgreesWithTheFullPeriod) {
+  for (int count : {1, 3, 10}) {
+    for (int n : {64, 1024, 130}) {
+      HarmonicSet basis(HarmonicKind::kOdd, count);
+      FourierTransform full(basis, n), half(basis, n, Sampling::kHalfWave);
+      ASSERT_TRUE(half.halfWave());
+      ASSERT_EQ(half.activeSamples(), n / 2);
+      const Eigen::VectorXd c = Eigen::VectorXd::Random(basis.size());
+      Eigen::VectorXd xf(n), xh(n / 2), cf(basis.size()), ch(basis.size());
+      full.synthesize(c.data(), xf.data());
+      half.synthesize(c.data(), xh.data());
+      EXPECT_LT((xh - xf.head(n / 2)).cwiseAbs().maxCoeff(), 1e-13 * basis.size()) << count << " " << n;
+      // an odd function of an antiperiodic signal is antiperiodic
+      const Eigen::VectorXd y = xf.array().cube() + xf.array().sin();
+      full.project(y.data(), cf.data());
+      half.project(y.data(), ch.data());
+      EXPECT_LT((ch - cf).cwiseAbs().maxCoeff(), 1e-13 * (1 + cf.cwiseAbs().maxCoeff())) << count << " " << n;
+      half.project(xh.data(), ch.data());
+      EXPECT_LT((ch - c).cwiseAbs().maxCoeff(), 1e-13 * basis.size());
+      // an even function of it has period T/2
+      const Eigen::VectorXd w = xf.array().square() + xf.array().cos();
+      Eigen::MatrixXd gf(basis.size(), basis.size()), gh(basis.size(), basis.size());
+      full.gram(w.data(), gf);
+      half.gram(w.data(), gh);
+      EXPECT_LT((gh - gf).cwiseAbs().maxCoeff(), 1e-13 * (1 + gf.cwiseAbs().maxCoeff())) << count << " " << n;
+    }
+  }
+  FourierTransform all(HarmonicSet(HarmonicKind::kAll, 4), 64, Sampling::kHalfWave);
+  EXPECT_FALSE(all.halfWave());
+  EXPECT_EQ(all.activeSamples(), 64);
+  FourierTransform odd_n(HarmonicSet(HarmonicKind::kOdd, 4), 65, Sampling::kHalfWave);
+  EXPECT_FALSE(odd_n.halfWave());
+}
+
 }  // namespace
 }  // namespace eqhb

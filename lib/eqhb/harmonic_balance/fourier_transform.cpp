@@ -2,8 +2,10 @@
 
 #include <fftw3.h>
 
+#include <cmath>
 #include <cstring>
 #include <mutex>
+#include <vector>
 
 #include "eqhb/error.h"
 #include "eqhb/size_limits.h"
@@ -54,7 +56,45 @@ struct FourierTransform::Plans {
   }
 };
 
-FourierTransform::FourierTransform(const HarmonicSet& basis, int samples)
+// Odd harmonics on the first half period (θ_i = 2πi/N, i < M = N/2): with
+// k = 2m + 1, Σ_k (a_k − ib_k) e^{ikθ_i} = e^{iθ_i} Σ_m C_m e^{2πi·mi/M}, a
+// complex inverse FFT of size M and a twiddle; the projection is the same
+// backwards, (4/N) Σ_{i<M} y_i e^{−ikθ_i} (the second half repeats the first
+// for antiperiodic y and odd k).
+struct FourierTransform::HalfWavePlans {
+  int m = 0;
+  std::vector<double> cos_theta, sin_theta;
+  fftw_complex* bins = nullptr;     // synthesis input: zero but at the basis' bins
+  fftw_complex* twisted = nullptr;  // projection input y_i e^{−iθ_i}
+  fftw_complex* out = nullptr;
+  fftw_plan backward = nullptr;     // bins -> out (input preserved)
+  fftw_plan forward = nullptr;      // twisted -> out
+
+  explicit HalfWavePlans(int samples) : m(samples / 2), cos_theta(m), sin_theta(m) {
+    for (int i = 0; i < m; ++i) {
+      const double theta = 2.0 * M_PI * i / samples;
+      cos_theta[i] = std::cos(theta);
+      sin_theta[i] = std::sin(theta);
+    }
+    bins = fftw_alloc_complex(m);
+    twisted = fftw_alloc_complex(m);
+    out = fftw_alloc_complex(m);
+    std::memset(bins, 0, sizeof(fftw_complex) * m);
+    const std::lock_guard<std::mutex> lock(plannerMutex());
+    backward = fftw_plan_dft_1d(m, bins, out, FFTW_BACKWARD, FFTW_ESTIMATE | FFTW_PRESERVE_INPUT);
+    forward = fftw_plan_dft_1d(m, twisted, out, FFTW_FORWARD, FFTW_ESTIMATE);
+  }
+  ~HalfWavePlans() {
+    const std::lock_guard<std::mutex> lock(plannerMutex());
+    fftw_destroy_plan(backward);
+    fftw_destroy_plan(forward);
+    fftw_free(bins);
+    fftw_free(twisted);
+    fftw_free(out);
+  }
+};
+
+FourierTransform::FourierTransform(const HarmonicSet& basis, int samples, Sampling sampling)
     : basis_(basis), samples_(samples) {
   if (samples < basis.minimumSamples())
     throwInputError("samples", std::to_string(samples),
@@ -62,7 +102,9 @@ FourierTransform::FourierTransform(const HarmonicSet& basis, int samples)
                         " to resolve the highest harmonic k_max = " + std::to_string(basis.highest()));
   if (samples > kMaxSamples)
     throwInputError("samples", std::to_string(samples), "must be <= " + std::to_string(kMaxSamples));
-  plans_ = std::make_unique<Plans>(samples);
+  half_wave_ = sampling == Sampling::kHalfWave && basis.kind() == HarmonicKind::kOdd && samples % 2 == 0;
+  plans_ = std::make_unique<Plans>(activeSamples());
+  if (half_wave_) half_ = std::make_unique<HalfWavePlans>(samples);
 }
 
 FourierTransform::~FourierTransform() = default;
@@ -70,9 +112,21 @@ FourierTransform::FourierTransform(FourierTransform&&) noexcept = default;
 FourierTransform& FourierTransform::operator=(FourierTransform&&) noexcept = default;
 
 void FourierTransform::synthesize(const double* coefficients, double* samples) {
+  const auto& ks = basis_.harmonics();
+  if (half_wave_) {
+    HalfWavePlans& w = *half_;
+    for (size_t h = 0; h < ks.size(); ++h) {
+      const double* c = coefficients + basis_.offset(static_cast<int>(h));
+      const int m = (ks[h] - 1) / 2;
+      w.bins[m][0] = c[0];
+      w.bins[m][1] = -c[1];
+    }
+    fftw_execute(w.backward);
+    for (int i = 0; i < w.m; ++i) samples[i] = w.cos_theta[i] * w.out[i][0] - w.sin_theta[i] * w.out[i][1];
+    return;
+  }
   Plans& p = *plans_;
   std::memset(p.spectrum, 0, sizeof(fftw_complex) * (p.n / 2 + 1));
-  const auto& ks = basis_.harmonics();
   for (size_t h = 0; h < ks.size(); ++h) {
     const int k = ks[h];
     const double* c = coefficients + basis_.offset(static_cast<int>(h));
@@ -88,10 +142,26 @@ void FourierTransform::synthesize(const double* coefficients, double* samples) {
 }
 
 void FourierTransform::project(const double* samples, double* coefficients) {
+  const auto& ks = basis_.harmonics();
+  if (half_wave_) {
+    HalfWavePlans& w = *half_;
+    for (int i = 0; i < w.m; ++i) {
+      w.twisted[i][0] = samples[i] * w.cos_theta[i];
+      w.twisted[i][1] = -samples[i] * w.sin_theta[i];
+    }
+    fftw_execute(w.forward);
+    const double scale = 2.0 / w.m;  // 4/N
+    for (size_t h = 0; h < ks.size(); ++h) {
+      double* c = coefficients + basis_.offset(static_cast<int>(h));
+      const int m = (ks[h] - 1) / 2;
+      c[0] = scale * w.out[m][0];
+      c[1] = -scale * w.out[m][1];
+    }
+    return;
+  }
   Plans& p = *plans_;
   std::memcpy(p.real, samples, sizeof(double) * p.n);
   fftw_execute(p.forward);
-  const auto& ks = basis_.harmonics();
   for (size_t h = 0; h < ks.size(); ++h) {
     const int k = ks[h];
     double* c = coefficients + basis_.offset(static_cast<int>(h));
@@ -112,6 +182,18 @@ void FourierTransform::gram(const double* weights, Eigen::Ref<Eigen::MatrixXd> o
   fftw_execute(p.forward);
   const auto& ks = basis_.harmonics();
   const int count = static_cast<int>(ks.size());
+  // Moments (1/N) Σ_{i<N} d_i (cos, sin)(mθ_i). Half-wave: d has period T/2,
+  // so they vanish at odd m and are (1/M) Σ_{i<M} d_i e^{−i(m/2)·2πi/M} at
+  // even m: the size-M transform at bin m/2 (odd bases meet only even k ± j).
+  const bool half = half_wave_;
+  auto moment = [&p, half](int m, double* c, double* s) {
+    if (!half) return p.cosSinMoment(m, c, s);
+    if (m % 2 != 0) {
+      *c = *s = 0.0;
+      return;
+    }
+    p.cosSinMoment(m / 2, c, s);
+  };
   // Row k of Q carries 2/N (1/N for k = 0); C_m, S_m below carry 1/N.
   for (int hr = 0; hr < count; ++hr) {
     const int k = ks[hr];
@@ -121,9 +203,9 @@ void FourierTransform::gram(const double* weights, Eigen::Ref<Eigen::MatrixXd> o
       const int j = ks[hc];
       const int col = basis_.offset(hc);
       double cDiff, sDiff, cSum, sSum;  // moments at |k − j| and k + j
-      p.cosSinMoment(k >= j ? k - j : j - k, &cDiff, &sDiff);
+      moment(k >= j ? k - j : j - k, &cDiff, &sDiff);
       if (k < j) sDiff = -sDiff;  // S_{k−j} is odd in k − j
-      p.cosSinMoment(k + j, &cSum, &sSum);
+      moment(k + j, &cSum, &sSum);
       if (k == 0 && j == 0) {
         out(row, col) = cDiff;
         continue;

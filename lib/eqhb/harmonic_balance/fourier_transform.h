@@ -11,6 +11,16 @@
 //              formulas cos·cos = ½[cos(k−j) + cos(k+j)] etc.: O(N log N + nb²)
 //              instead of the O(N nb²) dense product.
 //
+// Half-wave sampling (opt-in, odd bases with even N): every channel of an
+// odd basis is antiperiodic, q(t + T/2) = −q(t), so its first N/2 samples
+// determine it. synthesize then writes, and project reads, only those
+// M = N/2 samples (one complex FFT of size M with a twiddle e^{±iθ} folds the
+// odd harmonics k = 2m + 1 onto the bins m); gram reads M weights that must be
+// half-period periodic (the even partials of an odd law), whose moments exist
+// only at even orders. The results equal the full-period ones when the
+// sampled functions have those symmetries; the law assembly uses it for laws
+// that are odd (Law::oddSymmetric) and halves the work of a residual.
+//
 // All work buffers are owned; no call allocates. Not thread-safe (one
 // instance per thread).
 #pragma once
@@ -27,10 +37,14 @@ namespace eqhb {
 // `in` and `out` must not alias.
 void differentiateCoefficients(const HarmonicSet& basis, const double* in, double omega, double* out);
 
+enum class Sampling { kFullPeriod, kHalfWave };
+
 class FourierTransform {
  public:
-  // Throws InputError if samples < basis.minimumSamples().
-  FourierTransform(const HarmonicSet& basis, int samples);
+  // Throws InputError if samples < basis.minimumSamples(). kHalfWave is
+  // honoured on an odd basis with an even sample count; otherwise the
+  // transform samples the full period (halfWave() tells which).
+  FourierTransform(const HarmonicSet& basis, int samples, Sampling sampling = Sampling::kFullPeriod);
   ~FourierTransform();
   FourierTransform(FourierTransform&&) noexcept;
   FourierTransform& operator=(FourierTransform&&) noexcept;
@@ -39,6 +53,9 @@ class FourierTransform {
 
   const HarmonicSet& basis() const { return basis_; }
   int samples() const { return samples_; }
+  bool halfWave() const { return half_wave_; }
+  // Samples read and written per channel: N, or N/2 with half-wave sampling.
+  int activeSamples() const { return half_wave_ ? samples_ / 2 : samples_; }
 
   void synthesize(const double* coefficients, double* samples);
   void project(const double* samples, double* coefficients);
@@ -56,9 +73,12 @@ class FourierTransform {
 
  private:
   struct Plans;
+  struct HalfWavePlans;
   HarmonicSet basis_;
   int samples_;
-  std::unique_ptr<Plans> plans_;
+  bool half_wave_ = false;
+  std::unique_ptr<Plans> plans_;  // real FFT of the active samples (gram; all of it on the full period)
+  std::unique_ptr<HalfWavePlans> half_;
 };
 
 }  // namespace eqhb

@@ -4,10 +4,20 @@
 
 namespace eqhb {
 
+namespace {
+// Half a period suffices when every law is odd (Law::oddSymmetric): on an odd
+// basis Ψ is then antiperiodic and its partials half-period periodic.
+Sampling lawSampling(const HbModel& model) {
+  for (const AttachedLaw& a : model.laws)
+    if (!a.law->oddSymmetric()) return Sampling::kFullPeriod;
+  return Sampling::kHalfWave;
+}
+}  // namespace
+
 LawAssembly::LawAssembly(const HbModel& model)
-    : laws_(model.laws), transform_(model.basis, model.samples) {
+    : laws_(model.laws), transform_(model.basis, model.samples, lawSampling(model)) {
   const int nb = model.basis.size();
-  const int n = model.samples;
+  const int n = transform_.activeSamples();
   slots_.resize(laws_.size());
   for (size_t l = 0; l < laws_.size(); ++l) {
     const int d = laws_[l].law->dimension();

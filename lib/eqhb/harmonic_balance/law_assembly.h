@@ -5,7 +5,10 @@
 //
 // Callers fill displacement(l) and force(l) (nb x d, one column per
 // component), call evaluate(l, ...), then read residual(l) and the blocks.
-// All buffers are sized at construction; evaluate allocates nothing.
+// All buffers are sized at construction; evaluate allocates nothing. When
+// every law is odd and the basis has odd harmonics only, the laws are
+// evaluated on the first half of the period (FourierTransform's half-wave
+// sampling): the same projections for half the samples.
 #pragma once
 
 #include <Eigen/Dense>

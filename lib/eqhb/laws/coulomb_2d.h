@@ -25,6 +25,7 @@ class Coulomb2D : public Law {
   int dimension() const override { return 2; }
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
+  bool oddSymmetric() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   double forceLevel() const override { return mu_n_; }
   double residualScale(const PhysicalScales& scales, int component) const override;

@@ -14,6 +14,7 @@ class CubicStiffness : public Law {
   int dimension() const override { return 1; }
   bool usesDisplacement() const override { return true; }
   bool usesVelocity() const override { return false; }
+  bool oddSymmetric() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   // dae_residual: max |f_nl + ε x³| / max(|f_nl|, tiny).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;

@@ -76,6 +76,12 @@ class Law {
   virtual double residualScale(const PhysicalScales& scales, int component) const;
   // Ψ depends on λ̇ too (elastic friction: the slider moves at ẋ + λ̇/k_t).
   virtual bool usesForceRate() const { return false; }
+  // True when Ψ is odd in its inputs, sample by sample and exactly in floating
+  // point: Ψ(−x, −ẋ, −λ, −λ̇) = −Ψ(x, ẋ, λ, λ̇), so its partials are even. On a
+  // basis of odd harmonics every input is half-wave antiperiodic
+  // (q(t + T/2) = −q(t)); then so is Ψ, and the assembly evaluates the law on
+  // the first half of the period only (FourierTransform's half-wave sampling).
+  virtual bool oddSymmetric() const { return false; }
   // Fills psi and, if with_derivatives, the partials of the used inputs.
   virtual void evaluate(LawSamples& samples, bool with_derivatives) const = 0;
   // Physical checks on samples of a solution (inputs filled, densely in

@@ -16,6 +16,7 @@ class Stribeck : public Law {
   int dimension() const override { return 1; }
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
+  bool oddSymmetric() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   double forceLevel() const override { return dynamic_ + drop_; }
   double residualScale(const PhysicalScales& scales, int component) const override;

@@ -21,6 +21,7 @@ class Jenkins : public Law {
   int dimension() const override { return dimension_; }
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
+  bool oddSymmetric() const override { return true; }
   bool usesForceRate() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   double forceLevel() const override { return mu_n_; }
