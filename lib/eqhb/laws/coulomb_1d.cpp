@@ -41,15 +41,18 @@ LocalVector Coulomb1D::solveStep(const StepProblem& step) const {
   return force;
 }
 
-std::vector<std::pair<std::string, double>> Coulomb1D::violations(const LawSamples& s) const {
-  return frictionViolations(s.velocity.col(0), s.force.col(0),
-                            Eigen::VectorXd::Constant(s.force.rows(), mu_n_));
+std::vector<std::pair<std::string, double>> Coulomb1D::violations(const LawSamples& s,
+                                                                  const PhysicalScales& scales) const {
+  return frictionViolations(s.velocity.col(0), s.force.col(0), Eigen::VectorXd::Constant(s.force.rows(), mu_n_),
+                            scales.velocity);
 }
 
 std::vector<std::pair<std::string, double>> frictionViolations(
     const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r,
-    const Eigen::Ref<const Eigen::VectorXd>& limit) {
-  const double v_scale = v.cwiseAbs().maxCoeff();
+    const Eigen::Ref<const Eigen::VectorXd>& limit, double velocity_scale) {
+  // A fully stuck contact has v ≡ 0 up to rounding: against max|v| alone
+  // every sample of that noise would count as sliding.
+  const double v_scale = invariantScale(v.cwiseAbs().maxCoeff(), velocity_scale);
   double excess = 0.0, sliding = 0.0;
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (limit[i] <= 0.0) continue;

@@ -26,9 +26,10 @@ CoulombForm parseCoulombForm(const std::string& name);
 constexpr double kSlidingFraction = 0.05;
 
 // Checks shared by the 1D friction laws (limit per sample): see Coulomb1D.
+// `velocity_scale`: the problem's V, the floor of max|v| (Law::violations).
 std::vector<std::pair<std::string, double>> frictionViolations(
     const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r,
-    const Eigen::Ref<const Eigen::VectorXd>& limit);
+    const Eigen::Ref<const Eigen::VectorXd>& limit, double velocity_scale);
 std::string coulombFormName(CoulombForm form);
 
 class Coulomb1D : public Law {
@@ -46,7 +47,8 @@ class Coulomb1D : public Law {
   double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess: max(|r|/μN − 1, 0); sliding_force_error: max over
   // clearly sliding samples of |r + μN sign(v)| / μN.
-  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                         const PhysicalScales& scales) const override;
   // λ = proj_[−μN, μN](−u_free / D): stick (u_end = 0) if that fits, else slide.
   LocalVector solveStep(const StepProblem& step) const override;
 

@@ -122,9 +122,11 @@ LocalVector Coulomb2D::solveStep(const StepProblem& step) const {
   return force;
 }
 
-std::vector<std::pair<std::string, double>> Coulomb2D::violations(const LawSamples& s) const {
+std::vector<std::pair<std::string, double>> Coulomb2D::violations(const LawSamples& s,
+                                                                  const PhysicalScales& scales) const {
   double v_scale = 0.0;
   for (Eigen::Index i = 0; i < s.velocity.rows(); ++i) v_scale = std::max(v_scale, s.velocity.row(i).norm());
+  v_scale = invariantScale(v_scale, scales.velocity);  // stuck: v ≡ 0 up to rounding
   double excess = 0.0, sliding = 0.0;
   if (mu_n_ <= 0.0) return {{"force_limit_excess", 0.0}, {"sliding_force_error", 0.0}};
   for (Eigen::Index i = 0; i < s.force.rows(); ++i) {

@@ -31,7 +31,8 @@ class Coulomb2D : public Law {
   double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess: max(‖r‖/μN − 1, 0); sliding_force_error: max over
   // clearly sliding samples of ‖r + μN v/‖v‖‖ / μN.
-  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                         const PhysicalScales& scales) const override;
   // min over the disc ‖λ‖ <= μN of ½ λᵀDλ + λᵀu_free (maximal dissipation),
   // by projected gradient to round-off (exact projection when D = d I).
   LocalVector solveStep(const StepProblem& step) const override;

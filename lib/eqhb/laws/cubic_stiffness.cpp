@@ -42,10 +42,11 @@ LocalVector CubicStiffness::solveStep(const StepProblem& step) const {
   return force;
 }
 
-std::vector<std::pair<std::string, double>> CubicStiffness::violations(const LawSamples& s) const {
+std::vector<std::pair<std::string, double>> CubicStiffness::violations(const LawSamples& s,
+                                                                       const PhysicalScales& scales) const {
   const Eigen::ArrayXd x = s.displacement.col(0).array();
   const Eigen::ArrayXd residual = s.force.col(0).array() + epsilon_ * x * x * x;
-  const double scale = std::max(s.force.col(0).cwiseAbs().maxCoeff(), 1e-300);
+  const double scale = std::max(invariantScale(s.force.col(0).cwiseAbs().maxCoeff(), scales.force), 1e-300);
   return {{"dae_residual", residual.abs().maxCoeff() / scale}};
 }
 

@@ -17,7 +17,8 @@ class CubicStiffness : public Law {
   bool oddSymmetric() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   // dae_residual: max |f_nl + ε x³| / max(|f_nl|, tiny).
-  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                         const PhysicalScales& scales) const override;
   // Newton on λ + ε x_θ(λ)³ = 0, x_θ the displacement at the θ-point.
   LocalVector solveStep(const StepProblem& step) const override;
   double epsilon() const { return epsilon_; }

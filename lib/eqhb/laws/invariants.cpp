@@ -1,11 +1,30 @@
 #include "eqhb/laws/invariants.h"
 
+#include <exception>
+
 #include "eqhb/harmonic_balance/fourier_transform.h"
+#include "eqhb/harmonic_balance/problem_scales.h"
+#include "eqhb/sparse_matrix.h"
 
 namespace eqhb {
 
+PhysicalScales invariantScales(const HbModel& model) {
+  double response = 0.0;
+  try {
+    response = linearResponseAtLaws(model, model.structure.dofs() >= kSparseCondensationFromDofs);
+  } catch (const std::exception&) {
+    // singular at this ω: the scales fall back on the loads and stiffness, as for convergence
+  }
+  return physicalScales(model, response);
+}
+
 std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::VectorXd& full,
                                            int samples) {
+  return checkInvariants(model, full, invariantScales(model), samples);
+}
+
+std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::VectorXd& full,
+                                           const PhysicalScales& scales, int samples) {
   const int n = samples > 0 ? samples : 8 * model.samples;
   FourierTransform transform(model.basis, n);
   const int nb = model.basis.size();
@@ -27,7 +46,7 @@ std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::Ve
       transform.differentiate(full.data() + base + q * nb, model.omega, rate.data());
       transform.synthesize(rate.data(), s.force_rate.col(a).data());
     }
-    reports.push_back({static_cast<int>(l), attached.law->type(), attached.law->violations(s)});
+    reports.push_back({static_cast<int>(l), attached.law->type(), attached.law->violations(s, scales)});
   }
   return reports;
 }

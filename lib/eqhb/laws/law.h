@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,6 +49,15 @@ struct PhysicalScales {
   double force = 1.0, displacement = 1.0, velocity = 1.0;
 };
 
+// The least scale an invariant is measured against, as a fraction of the
+// problem's scale (the floor of compareWithReference's channels, 1e-3 of
+// the largest, for the same reason).
+inline constexpr double kInvariantScaleFloor = 1e-3;
+// max(observed, kInvariantScaleFloor · problem): the scale of one measure.
+inline double invariantScale(double observed, double problem) {
+  return std::max(observed, kInvariantScaleFloor * problem);
+}
+
 class Law {
  public:
   virtual ~Law() = default;
@@ -87,7 +97,13 @@ class Law {
   // Physical checks on samples of a solution (inputs filled, densely in
   // time): named worst violations, 0 when the law holds exactly (see each
   // law for the measures). Truncated Fourier series only approach them.
-  virtual std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const = 0;
+  // Each measure is relative to the size of its channel on the samples, but
+  // never to less than kInvariantScaleFloor of the problem's own scale
+  // (`scales`): a channel that vanishes (a contact that is never pressed, a
+  // friction that never slips) would otherwise turn solver noise of 1e-13
+  // into a violation of order one.
+  virtual std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                                 const PhysicalScales& scales) const = 0;
   // The exact (set-valued) law on one time step: the force λ over the step.
   // Regularised forms are ignored here: the reference is the exact law.
   virtual LocalVector solveStep(const StepProblem& step) const = 0;

@@ -79,10 +79,14 @@ LocalVector Signorini::solveStep(const StepProblem& step) const {
   return pressure;
 }
 
-std::vector<std::pair<std::string, double>> Signorini::violations(const LawSamples& s) const {
+std::vector<std::pair<std::string, double>> Signorini::violations(const LawSamples& s,
+                                                                  const PhysicalScales& scales) const {
   const Eigen::ArrayXd g = gap_ - s.displacement.col(0).array();
   const Eigen::ArrayXd p = s.force.col(0).array();
-  const double g_scale = g.abs().maxCoeff(), p_scale = p.abs().maxCoeff();
+  // A wall never touched has p ≡ 0 up to rounding (1e-13): against max|p|
+  // alone that noise would read as a pulling wall.
+  const double g_scale = invariantScale(g.abs().maxCoeff(), scales.displacement),
+               p_scale = invariantScale(p.abs().maxCoeff(), scales.force);
   auto relative = [](double value, double scale) { return scale > 0.0 ? value / scale : 0.0; };
   return {{"penetration", relative(std::max(0.0, -g.minCoeff()), g_scale)},
           {"negative_pressure", relative(std::max(0.0, -p.minCoeff()), p_scale)},

@@ -34,7 +34,8 @@ class Signorini : public Law {
   double residualScale(const PhysicalScales& scales, int component) const override;
   // Relative to max|g| and max|p| over the period: penetration max(−g, 0),
   // negative_pressure max(−p, 0), complementarity max |g p| (0 when g ⊥ p).
-  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                         const PhysicalScales& scales) const override;
   // Moreau's velocity-level contact with Newton's impact law: when the gap
   // predicted at mid-step is closed, 0 <= ġ_end + e ġ_start ⊥ p >= 0.
   LocalVector solveStep(const StepProblem& step) const override;

@@ -59,10 +59,11 @@ LocalVector Stribeck::solveStep(const StepProblem& step) const {
   return force;
 }
 
-std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSamples& s) const {
+std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSamples& s,
+                                                                 const PhysicalScales& scales) const {
   Eigen::VectorXd limits(s.velocity.rows());
   for (Eigen::Index i = 0; i < limits.size(); ++i) limits[i] = limit(s.velocity(i, 0));
-  return frictionViolations(s.velocity.col(0), s.force.col(0), limits);
+  return frictionViolations(s.velocity.col(0), s.force.col(0), limits, scales.velocity);
 }
 
 double Stribeck::residualScale(const PhysicalScales& s, int) const {

@@ -21,7 +21,8 @@ class Stribeck : public Law {
   double forceLevel() const override { return dynamic_ + drop_; }
   double residualScale(const PhysicalScales& scales, int component) const override;
   // As Coulomb1D, with the limit L(v) of each sample.
-  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                         const PhysicalScales& scales) const override;
   // Stick if |u_free| <= D L(0); else slide with w = |u_end| > 0 solving
   // w = |u_free| − D L(w) (bracketed bisection–Newton), λ = −L(w) sign(u_free).
   LocalVector solveStep(const StepProblem& step) const override;

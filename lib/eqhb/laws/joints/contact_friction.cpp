@@ -165,7 +165,8 @@ LocalVector ContactFriction::solveStep(const StepProblem& step) const {
   return lambda;
 }
 
-std::vector<std::pair<std::string, double>> ContactFriction::violations(const LawSamples& s) const {
+std::vector<std::pair<std::string, double>> ContactFriction::violations(const LawSamples& s,
+                                                                        const PhysicalScales& scales) const {
   const int m = p_.tangential;
   const Eigen::Index n = s.force.rows();
   double p_max = 0.0, p_min = 0.0, g_scale = 0.0, g_min = 0.0, u_scale = 0.0;
@@ -183,6 +184,11 @@ std::vector<std::pair<std::string, double>> ContactFriction::violations(const La
     for (int b = 0; b < m; ++b) g_scale = std::max(g_scale, std::abs(s.displacement(i, 1 + b)));
     u_scale = std::max(u_scale, slip(i).norm());
   }
+  // Never against less than a fraction of the problem's scales: an open or
+  // stuck contact has p or u ≡ 0 up to rounding.
+  p_max = invariantScale(p_max, scales.force);
+  g_scale = invariantScale(g_scale, scales.displacement);
+  u_scale = invariantScale(u_scale, scales.velocity);
   auto relative = [](double value, double scale) { return scale > 0.0 ? value / scale : 0.0; };
   const double limit_scale = p_.mu * p_max;
   double complementarity = 0.0, compliance = 0.0, excess = 0.0, sliding = 0.0;

@@ -64,7 +64,8 @@ class ContactFriction : public Law {
   // (rigid forms) or compliance_error max|p − k_n max(0, −g)|/max p (compliant),
   // force_limit_excess max(‖r_t‖ − μ max(p, 0))/(μ max p), sliding_force_error
   // max ‖r_t + μ p u/‖u‖‖/(μ max p) over samples clearly sliding and pressed.
-  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                         const PhysicalScales& scales) const override;
   // Normal (Moreau's velocity-level contact with Newton's impact law, or the
   // implicit elastic layer) and tangential (maximal dissipation on the disc
   // of radius μp, with the slider of k_t) solved alternately to round-off.

@@ -52,7 +52,8 @@ LocalVector Jenkins::solveStep(const StepProblem& step) const {
   return minimiseOnDisc(a, b, mu_n_);
 }
 
-std::vector<std::pair<std::string, double>> Jenkins::violations(const LawSamples& s) const {
+std::vector<std::pair<std::string, double>> Jenkins::violations(const LawSamples& s,
+                                                                const PhysicalScales& scales) const {
   const int m = dimension_;
   const Eigen::Index n = s.force.rows();
   auto slip = [&](Eigen::Index i) {
@@ -62,6 +63,7 @@ std::vector<std::pair<std::string, double>> Jenkins::violations(const LawSamples
   };
   double u_scale = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) u_scale = std::max(u_scale, slip(i).norm());
+  u_scale = invariantScale(u_scale, scales.velocity);  // stuck: u ≡ 0 up to rounding
   if (mu_n_ <= 0.0) return {{"force_limit_excess", 0.0}, {"sliding_force_error", 0.0}};
   double excess = 0.0, sliding = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {

@@ -28,7 +28,8 @@ class Jenkins : public Law {
   double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess max(‖r‖/μN − 1, 0); sliding_force_error max over
   // samples clearly slipping (‖u‖ > 5% of max) of ‖r + μN u/‖u‖‖/μN.
-  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples) const override;
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                         const PhysicalScales& scales) const override;
   // Implicit slider: with w_start = x_start + r_start/k_t, the force at the
   // end of the step minimises ½ rᵀ(hθD + I/k_t)r + rᵀ(x_pred − w_start)
   // over the disc ‖r‖ <= μN (maximal dissipation of the slip Δw).
