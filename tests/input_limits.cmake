@@ -27,4 +27,7 @@ eqhb_cli_expect(sweep_arclength_point_cap 1 "stop: max_points = 3 reached at ome
 eqhb_cli_expect(samples_by_memory 2 "harmonics = 100000: the model .* needs about" solve ${SCENE} --harmonics 100000 --samples 400000)
 eqhb_cli_expect(chain_dense_by_memory 2 "the condensed system with dense factors of A_k \\(100000 DOFs.* needs about"
                 solve ${SCENE} --set structure.dofs=100000 --linear-algebra dense)
-eqhb_cli_expect(negative_stiffness_matrix 2 "structure.stiffness: must be positive semidefinite" solve ${BAD}/negative-stiffness.toml)
+eqhb_cli_expect(negative_stiffness_matrix 2 "negative-stiffness.toml: structure.stiffness: must be positive semidefinite"
+                solve ${BAD}/negative-stiffness.toml)
+eqhb_cli_expect(negative_damping_matrix 2 "negative-damping.toml: structure.damping: must be positive semidefinite"
+                solve ${BAD}/negative-damping.toml)

@@ -230,7 +230,9 @@ ReadStructure readStructure(TableReader& top, const std::string& source) {
   } else if (type == "matrices") {
     structure = LinearStructure(s.matrix("mass"), s.matrix("damping"), s.matrix("stiffness"));
     StructureMatrices matrices{structure.mass, structure.damping, structure.stiffness};
-    MatrixNames names{"structure.mass", "structure.damping", "structure.stiffness"};
+    // Named like every other field: the file, then the key.
+    MatrixNames names{source + ": structure.mass", source + ": structure.damping",
+                      source + ": structure.stiffness"};
     checkStructureMatrices(matrices, 1e-12, names);
   } else if (type == "matrix-market") {
     const double tolerance = s.number("symmetry_tolerance", 1e-8);
