@@ -1,21 +1,35 @@
 #include "time_commands.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <memory>
+#include <vector>
 #include <nlohmann/json.hpp>
 
+#include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
+#include "terminal/progress.h"
+#include "terminal/verbosity.h"
 
 namespace eqhb::cli {
 
 namespace {
 
 void addTimeOptions(CLI::App* cmd, TimeArguments& t) {
-  cmd->add_option("--step", t.options.step, "Time step h (adjusted to divide the period)")->capture_default_str();
-  cmd->add_option("--periods", t.options.max_periods, "Most periods to integrate")->capture_default_str();
-  cmd->add_option("--theta", t.options.theta, "θ of the Moreau–Jean scheme, in [0.5, 1]")->capture_default_str();
-  cmd->add_option("--periodic-tolerance", t.options.periodic_tolerance,
-                  "Relative change of the period-start state that counts as periodic")
+  t.step = cmd->add_option("--step", t.options.step,
+                           "Time step h (adjusted to divide the period; default: the scene's [time_reference] or)")
+               ->capture_default_str();
+  t.periods = cmd->add_option("--periods", t.options.max_periods, "Most periods to integrate (scene or)")
+                  ->capture_default_str();
+  t.theta = cmd->add_option("--theta", t.options.theta, "θ of the Moreau–Jean scheme, in [0.5, 1] (scene or)")
+                ->capture_default_str();
+  t.periodic_tolerance = cmd->add_option("--periodic-tolerance", t.options.periodic_tolerance,
+                                         "Relative change of the period-start state that counts as periodic (scene or)")
+                             ->capture_default_str();
+  cmd->add_option("--max-seconds", t.options.max_seconds,
+                  "Stop integrating after this wall-clock time if not yet periodic (0: no limit; exit 1)")
       ->capture_default_str();
   cmd->add_option("--restitution", t.options.restitution, "Newton impact coefficient of contact laws")
       ->capture_default_str();
@@ -74,7 +88,58 @@ void printReference(const HbModel& model, const TimeReference& ref) {
     std::cout << "  max|lambda" << q + 1 << "| = " << ref.force.col(q).cwiseAbs().maxCoeff() << "\n";
 }
 
+// Progress of the integration, one update per period: the period count
+// against the most allowed, and the change against the tolerance. The ETA
+// follows the change's decay over the last periods (a transient dies
+// geometrically) while it decays; otherwise the periods or the wall-clock
+// limit left, whichever ends the run first.
+PeriodCallback periodProgress(ProgressLine& line, const TimeOptions& options) {
+  if (!line.enabled()) return PeriodCallback();
+  constexpr int kDecayWindow = 5;
+  auto history = std::make_shared<std::vector<double>>();
+  return [&line, options, history](int periods, double change) {
+    history->push_back(change);
+    double fraction = static_cast<double>(periods) / options.max_periods;
+    if (options.max_seconds > 0.0) fraction = std::max(fraction, line.elapsedSeconds() / options.max_seconds);
+    const size_t n = history->size();
+    if (n > kDecayWindow && change > options.periodic_tolerance && change > 0.0) {
+      const double before = (*history)[n - 1 - kDecayWindow];
+      const double rate = std::log(change / before) / kDecayWindow;  // per period, < 0 while settling
+      if (rate < 0.0 && std::isfinite(rate)) {
+        const double left = std::log(options.periodic_tolerance / change) / rate;
+        fraction = std::max(fraction, periods / (periods + left));
+      }
+    }
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "change %.3g (periodic at %.3g)", change, options.periodic_tolerance);
+    line.update(std::min(fraction, 1.0), "period " + std::to_string(periods) + "/" + std::to_string(options.max_periods),
+                detail);
+  };
+}
+
+void reportUnsettled(const TimeReference& ref, const TimeOptions& options) {
+  if (ref.periodic) return;
+  if (ref.timed_out)
+    std::cerr << "eqhb: no periodic steady state within --max-seconds = " << options.max_seconds << " ("
+              << ref.periods << " periods, change " << ref.periodicity_error << " > " << options.periodic_tolerance
+              << ")\n";
+  else
+    std::cerr << "eqhb: no periodic steady state within " << ref.periods << " periods (change "
+              << ref.periodicity_error << " > " << options.periodic_tolerance << ")\n";
+}
+
 }  // namespace
+
+TimeOptions timeOptionsFor(const Scene& scene, const TimeArguments& t) {
+  auto given = [](const CLI::Option* o) { return o && o->count() > 0; };
+  TimeOptions options = t.options;
+  const TimeReferenceDefaults& d = scene.time_reference;
+  if (d.step && !given(t.step)) options.step = *d.step;
+  if (d.theta && !given(t.theta)) options.theta = *d.theta;
+  if (d.periods && !given(t.periods)) options.max_periods = *d.periods;
+  if (d.periodic_tolerance && !given(t.periodic_tolerance)) options.periodic_tolerance = *d.periodic_tolerance;
+  return options;
+}
 
 void addSimulateCommand(CLI::App& app, SolveArguments& s, TimeArguments& t) {
   auto* cmd = app.add_subcommand("simulate", "Integrate a scene in time to its periodic steady state (reference)");
@@ -106,7 +171,16 @@ int runSimulate(const SolveArguments& s, const TimeArguments& t) {
                                std::string(terminationName(run.result.termination)) + ")");
     start = run.system->fullCoefficients(run.result.solution);
   }
-  const TimeReference ref = integrateToSteadyState(scene.model, t.options, start);
+  const TimeOptions options = timeOptionsFor(scene, t);
+  options.validate();  // before the progress line shows a count of periods
+  if (verbosity().verbose)
+    std::cerr << "eqhb: simulate " << scene.source << ": h = " << options.step << ", theta = " << options.theta
+              << ", at most " << options.max_periods << " periods"
+              << (options.max_seconds > 0.0 ? " and " + formatNumber(options.max_seconds) + " s" : std::string())
+              << ", periodic at a change <= " << options.periodic_tolerance << "\n";
+  ProgressLine line(verbosity().progress, scene.name + " simulate");
+  const TimeReference ref = integrateToSteadyState(scene.model, options, start, periodProgress(line, options));
+  line.finish(ref.periodic ? "periodic" : "NOT periodic");
   if (s.json) {
     nlohmann::json out = referenceJson(scene.model, ref);
     out["scene"] = scene.name;
@@ -117,7 +191,7 @@ int runSimulate(const SolveArguments& s, const TimeArguments& t) {
     std::cout << scene.name << " at omega = " << scene.model.omega << "\n";
     printReference(scene.model, ref);
   }
-  if (!ref.periodic) std::cerr << "eqhb: no periodic steady state within " << ref.periods << " periods\n";
+  reportUnsettled(ref, options);
   return ref.periodic ? 0 : 1;
 }
 
@@ -128,7 +202,13 @@ int runCompare(const SolveArguments& s, const TimeArguments& t) {
     std::cerr << "eqhb: warning: the harmonic-balance solve did not converge ("
               << terminationName(run.result.termination) << "); errors refer to its last iterate\n";
   const Eigen::VectorXd hb = run.system->fullCoefficients(run.result.solution);
-  const TimeReference ref = integrateToSteadyState(model, t.options, t.from_rest ? Eigen::VectorXd() : hb);
+  const TimeOptions options = timeOptionsFor(run.scene, t);
+  options.validate();
+  ProgressLine line(verbosity().progress, run.scene.name + " reference");
+  const TimeReference ref =
+      integrateToSteadyState(model, options, t.from_rest ? Eigen::VectorXd() : hb, periodProgress(line, options));
+  line.finish(ref.periodic ? "periodic" : "NOT periodic");
+  reportUnsettled(ref, options);
   const auto errors = compareWithReference(model, hb, ref);
   if (s.json) {
     nlohmann::json out;

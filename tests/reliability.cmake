@@ -21,3 +21,21 @@ add_test(NAME cli.unconvertible_value COMMAND ${EXPECT_EXIT} 2 "Could not conver
          ${EQHB_CLI} solve ${SCENE} --omega abc)
 add_test(NAME cli.no_subcommand COMMAND ${EXPECT_EXIT} 2 "subcommand is required" ${EQHB_CLI})
 add_test(NAME cli.help_exits_0 COMMAND ${EXPECT_EXIT} 0 "solve" ${EQHB_CLI} --help)
+
+# Time runs are bounded and say why they stopped; stribeck.toml settles on
+# its own [time_reference] defaults (the midpoint rule, θ = 1/2, never does on it).
+set(STRIBECK ${PROJECT_SOURCE_DIR}/problems/stribeck.toml)
+add_test(NAME cli.simulate_wall_clock_limit
+         COMMAND ${EXPECT_EXIT} 1 "no periodic steady state within --max-seconds = 1 \\([0-9]+ periods, change"
+                 ${EQHB_CLI} simulate ${STRIBECK} --theta 0.5 --max-seconds 1)
+add_test(NAME cli.simulate_progress
+         COMMAND ${EXPECT_EXIT} 1 "stribeck simulate  period 1/3  elapsed .*  change .* \\(periodic at 1e-09\\)"
+                 ${EQHB_CLI} --progress simulate ${STRIBECK} --periods 3)
+add_test(NAME cli.stribeck_settles_on_its_defaults
+         COMMAND ${EXPECT_EXIT} 0 "time reference: periodic after" ${EQHB_CLI} simulate ${STRIBECK})
+add_test(NAME cli.simulate_command_line_over_scene_defaults
+         COMMAND ${EXPECT_EXIT} 1 "NOT periodic after 2 periods.*h = 0.00999" ${EQHB_CLI} simulate ${STRIBECK}
+                 --periods 2 --step 1e-2)
+add_test(NAME cli.simulate_negative_max_seconds
+         COMMAND ${EXPECT_EXIT} 2 "max seconds = -1: must be finite and >= 0" ${EQHB_CLI} simulate ${STRIBECK}
+                 --max-seconds -1)

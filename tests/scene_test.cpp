@@ -125,6 +125,28 @@ TEST(Scene, LawsOfEveryTypeAreValidated) {
   expectError(law("type = \"cubic\"\ndofs = [2]\nepsilon = 1.0\nrho = 2.0"), "law[0].rho = 2.0: unknown key");
 }
 
+TEST(Scene, TimeReferenceDefaultsAreReadAndValidated) {
+  const Scene plain = parseScene(kValid, "scene.toml");
+  EXPECT_FALSE(plain.time_reference.step || plain.time_reference.theta || plain.time_reference.periods ||
+               plain.time_reference.periodic_tolerance);
+  const Scene own = parseScene(std::string(kValid) + "[time_reference]\nstep = 1e-3\ntheta = 0.55\nperiods = 300\n"
+                                                     "periodic_tolerance = 1e-8\n",
+                               "scene.toml");
+  EXPECT_EQ(*own.time_reference.step, 1e-3);
+  EXPECT_EQ(*own.time_reference.theta, 0.55);
+  EXPECT_EQ(*own.time_reference.periods, 300);
+  EXPECT_EQ(*own.time_reference.periodic_tolerance, 1e-8);
+  const std::string section = std::string(kValid) + "[time_reference]\n";
+  expectError(section + "theta = 0.4\n", "scene.toml: time_reference.theta = 0.4: must be in [0.5, 1]");
+  expectError(section + "step = 0\n", "time_reference.step = 0: must be > 0");
+  expectError(section + "step = nan\n", "time_reference.step = nan: must be finite");
+  expectError(section + "periods = 0\n", "time_reference.periods = 0: must be >= 1");
+  expectError(section + "periods = 4294967306\n", "time_reference.periods = 4294967306: must be <=");
+  expectError(section + "periodic_tolerance = -1\n", "time_reference.periodic_tolerance = -1: must be > 0");
+  expectError(section + "h = 1e-3\n", "time_reference.h = 0.001: unknown key (known here: periodic_tolerance, "
+                                       "periods, step, theta)");
+}
+
 TEST(Scene, EveryShippedSceneLoads) {
   for (const char* file : {"friction-1d.toml", "friction-2d.toml", "friction-2d-sliding.toml", "contact.toml",
                            "stribeck.toml", "cubic.toml"})

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <complex>
 
 #include "eqhb/error.h"
@@ -114,6 +115,45 @@ TEST(TimeIntegrator, RejectsBadOptions) {
   options = {};
   options.restitution = 2.0;
   EXPECT_THROW(integrateToSteadyState(model, options), InputError);
+  options = {};
+  options.max_seconds = -1.0;
+  EXPECT_THROW(integrateToSteadyState(model, options), InputError);
+}
+
+TEST(TimeIntegrator, AWallClockLimitStopsARunThatDoesNotSettleAndSaysSo) {
+  // A tolerance no run can meet, and periods enough for seconds to minutes: the limit
+  // (0.3 s) ends it, after whole periods, each reported to the callback.
+  const HbModel model = dampedLinearChain();
+  TimeOptions options;
+  options.step = 1e-2;
+  options.periodic_tolerance = 1e-300;
+  options.max_periods = 20000;
+  options.max_seconds = 0.3;
+  int calls = 0, last = 0;
+  const TimeReference ref = integrateToSteadyState(model, options, Eigen::VectorXd(), [&](int periods, double change) {
+    ++calls;
+    EXPECT_EQ(periods, last + 1);
+    EXPECT_TRUE(std::isfinite(change));
+    last = periods;
+  });
+  EXPECT_TRUE(ref.timed_out);
+  EXPECT_FALSE(ref.periodic);
+  EXPECT_GT(ref.periods, 1);
+  EXPECT_LT(ref.periods, options.max_periods);
+  EXPECT_EQ(calls, ref.periods);
+  EXPECT_GE(ref.seconds, 0.3);
+  EXPECT_LT(ref.seconds, 30.0);  // the limit, one period and the final projection, on a loaded machine
+}
+
+TEST(TimeIntegrator, ARunThatSettlesIsNotTimedOut) {
+  const HbModel model = dampedLinearChain();
+  TimeOptions options;
+  options.step = 1e-2;
+  options.periodic_tolerance = 1e-6;
+  options.max_seconds = 600.0;
+  const TimeReference ref = integrateToSteadyState(model, options);
+  EXPECT_TRUE(ref.periodic);
+  EXPECT_FALSE(ref.timed_out);
 }
 
 TEST(TimeIntegrator, AStepTooSmallForThePeriodIsRefusedBeforeCountingSteps) {

@@ -16,6 +16,8 @@ void TimeOptions::validate() const {
   if (!(periodic_tolerance > 0.0)) throwInputError("periodic tolerance", formatNumber(periodic_tolerance), "must be > 0");
   if (!(restitution >= 0.0 && restitution <= 1.0))
     throwInputError("restitution", formatNumber(restitution), "must be in [0, 1]");
+  if (!(max_seconds >= 0.0) || !std::isfinite(max_seconds))
+    throwInputError("max seconds", formatNumber(max_seconds), "must be finite and >= 0 (0: no limit)");
 }
 
 namespace {
@@ -34,7 +36,7 @@ void stateAtZero(const HarmonicSet& basis, const double* c, double omega, double
 }  // namespace
 
 TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& options,
-                                     const Eigen::VectorXd& initial_full) {
+                                     const Eigen::VectorXd& initial_full, const PeriodCallback& on_period) {
   model.validate();
   options.validate();
   const auto start_clock = std::chrono::steady_clock::now();
@@ -153,9 +155,15 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
     const double scale = std::max({ref.displacement.cwiseAbs().maxCoeff(), ref.velocity.cwiseAbs().maxCoeff(), 1e-300});
     ref.periodicity_error =
         std::max((x - x_period_start).cwiseAbs().maxCoeff(), (v - v_period_start).cwiseAbs().maxCoeff()) / scale;
+    if (on_period) on_period(ref.periods, ref.periodicity_error);
     if (!std::isfinite(ref.periodicity_error)) break;
     if (p > 0 && ref.periodicity_error <= options.periodic_tolerance) {
       ref.periodic = true;
+      break;
+    }
+    if (options.max_seconds > 0.0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count() >= options.max_seconds) {
+      ref.timed_out = true;
       break;
     }
   }

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct TimeOptions {
   int max_periods = 5000;          // >= 1
   double periodic_tolerance = 1e-9;  // relative change of the period-start state
   double restitution = 0.0;        // Newton impact coefficient e in [0, 1]
+  // Wall-clock limit in seconds (0: none), checked after every period: a
+  // run that has not settled by then stops with timed_out set.
+  double max_seconds = 0.0;
   // Throws InputError naming the field.
   void validate() const;
 };
@@ -42,6 +46,7 @@ struct TimeReference {
   int steps_per_period = 0;
   double periodicity_error = 0.0;  // last relative change
   double seconds = 0.0;
+  bool timed_out = false;      // stopped by max_seconds before settling
   // Last period, sample i at t = iT/steps_per_period: columns are DOFs
   // (displacement, velocity) or law components (force λ over the step
   // ending at that instant).
@@ -49,10 +54,15 @@ struct TimeReference {
   Eigen::VectorXd coefficients;  // [x; λ] projected on the model's basis
 };
 
+// Called after every period with the periods done and the relative change
+// of the period-start state (for progress on a long run).
+using PeriodCallback = std::function<void(int periods, double change)>;
+
 // Integrates from `initial_full` (coefficients [x; λ] whose state at t = 0
 // starts the run, e.g. a harmonic-balance solution) or from rest if empty.
 TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& options,
-                                     const Eigen::VectorXd& initial_full = Eigen::VectorXd());
+                                     const Eigen::VectorXd& initial_full = Eigen::VectorXd(),
+                                     const PeriodCallback& on_period = PeriodCallback());
 
 // Distances between a harmonic-balance solution and a reference. Each is
 // relative to the reference channel's own size, floored at kChannelFloor

@@ -591,6 +591,30 @@ Scene buildScene(toml::value root, const std::string& source,
                  "need 0 < from < to");
     sweep.requireKnownKeys();
   }
+  if (top.has("time_reference")) {
+    TableReader t(top.raw("time_reference"), "time_reference", source);
+    t.allow({"step", "theta", "periods", "periodic_tolerance"});
+    TimeReferenceDefaults& d = scene.time_reference;
+    if (t.has("step")) {
+      d.step = t.number("step");
+      if (!(*d.step > 0.0)) t.fail("time_reference.step", formatNumber(*d.step), "must be > 0");
+    }
+    if (t.has("theta")) {
+      d.theta = t.number("theta");
+      if (!(*d.theta >= 0.5 && *d.theta <= 1.0))
+        t.fail("time_reference.theta", formatNumber(*d.theta), "must be in [0.5, 1]");
+    }
+    if (t.has("periods")) {
+      d.periods = t.integer("periods");
+      if (*d.periods < 1) t.fail("time_reference.periods", std::to_string(*d.periods), "must be >= 1");
+    }
+    if (t.has("periodic_tolerance")) {
+      d.periodic_tolerance = t.number("periodic_tolerance");
+      if (!(*d.periodic_tolerance > 0.0))
+        t.fail("time_reference.periodic_tolerance", formatNumber(*d.periodic_tolerance), "must be > 0");
+    }
+    t.requireKnownKeys();
+  }
   top.allow({"forcing", "law"});
   top.requireKnownKeys();
   try {

@@ -28,6 +28,10 @@
 //                 [minmax in 1D, max in 2D], rho [1]
 //   [harmonic_balance] harmonics, set = odd|all, samples, omega
 //   [sweep]     from, to  (optional)
+//   [time_reference]  step > 0, theta in [0.5, 1], periods >= 1,
+//               periodic_tolerance > 0 (each optional): the scene's own
+//               defaults for `eqhb simulate` and `compare`, where the
+//               general ones do not settle (the command line overrides them)
 //
 // Overrides "path=value" change the document before validation: the path is
 // dotted, array elements by index ("law[0].muN", or "law.muN" when there is
@@ -43,12 +47,19 @@
 
 namespace eqhb {
 
+// A scene's defaults for the time reference (TimeOptions); unset: the general default.
+struct TimeReferenceDefaults {
+  std::optional<double> step, theta, periodic_tolerance;
+  std::optional<int> periods;
+};
+
 struct Scene {
   std::string name;
   std::string description;
   std::string source;  // file path
   HbModel model;
   std::optional<double> sweep_from, sweep_to;
+  TimeReferenceDefaults time_reference;
 };
 
 // Throws InputError with the file name and the field.
