@@ -347,6 +347,24 @@ TEST(Jenkins, StiffSpringApproachesRigidCoulomb) {
   EXPECT_LT(soft.violations.at("force_limit_excess"), 0.1);
 }
 
+// The slip check reads the slider's velocity u = ẋ + ṙ/k_t, which jumps
+// where stick ends: its series rings there at any H. Stuck samples must not
+// be read as slipping against the force, so the reading falls with H (at 5%
+// of max‖u‖ it read 1.85 at H = 10 and 1.57 at H = 20, the ringing of the
+// short stick phases).
+TEST(Jenkins, SlidingForceErrorFallsWithH) {
+  std::vector<double> errors;
+  for (int h : {10, 20, 40}) {
+    const SceneSolve s = solveScene("jenkins-1d.toml", true, {"harmonic_balance.harmonics=" + std::to_string(h),
+                                                             "harmonic_balance.samples=" + std::to_string(32 * h)});
+    ASSERT_TRUE(s.result.converged()) << "H = " << h << ": " << s.result.summary();
+    errors.push_back(s.violations.at("sliding_force_error"));
+  }
+  EXPECT_LT(errors[0], 0.4);
+  EXPECT_LT(errors[1], 0.7 * errors[0]);
+  EXPECT_LT(errors[2], 0.7 * errors[1]);
+}
+
 TEST(Jenkins, PlanarStiffSpringApproachesRigidCoulomb2D) {
   const SceneSolve rigid = solveScene("friction-2d-sliding.toml", true);
   ASSERT_TRUE(rigid.result.converged());

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/coulomb_1d.h"
 
 namespace eqhb {
 
@@ -191,6 +192,8 @@ std::vector<std::pair<std::string, double>> ContactFriction::violations(const La
   u_scale = invariantScale(u_scale, scales.velocity);
   auto relative = [](double value, double scale) { return scale > 0.0 ? value / scale : 0.0; };
   const double limit_scale = p_.mu * p_max;
+  // An elastic slider's slip velocity jumps where stick ends (see kElasticSlidingFraction).
+  const double sliding_fraction = compliance_ > 0.0 ? kElasticSlidingFraction : kSlidingFraction;
   double complementarity = 0.0, compliance = 0.0, excess = 0.0, sliding = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double p = p_.preload - s.force(i, 0), g = p_.gap - s.displacement(i, 0);
@@ -202,7 +205,7 @@ std::vector<std::pair<std::string, double>> ContactFriction::violations(const La
     const double limit = p_.mu * std::max(p, 0.0);
     excess = std::max(excess, r.norm() - limit);
     const Eigen::Vector2d u = slip(i);
-    if (u.norm() > 0.05 * u_scale && p > 0.05 * p_max)  // clearly sliding and pressed: r = −μp u/‖u‖
+    if (u.norm() > sliding_fraction * u_scale && p > 0.05 * p_max)  // clearly sliding and pressed: r = −μp u/‖u‖
       sliding = std::max(sliding, (r + limit * u / u.norm()).norm());
   }
   std::vector<std::pair<std::string, double>> out = {{"negative_pressure", relative(-p_min, p_max)}};

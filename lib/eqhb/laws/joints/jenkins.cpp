@@ -71,7 +71,7 @@ std::vector<std::pair<std::string, double>> Jenkins::violations(const LawSamples
     for (int b = 0; b < m; ++b) r[b] = s.force(i, b);
     excess = std::max(excess, r.norm() / mu_n_ - 1.0);
     const Eigen::Vector2d u = slip(i);
-    if (u.norm() > 0.05 * u_scale) sliding = std::max(sliding, (r + mu_n_ * u / u.norm()).norm() / mu_n_);
+    if (u.norm() > kElasticSlidingFraction * u_scale) sliding = std::max(sliding, (r + mu_n_ * u / u.norm()).norm() / mu_n_);
   }
   return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
 }
