@@ -19,6 +19,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/references/time_integrator.h"
+#include "compliant_study.h"
 #include "failure_maps.h"
 #include "run_metadata.h"
 #include "mgh/mgh_problems.h"
@@ -219,6 +220,9 @@ int main(int argc, char** argv) {
   app.add_flag("--quick", quick, "Short run: fewer backends, forms and repeats");
   bool scale_only = false;
   app.add_flag("--scale-only", scale_only, "Run the scale study alone (scale.csv, scale.md)");
+  bool compliant_only = false;
+  app.add_flag("--compliant-only", compliant_only,
+               "Run the compliant-vs-Signorini study alone (compliant.csv, compliant.md)");
   app.add_option("--repeats", repeats, "Solves per case for the median time (capped at ~1 s per case)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--reference-step", reference_step, "Time step of the time-domain references");
@@ -235,6 +239,28 @@ int main(int argc, char** argv) {
   };
   if (quick) repeats = std::min(repeats, 3);
   fs::create_directories(out);
+  // Compliant normal contact against the exact Signorini law, k_n = 1 .. 1e6
+  // (compliant.csv; returns the report's table).
+  auto compliantStudy = [&]() -> std::string {
+    const fs::path scene = fs::path(problems) / "contact-friction-2d.toml";
+    if (!fs::exists(scene)) return "(contact-friction-2d not in --problems)\n";
+    const std::vector<double> stiffnesses =
+        quick ? std::vector<double>{1.0, 1e2, 1e4, 1e6} : std::vector<double>{1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6};
+    const auto rows = bench::compliantStudy(scene, stiffnesses);
+    std::ofstream f(out + "/compliant.csv");
+    f << "scene,system,k_n,converged,termination,iterations,residual_evaluations,seconds,distance,penetration\n";
+    for (const auto& r : rows)
+      f << r.scene << "," << r.system << "," << r.k_n << "," << (r.converged ? "true" : "false") << ","
+        << r.termination << "," << r.iterations << "," << r.residual_evaluations << "," << r.seconds << ","
+        << r.distance << "," << r.penetration << "\n";
+    return bench::compliantReport(rows);
+  };
+  if (compliant_only) {
+    std::ofstream(out + "/compliant.md") << "# eqhb: compliant vs exact Signorini contact\n\n"
+                                         << bench::compliantIntroduction() << compliantStudy();
+    std::cout << "compliant study: " << out << "/compliant.md, " << out << "/compliant.csv\n";
+    return 0;
+  }
   if (scale_only) {
     const std::vector<bench::ScaleRow> scale = bench::runScaleStudy(quick, scaleBackends(quick), problems);
     bench::writeScaleCsv(out + "/scale.csv", scale);
@@ -420,6 +446,8 @@ int main(int argc, char** argv) {
               << number(100.0 * counts.first / std::max(1, counts.second)) << " % |\n";
   }
 
+  const std::string compliant_table = compliantStudy();
+
   // 4. Frequency-response curves of every scene with a [sweep].
   std::ostringstream curves;
   ProgressLine curves_line(verbosity.progress, "bench 4/5 curves");
@@ -542,6 +570,7 @@ int main(int argc, char** argv) {
          << "harmonics, on both systems.\n\n" << table(cases, "variants")
          << "\n## Failure maps\n\nSuccess over the grids of initial guesses, harmonics, rho and forcing "
          << "(failure_maps.csv, charts failure_map_SCENE.png):\n\n" << success.str()
+         << "\n## Compliant vs exact Signorini contact\n\n" << bench::compliantIntroduction() << compliant_table
          << "\n## Frequency-response curves\n\n| scene | sequential points | failed | s | arclength points | folds | arclength stop | s |\n"
          << "|---|---|---|---|---|---|---|---|\n" << curves.str()
          << "\nCharts: curve_SCENE_*.png/.svg, work_precision_SCENE.png/.svg, convergence_*.png/.svg, "

@@ -300,16 +300,16 @@ TEST(ContactFriction, SceneLiftsOffAndKeepsTheDisc) {
 }
 
 // Compliant normal contact p = k_n max(0, −g) tends to the exact Signorini
-// law as k_n grows, and each layer stiffness is solved from rest (the form
-// min(ρ(g + p/k_n), p) keeps its rows at the min form's scale; written as
-// p − k_n max(0, −g) the dogleg stalled from k_n = 10 on).
+// law as k_n grows from 1 to 1e6, and each layer stiffness is solved from
+// rest (the form min(ρ(g + p/k_n), p) keeps its rows at the min form's
+// scale; written as p − k_n max(0, −g) the dogleg stalled from k_n = 10 on).
 TEST(ContactFriction, CompliantNormalTendsToSignoriniAsTheLayerStiffens) {
   for (bool condensed : {true, false}) {
     const SceneSolve exact = solveScene("contact-friction-2d.toml", condensed);
     ASSERT_TRUE(exact.result.converged()) << exact.result.summary();
     const int n = exact.model.structure.dofs() * exact.model.basis.size();
     std::vector<double> distances;
-    for (const char* k_n : {"1e1", "1e2", "1e3", "1e4"}) {
+    for (const char* k_n : {"1", "1e1", "1e2", "1e3", "1e4", "1e5", "1e6"}) {
       const SceneSolve compliant =
           solveScene("contact-friction-2d.toml", condensed, {"law.form=\"compliant\"", std::string("law.k_n=") + k_n});
       ASSERT_TRUE(compliant.result.converged()) << "k_n = " << k_n << ": " << compliant.result.summary();
@@ -318,7 +318,9 @@ TEST(ContactFriction, CompliantNormalTendsToSignoriniAsTheLayerStiffens) {
     // Each tenfold stiffening brings the answer closer by a clear factor.
     for (std::size_t i = 0; i + 1 < distances.size(); ++i)
       EXPECT_LT(distances[i + 1], 0.5 * distances[i]) << "k_n step " << i << (condensed ? " condensed" : " full");
-    EXPECT_LT(distances.back(), 1e-3) << (condensed ? "condensed" : "full");
+    // The layer's penetration is p/k_n: the distance falls like 1/k_n
+    // (1.85/k_n on this scene), down to 1.9e-6 at k_n = 1e6.
+    EXPECT_LT(distances.back(), 1e-5) << (condensed ? "condensed" : "full");
   }
 }
 
