@@ -39,3 +39,25 @@ add_test(NAME cli.simulate_command_line_over_scene_defaults
 add_test(NAME cli.simulate_negative_max_seconds
          COMMAND ${EXPECT_EXIT} 2 "max seconds = -1: must be finite and >= 0" ${EQHB_CLI} simulate ${STRIBECK}
                  --max-seconds -1)
+
+# Bad input to the joint laws: exit 2, naming the field (parse-time checks,
+# so each runs in milliseconds).
+set(CONTACT_FRICTION ${PROJECT_SOURCE_DIR}/problems/contact-friction-2d.toml)
+set(JENKINS ${PROJECT_SOURCE_DIR}/problems/jenkins-1d.toml)
+foreach(case
+    "negative_mu|law\\[0\\]\\.mu = -0\\.1|${CONTACT_FRICTION}|law.mu=-0.1"
+    "negative_preload|law\\[0\\]\\.preload = -1|${CONTACT_FRICTION}|law.preload=-1"
+    "zero_k_t|law\\[0\\]\\.k_t = 0|${CONTACT_FRICTION}|law.k_t=0"
+    "zero_k_n|law\\[0\\]\\.k_n = 0|${CONTACT_FRICTION}|law.form=\"compliant\";--set;law.k_n=0"
+    "missing_k_n|law\\[0\\]\\.k_n = \\(missing\\)|${CONTACT_FRICTION}|law.form=\"compliant\""
+    "normal_also_tangential|law\\[0\\]\\.dofs = 1: the normal DOF is also a tangential DOF|${CONTACT_FRICTION}|law.dofs=[1,1]"
+    "odd_harmonics|harmonic_balance\\.set = \"odd\": law\\[0\\] \\(contact-friction\\) needs the constant term|${CONTACT_FRICTION}|harmonic_balance.set=\"odd\""
+    "jenkins_negative_k_t|law\\[0\\]\\.k_t = -1|${JENKINS}|law.k_t=-1"
+    "jenkins_negative_muN|law\\[0\\]\\.muN = -1|${JENKINS}|law.muN=-1")
+  string(REPLACE "|" ";" fields "${case}")
+  list(GET fields 0 name)
+  list(GET fields 1 pattern)
+  list(GET fields 2 scene)
+  list(SUBLIST fields 3 -1 sets)
+  add_test(NAME cli.joint_bad_input.${name} COMMAND ${EXPECT_EXIT} 2 "${pattern}" ${EQHB_CLI} solve ${scene} --set ${sets})
+endforeach()
