@@ -334,14 +334,27 @@ int main(int argc, char** argv) {
     if (!base.model.laws.empty() && !lawForms(base.model.laws[0].law->type()).empty())
       forms = lawForms(base.model.laws[0].law->type());
     if (quick) forms.resize(1);
+    // (label, overrides) per formulation: each form of the first law's type;
+    // for contact-friction also each normal form with the max friction form
+    // (the scenes' own is projection).
+    std::vector<std::pair<std::string, std::vector<std::string>>> formulations;
     for (const auto& form : forms)
+      formulations.push_back({form.empty() ? "-" : form,
+                              form.empty() ? std::vector<std::string>{} : lawOverrides(base.model, "form", form)});
+    if (!quick && !base.model.laws.empty() && base.model.laws[0].law->type() == "contact-friction")
+      for (const auto& form : forms) {
+        std::vector<std::string> set = lawOverrides(base.model, "form", form);
+        for (size_t l = 0; l < base.model.laws.size(); ++l)
+          if (base.model.laws[l].law->type() == "contact-friction")
+            set.push_back("law[" + std::to_string(l) + "].friction_form=\"max\"");
+        formulations.push_back({form + ", friction max", set});
+      }
+    for (const auto& [form, set] : formulations)
       for (bool condensed : {true, false})
         for (const auto& name : scene_backends) {
           if (std::find(all_backends.begin(), all_backends.end(), name) == all_backends.end()) continue;
-          const std::vector<std::string> set =
-              form.empty() ? std::vector<std::string>{} : lawOverrides(base.model, "form", form);
           Case c = runCase("scenes", path, set, name, condensed, repeats, 2.0, &truth);
-          c.form = form.empty() ? "-" : form;
+          c.form = form;
           note(scenes_line, cat("  ", c.scene, " ", c.form, " ", c.system, " ", name, ": ", c.termination, " ",
                                 c.median_seconds, " s"));
           scenes_line.update(static_cast<double>(scene_index) / scenes.size(),
