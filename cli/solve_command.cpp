@@ -173,15 +173,14 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
 }
 
 namespace {
-// The ladder of --accuracy on the scene with every override; the first H is
-// --harmonics if given, else min(5, the scene's H).
-AccuracyChoice chooseHarmonicsFor(const SolveArguments& a) {
-  const Scene scene = loadSceneWith(a.scene);
-  const int start = a.scene.harmonics ? *a.scene.harmonics : std::min(5, scene.model.basis.count());
+// The ladder of --accuracy on the scene with every override, over the ρ
+// candidates; the first H is --harmonics if given, else min(5, the scene's H).
+AccuracyChoice chooseDiscretisationFor(const SolveArguments& a, const RhoCandidates& candidates) {
+  const int start = a.scene.harmonics ? *a.scene.harmonics : std::min(5, candidates.models.front().basis.count());
   const SolverOptions options = solverOptions(a);
   auto solver = makeSolver(a.solver);
-  return chooseHarmonics(scene.model, *a.accuracy.tolerance, start, a.accuracy.max_harmonics, *solver, options,
-                         !a.full);
+  return chooseDiscretisation(candidates.models, *a.accuracy.tolerance, start, a.accuracy.max_harmonics, *solver,
+                              options, !a.full);
 }
 }  // namespace
 
@@ -189,8 +188,15 @@ int runSolve(const SolveArguments& given) {
   SolveArguments a = given;
   // --accuracy: choose H and N first, then report the chosen solution as usual.
   std::optional<AccuracyChoice> choice;
+  RhoCandidates candidates;
   if (a.accuracy.tolerance) {
-    choice = chooseHarmonicsFor(a);
+    candidates = rhoCandidates(a.scene);
+    choice = chooseDiscretisationFor(a, candidates);
+    const double factor = candidates.factors[choice->candidate];
+    if (factor != 1.0) {
+      const auto scaled = scaledRhoOverrides(candidates.scene_rho, factor);
+      a.scene.overrides.insert(a.scene.overrides.end(), scaled.begin(), scaled.end());
+    }
     a.scene.harmonics = choice->model.basis.count();
     a.scene.samples = choice->model.samples;
     a.from_harmonics.reset();
@@ -267,8 +273,8 @@ int runSolve(const SolveArguments& given) {
     out["invariants"] = invariants;
     if (with_stability) out["stability"] = stabilityJson(hill);
     if (choice) {
-      out["rho"] = a.scene.rho ? nlohmann::json(*a.scene.rho) : nlohmann::json("scene");
-      out["accuracy"] = accuracyJson(*choice, *a.accuracy.tolerance);
+      out["rho"] = rhoJson(candidates.scene_rho, candidates.factors[choice->candidate]);
+      out["accuracy"] = accuracyJson(*choice, *a.accuracy.tolerance, candidates.factors);
     }
     if (estimate) out["error_estimate"] = errorEstimateJson(*estimate);
     if (a.trajectory) {
@@ -303,7 +309,8 @@ int runSolve(const SolveArguments& given) {
                 << estimate->refined_harmonics << (estimate->available ? "" : ", which did NOT converge") << ")\n";
     if (choice)
       std::cout << "--accuracy " << *a.accuracy.tolerance << ": " << (choice->reached ? "reached" : "NOT reached")
-                << " at H = " << model.basis.count() << ", N = " << model.samples << " in " << choice->seconds
+                << " at H = " << model.basis.count() << ", N = " << model.samples << ", rho = "
+                << rhoJson(candidates.scene_rho, candidates.factors[choice->candidate]).dump() << " in " << choice->seconds
                 << " s of solves\n";
     for (const auto& report : checkInvariants(model, system->fullCoefficients(result.solution))) {
       std::cout << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";

@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 
+#include "eqhb/accuracy/accuracy_sweep.h"
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
@@ -36,6 +37,11 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
   cmd->add_flag("--error-estimate", s.accuracy.error_estimate,
                 "Per converged point, the estimated relative error of max|x| by one more solve at 2H "
                 "(error_estimate column and JSON key)");
+  cmd->add_option("--accuracy", s.accuracy.tolerance,
+                  "Every point with an estimated relative error of max|x| <= TOL: H chosen at the first point "
+                  "(doubling from --harmonics or 5), then raised on the points whose estimate exceeds TOL");
+  cmd->add_option("--max-harmonics", s.accuracy.max_harmonics, "With --accuracy: the largest H solved")
+      ->capture_default_str();
   cmd->add_flag("--json", w.json,
                 "Print the curve as one JSON object: settings, stop reason, folds, and per point the counts, "
                 "amplitudes and Fourier coefficients of every DOF and law force");
@@ -43,9 +49,10 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
 
 namespace {
 
-nlohmann::json curveJson(const Scene& scene, const Solver& solver, const ContinuationOptions& options,
-                         bool arclength, const Curve& curve, const CurveStability* stability) {
-  const HbModel& model = scene.model;
+// `model`: the curve's discretisation (with --accuracy, points may carry more harmonics).
+nlohmann::json curveJson(const Scene& scene, const HbModel& model, const Solver& solver,
+                         const ContinuationOptions& options, bool arclength, const Curve& curve,
+                         const CurveStability* stability) {
   nlohmann::json points = nlohmann::json::array();
   for (const CurvePoint& p : curve.points) {
     nlohmann::json point = {{"omega", p.omega},
@@ -61,6 +68,13 @@ nlohmann::json curveJson(const Scene& scene, const Solver& solver, const Continu
                             {"max_abs", p.max_abs},
                             {"first_harmonic", p.first_harmonic}};
     if (!std::isnan(p.error_estimate)) point["error_estimate"] = p.error_estimate;
+    if (p.accuracy_met >= 0) {
+      point["harmonics"] = p.harmonics;
+      point["samples"] = p.samples;
+      point["accuracy_met"] = p.accuracy_met == 1;
+      point["accuracy_seconds"] = p.accuracy_seconds;
+      if (!p.accuracy_failure.empty()) point["accuracy_failure"] = p.accuracy_failure;
+    }
     if (stability) {
       const size_t i = points.size();
       point["stable"] = p.stable >= 0 ? nlohmann::json(p.stable == 1) : nlohmann::json(nullptr);
@@ -75,8 +89,7 @@ nlohmann::json curveJson(const Scene& scene, const Solver& solver, const Continu
       }
     }
     if (p.full.size() > 0) {
-      HbModel at = model;
-      at.omega = p.omega;
+      const HbModel at = pointModel(model, p);
       const nlohmann::json channels = solutionJson(at, summarize(at, p.full));
       point["dofs"] = channels["dofs"];
       point["laws"] = channels["laws"];
@@ -141,6 +154,9 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   if (w.arclength) options.validate();
   else options.validateGrid();
   const SolverOptions solver_options = solverOptions(s);
+  const bool with_accuracy = s.accuracy.tolerance.has_value();
+  if (with_accuracy && s.stability)
+    throwInputError("--stability", "(set)", "not with --accuracy: the points of such a curve differ in H");
   auto solver = makeSolver(s.solver);
   const int dofs = scene.model.structure.dofs();
   const int expected = w.arclength ? 0 : static_cast<int>(options.gridPoints());
@@ -169,21 +185,53 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     line.update(fraction, "point " + std::to_string(index + 1) + (expected ? "/" + std::to_string(expected) : ""),
                 detail);
   };
-  Curve curve = w.arclength ? sweepArclength(scene.model, *solver, solver_options, options, progress)
-                                  : sweepSequential(scene.model, *solver, solver_options, options, progress);
+  std::optional<AccurateCurve> accurate;
+  RhoCandidates rho;
+  Curve curve;
+  if (with_accuracy) {
+    const int start = s.scene.harmonics ? *s.scene.harmonics : std::min(5, scene.model.basis.count());
+    Progress checked = [&](const CurvePoint& p, int index) {
+      if (verbose)
+        line.message("eqhb: point " + std::to_string(index + 1) + " omega = " + formatNumber(p.omega) + ": H = " +
+                     std::to_string(p.harmonics) + ", estimate " + formatNumber(p.error_estimate) +
+                     (p.accuracy_met == 1 ? "" : " (NOT met)"));
+    };
+    rho = rhoCandidates(s.scene);
+    accurate = sweepToAccuracy(rho.models, *s.accuracy.tolerance, start, s.accuracy.max_harmonics, *solver,
+                               solver_options, options, w.arclength, progress, checked);
+    curve = accurate->curve;
+  } else {
+    curve = w.arclength ? sweepArclength(scene.model, *solver, solver_options, options, progress)
+                        : sweepSequential(scene.model, *solver, solver_options, options, progress);
+  }
+  const HbModel& curve_model = accurate ? accurate->model : scene.model;
   line.finish(std::to_string(curve.points.size()) + " points, " + std::to_string(curve.failed_points) + " failed");
-  if (s.accuracy.error_estimate) addErrorEstimates(scene.model, *solver, solver_options, options.condensed, &curve);
+  if (s.accuracy.error_estimate && !accurate)
+    addErrorEstimates(scene.model, *solver, solver_options, options.condensed, &curve);
   std::optional<CurveStability> stability;
   if (s.stability) stability = analyseCurveStability(scene.model, curve);
 
-  if (w.json) std::cout << curveJson(scene, *solver, options, w.arclength, curve, stability ? &*stability : nullptr).dump(2) << "\n";
+  if (w.json) {
+    nlohmann::json out =
+        curveJson(scene, curve_model, *solver, options, w.arclength, curve, stability ? &*stability : nullptr);
+    if (accurate) {
+      out["rho"] = rhoJson(rho.scene_rho, rho.factors[accurate->first.candidate]);
+      out["accuracy"] = {{"tolerance", accurate->tolerance},
+                         {"reached", accurate->not_met.empty() && curve.failed_points == 0 && curve.complete},
+                         {"not_met", accurate->not_met},
+                         {"highest_harmonics", accurate->highest_harmonics},
+                         {"seconds", accurate->seconds},
+                         {"first_point", accuracyJson(accurate->first, accurate->tolerance, rho.factors)}};
+    }
+    std::cout << out.dump(2) << "\n";
+  }
   // With --json, stdout is the JSON object alone; the summary goes to stderr.
   std::ostream& summary = w.json ? std::cerr : std::cout;
   const CurvePoint* peak = nullptr;
   for (const auto& p : curve.points)
     if (p.converged && (!peak || p.max_abs[dofs - 1] > peak->max_abs[dofs - 1])) peak = &p;
   summary << scene.name << ": " << (w.arclength ? "arclength" : "sequential") << " sweep " << options.from
-          << " -> " << options.to << " with " << solver->name() << ", H = " << scene.model.basis.count() << ": "
+          << " -> " << options.to << " with " << solver->name() << ", H = " << curve_model.basis.count() << ": "
           << curve.points.size() << " points, " << curve.failed_points << " failed, " << curve.seconds << " s\n"
           << "  stop: " << curve.stop_reason << "\n";
   if (peak)
@@ -195,7 +243,16 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   } else if (w.arclength) {
     summary << "  no fold\n";
   }
-  if (s.accuracy.error_estimate) {
+  if (accurate) {
+    double worst = 0.0;
+    for (const auto& p : curve.points)
+      if (p.converged && !std::isnan(p.error_estimate)) worst = std::max(worst, p.error_estimate);
+    summary << "  --accuracy " << accurate->tolerance << ": H = " << curve_model.basis.count()
+            << ", rho = " << rhoJson(rho.scene_rho, rho.factors[accurate->first.candidate]).dump()
+            << " chosen at omega = " << options.from << ", raised up to H = " << accurate->highest_harmonics
+            << "; largest estimate " << worst << "; not met at " << accurate->not_met.size() << " point(s); "
+            << accurate->seconds << " s in all\n";
+  } else if (s.accuracy.error_estimate) {
     double worst = 0.0;
     int missing = 0;
     for (const auto& p : curve.points)
@@ -226,6 +283,21 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     if (w.log_amplitude) command.push_back("--log-amplitude");
     if (runProgram(command) != 0)
       throw std::runtime_error("--chart: plotting failed (needs " + command[0] + " with matplotlib)");
+  }
+  if (accurate && !accurate->not_met.empty()) {
+    std::ostringstream where;
+    for (size_t i = 0; i < accurate->not_met.size() && i < 10; ++i) where << (i ? ", " : "") << accurate->not_met[i];
+    if (accurate->not_met.size() > 10) where << ", ... (" << accurate->not_met.size() << " points)";
+    const CurvePoint* first_miss = nullptr;
+    for (const auto& p : curve.points)
+      if (p.accuracy_met == 0) {
+        first_miss = &p;
+        break;
+      }
+    std::cerr << "eqhb: --accuracy " << accurate->tolerance << " not met at omega = " << where.str();
+    if (first_miss) std::cerr << " (at omega = " << first_miss->omega << ": " << first_miss->accuracy_failure << ")";
+    std::cerr << "\n";
+    return 1;
   }
   return curve.complete && curve.failed_points == 0 && !curve.points.empty() ? 0 : 1;
 }

@@ -127,6 +127,64 @@ TEST(AccuracyTarget, ChoosesTheFirstRungWhoseEstimateMeetsTheTolerance) {
   EXPECT_GT(trueError(half, exact), tolerance);
 }
 
+HbModel withRho(const std::string& file, double omega, double rho) {
+  return loadScene(test::problem(file), {"harmonic_balance.omega=" + formatNumber(omega), "law[0].rho=" + formatNumber(rho)})
+      .model;
+}
+
+TEST(AccuracyTarget, ChoosingRhoReachesTheToleranceOnFewerHarmonics) {
+  // friction-1d at ω = 0.4: ρ = 1 needs H = 80 for 3e-3, ρ = 0.1 or 0.01 H = 40.
+  auto solver = makeSolver("dogleg");
+  const SolverOptions options = tightOptions();
+  const double tolerance = 3e-3;
+  const std::vector<HbModel> candidates = {withRho("friction-1d.toml", 0.4, 1.0), withRho("friction-1d.toml", 0.4, 0.1),
+                                           withRho("friction-1d.toml", 0.4, 0.01)};
+  const AccuracyChoice c = chooseDiscretisation(candidates, tolerance, 5, 320, *solver, options, true);
+  ASSERT_TRUE(c.reached) << c.failure;
+  const int chosen = c.model.basis.count();
+  EXPECT_LE(c.estimate.max_abs, tolerance);
+  ASSERT_EQ(c.candidate_ladders.size(), 3u);
+  EXPECT_EQ(c.ladder.size(), c.candidate_ladders[c.candidate].size());
+  // No candidate met the tolerance on a lower rung, and none on the chosen
+  // rung with a smaller estimate.
+  for (const auto& ladder : c.candidate_ladders)
+    for (const AccuracyRung& r : ladder) {
+      if (!r.estimated) continue;
+      if (r.harmonics < chosen) EXPECT_GT(r.estimate, tolerance) << "H = " << r.harmonics;
+      if (r.harmonics == chosen) EXPECT_GE(r.estimate, c.estimate.max_abs);
+    }
+  const AccuracyChoice fixed = chooseHarmonics(candidates[0], tolerance, 5, 320, *solver, options, true);
+  ASSERT_TRUE(fixed.reached) << fixed.failure;
+  EXPECT_NE(c.candidate, 0);
+  EXPECT_GT(fixed.model.basis.count(), chosen);
+  // Against the exact orbit, the chosen ρ and H meet the tolerance.
+  const Solved at{c.model, c.full};
+  EXPECT_LT(trueError(at, exactMaxAbs(at)), tolerance);
+}
+
+TEST(AccuracyTarget, DropsACandidateMoreThanTwiceTheBestFromH20) {
+  // friction-1d at ω = 0.308: at H = 20 the estimates are about 5e-3 (ρ = 1),
+  // 3.6e-3 (ρ = 0.1) and 1.1e-3 (ρ = 0.01); the first two stop there.
+  auto solver = makeSolver("dogleg");
+  const std::vector<HbModel> candidates = {withRho("friction-1d.toml", 0.308, 1.0),
+                                           withRho("friction-1d.toml", 0.308, 0.1),
+                                           withRho("friction-1d.toml", 0.308, 0.01)};
+  const AccuracyChoice c = chooseDiscretisation(candidates, 1e-3, 5, 320, *solver, tightOptions(), true);
+  ASSERT_TRUE(c.reached) << c.failure;
+  EXPECT_EQ(c.candidate, 2);
+  for (int k : {0, 1}) {
+    const auto& ladder = c.candidate_ladders[k];
+    ASSERT_GE(ladder.size(), 2u);
+    EXPECT_EQ(ladder.back().harmonics, 2 * kPruneFromHarmonics) << k;  // the check of rung 20, then no more
+    const AccuracyRung& last = ladder[ladder.size() - 2];
+    double best = 1.0;
+    for (const auto& r : c.candidate_ladders[2])
+      if (r.harmonics == last.harmonics) best = r.estimate;
+    EXPECT_GT(last.estimate, kPruneFactor * best) << k;
+  }
+  EXPECT_GT(c.model.basis.count(), kPruneFromHarmonics);
+}
+
 TEST(AccuracyTarget, NotReachedBelowTheLargestH) {
   auto solver = makeSolver("dogleg");
   const AccuracyChoice c =

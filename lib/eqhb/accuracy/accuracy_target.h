@@ -25,18 +25,42 @@ struct AccuracyRung {
 
 struct AccuracyChoice {
   bool reached = false;
+  int candidate = 0;         // chooseDiscretisation: the index of the chosen candidate model
   std::string failure;       // why not reached
   HbModel model;             // the chosen discretisation (the last tried if not reached)
   Eigen::VectorXd full;      // its solution, FullSystem layout
   SolverResult result;       // the solve that produced it
   ErrorEstimate estimate;    // its estimate
   std::vector<AccuracyRung> ladder;
-  double seconds = 0.0;      // all solves
+  std::vector<std::vector<AccuracyRung>> candidate_ladders;  // chooseDiscretisation: every candidate's rungs
+  double seconds = 0.0;      // all solves (of every candidate)
 };
 
+// The same ladder run side by side on several candidate models of one scene
+// (the same scene with ρ scaled, say): at every rung each live candidate is
+// estimated; the first rung where one meets the tolerance decides (the
+// smallest estimate among them). From H >= kPruneFromHarmonics on, where
+// rungs start to cost, a candidate whose estimate is more than
+// kPruneFactor times the rung's best is dropped (about one doubling of H
+// behind at the measured H^-1 rate). A candidate whose solve fails is
+// dropped; the choice fails when every candidate has.
+constexpr int kPruneFromHarmonics = 20;
+constexpr double kPruneFactor = 2.0;
+AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics,
+                                    int max_harmonics, Solver& solver, const SolverOptions& options, bool condensed);
+
+// One candidate: chooseDiscretisation({model}).
 // tolerance in (0, 1), 1 <= start_harmonics <= max_harmonics; throws
 // InputError naming --accuracy or --max-harmonics otherwise.
 AccuracyChoice chooseHarmonics(const HbModel& model, double tolerance, int start_harmonics, int max_harmonics,
                                Solver& solver, const SolverOptions& options, bool condensed);
+
+// The same ladder from a solution already at hand (`full`, from `result`, on
+// `model`'s H and N): estimate at 2H and climb from there. The given solve is
+// the first rung but its time is not in `seconds`. Same argument checks, with
+// the model's H as the first H.
+AccuracyChoice refineToAccuracy(const HbModel& model, const Eigen::VectorXd& full, const SolverResult& result,
+                                double tolerance, int max_harmonics, Solver& solver, const SolverOptions& options,
+                                bool condensed);
 
 }  // namespace eqhb

@@ -70,8 +70,10 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
   for (const auto& p : curve.points) with_stability = with_stability || p.stable >= 0;
   bool with_estimate = false;
   for (const auto& p : curve.points) with_estimate = with_estimate || !std::isnan(p.error_estimate);
+  bool with_accuracy = false;
+  for (const auto& p : curve.points) with_accuracy = with_accuracy || p.accuracy_met >= 0;
   out << ",energy,fold" << (with_stability ? ",stable,bifurcation" : "") << (with_estimate ? ",error_estimate" : "")
-      << "\n";
+      << (with_accuracy ? ",harmonics,samples,accuracy_met,accuracy_seconds" : "") << "\n";
   out.precision(10);
   for (const auto& p : curve.points) {
     out << p.omega << "," << (p.converged ? "true" : "false") << "," << p.termination << "," << p.iterations << ","
@@ -81,6 +83,9 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
     out << "," << (p.converged ? p.energy : NAN) << "," << (p.fold ? "true" : "false");
     if (with_stability) out << "," << (p.stable >= 0 ? std::to_string(p.stable) : "") << "," << p.bifurcation;
     if (with_estimate) out << "," << p.error_estimate;
+    if (with_accuracy)
+      out << "," << p.harmonics << "," << p.samples << ","
+          << (p.accuracy_met >= 0 ? std::to_string(p.accuracy_met) : "") << "," << p.accuracy_seconds;
     out << "\n";
   }
 }

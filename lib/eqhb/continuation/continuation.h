@@ -40,6 +40,13 @@ struct CurvePoint {
   int stable = -1;                     // Hill stability: 1, 0, or −1 (not computed)
   std::string bifurcation;             // stability analysis: kind, between the previous point and this
   double error_estimate = NAN;         // estimated relative error of max|x| (sweep --error-estimate)
+  // sweep --accuracy: the point's own discretisation (0: the curve's), whether
+  // its estimate met the tolerance (1, 0; −1 not asked), why not, and the
+  // time of the solves that checked and refined it.
+  int harmonics = 0, samples = 0;
+  int accuracy_met = -1;
+  std::string accuracy_failure;
+  double accuracy_seconds = 0.0;
   Eigen::VectorXd full;                // [x; λ] coefficients
 };
 
@@ -80,7 +87,8 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
 // The curve as CSV: ω, converged, termination, counts, time, max|x_i|,
 // first-harmonic amplitude of x_i, energy, fold, and when stability was
 // computed for some point: stable (1/0, empty if not computed) and
-// bifurcation. Throws InputError if the file cannot be written.
+// bifurcation; error_estimate when estimated; harmonics, samples,
+// accuracy_met and accuracy_seconds when an accuracy target was set. Throws InputError if the file cannot be written.
 void writeCurveCsv(const std::string& path, const Curve& curve, int dofs);
 
 // Physical summary of a solution (max|x|, first harmonic, energy).

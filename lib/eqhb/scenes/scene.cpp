@@ -1,4 +1,5 @@
 #include "eqhb/scenes/scene.h"
+#include "eqhb/scenes/law_rho.h"
 
 #include <algorithm>
 #include <cmath>
@@ -670,7 +671,10 @@ Scene parseScene(const std::string& text, const std::string& source_name,
   return buildScene(std::move(root), source_name, overrides);
 }
 
-Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+namespace {
+
+// The text of a scene file, refused when it cannot be one.
+std::string readSceneText(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error))
     throw InputError(path + ": is a directory, not a scene file");
@@ -684,7 +688,37 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   text.resize(static_cast<size_t>(file.gcount()));
   if (text.size() > kMaxSceneBytes)
     throw InputError(path + ": larger than " + std::to_string(kMaxSceneBytes) + " bytes: not a scene file");
-  return parseScene(text, path, overrides);
+  return text;
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  return parseScene(readSceneText(path), path, overrides);
+}
+
+std::vector<double> lawRhos(const std::string& path, const std::vector<std::string>& overrides) {
+  // Validated as a whole first: the document below is then well formed.
+  const Scene scene = loadScene(path, overrides);
+  const std::string text = readSceneText(path);
+  toml::value root;
+  std::istringstream in(text);
+  root = toml::parse(in, path);
+  for (const auto& assignment : overrides) applyOverride(root, assignment);
+  std::vector<double> out;
+  if (!root.is_table() || root.as_table().count("law") == 0) return out;
+  for (const auto& law : root.at("law").as_array()) {
+    const std::string type = toml::find<std::string>(law, "type");
+    double rho = std::numeric_limits<double>::quiet_NaN();
+    if (lawTakesRho(type)) {
+      rho = 1.0;
+      if (law.as_table().count("rho"))
+        rho = law.at("rho").is_integer() ? static_cast<double>(law.at("rho").as_integer()) : law.at("rho").as_floating();
+    }
+    out.push_back(rho);
+  }
+  if (out.size() != scene.model.laws.size()) throw std::logic_error("lawRhos: laws miscounted");
+  return out;
 }
 
 }  // namespace eqhb

@@ -1,0 +1,91 @@
+#include "eqhb/accuracy/accuracy_sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+HbModel pointModel(const HbModel& curve_model, const CurvePoint& point) {
+  HbModel m = curve_model;
+  m.omega = point.omega;
+  // The same chain of withHarmonics as the ladder, so that N matches.
+  while (point.harmonics > m.basis.count()) m = withHarmonics(m, 2 * m.basis.count());
+  return m;
+}
+
+namespace {
+
+// The point as the ladder left it: the chosen solution's description, the
+// sweep's counts, the ladder's time.
+void takeChoice(const AccuracyChoice& c, double tolerance, CurvePoint* p) {
+  CurvePoint described = describePoint(c.model, c.full);
+  described.converged = true;
+  described.termination = p->termination;
+  described.iterations = p->iterations;
+  described.residual_evaluations = p->residual_evaluations;
+  described.jacobian_evaluations = p->jacobian_evaluations;
+  described.seconds = p->seconds;
+  described.residual_norm = p->residual_norm;
+  described.fold = p->fold;
+  described.tangent_omega = p->tangent_omega;
+  described.omega = p->omega;
+  described.harmonics = c.model.basis.count();
+  described.samples = c.model.samples;
+  described.accuracy_seconds = c.seconds;
+  const bool estimated = c.estimate.refined_harmonics > 0 && c.estimate.available;
+  described.error_estimate = estimated ? c.estimate.max_abs : NAN;
+  described.accuracy_met = c.reached && c.estimate.max_abs <= tolerance ? 1 : 0;
+  described.accuracy_failure = c.failure;
+  *p = described;
+}
+
+}  // namespace
+
+AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics, int max_harmonics,
+                              Solver& solver, const SolverOptions& solver_options,
+                              const ContinuationOptions& options, bool arclength, const Progress& sweep_progress,
+                              const Progress& check_progress) {
+  const auto start = std::chrono::steady_clock::now();
+  if (arclength) options.validate();
+  else options.validateGrid();
+  AccurateCurve out;
+  out.tolerance = tolerance;
+  std::vector<HbModel> at_first = candidates;
+  for (HbModel& m : at_first) m.omega = options.from;
+  out.first = chooseDiscretisation(at_first, tolerance, start_harmonics, max_harmonics, solver, solver_options,
+                                   options.condensed);
+  // Not reached at the first frequency: the curve runs on the last rung with
+  // an estimate (or the first H if even that failed) and its points say so.
+  out.model = out.first.model;
+  out.model.omega = candidates.front().omega;
+  out.curve = arclength ? sweepArclength(out.model, solver, solver_options, options, sweep_progress)
+                        : sweepSequential(out.model, solver, solver_options, options, sweep_progress);
+  for (size_t i = 0; i < out.curve.points.size(); ++i) {
+    CurvePoint& p = out.curve.points[i];
+    if (!p.converged) continue;
+    HbModel at = out.model;
+    at.omega = p.omega;
+    if (i == 0 && out.first.reached && p.omega == options.from) {
+      // The first point is the first ladder's choice, already checked: its
+      // solution (the same problem the sweep solved again) and estimate.
+      takeChoice(out.first, tolerance, &p);
+    } else {
+      SolverResult solved;
+      solved.termination = Termination::kConverged;
+      solved.seconds = p.seconds;
+      const AccuracyChoice c = refineToAccuracy(at, p.full, solved, tolerance, max_harmonics, solver,
+                                                solver_options, options.condensed);
+      takeChoice(c, tolerance, &p);
+    }
+    if (!p.accuracy_met) out.not_met.push_back(p.omega);
+    out.highest_harmonics = std::max(out.highest_harmonics, p.harmonics);
+    if (check_progress) check_progress(p, static_cast<int>(i));
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace eqhb

@@ -1,0 +1,53 @@
+// A frequency-response curve whose every point meets an accuracy target:
+// the estimated relative error of max|x| (error_estimate.h) <= tolerance.
+//
+// Why this design: the estimate of a solution at H needs its solve at 2H,
+// so a point that ends on rung H costs the solves of its ladder up to 2H,
+// dominated by the top ones. The curve's H is chosen once, at the first
+// frequency (chooseDiscretisation, which also picks ρ among candidates), and the whole curve is swept at that H with
+// the usual warm starts (sequential or arclength, so step halving and turning
+// points work as without a target). Then every converged point is checked by
+// its solve at 2H, started from the point padded with zero harmonics, and
+// where the estimate is above the tolerance (typically near a resonance or a
+// stick–slip transition that the first frequency did not see) H is raised on
+// that point alone, by doublings, each rung started from the one below.
+// H never falls below the first point's choice: the estimate of H/2 would
+// need its own solve, and off-resonance points are cheap anyway.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "eqhb/accuracy/accuracy_target.h"
+#include "eqhb/continuation/continuation.h"
+
+namespace eqhb {
+
+struct AccurateCurve {
+  // Per point: harmonics and samples of its discretisation, error_estimate,
+  // accuracy_met, accuracy_seconds, and max|x|, first harmonic, energy and
+  // coefficients (`full`) of the chosen solution.
+  Curve curve;
+  AccuracyChoice first;      // the ladder at the first frequency
+  HbModel model;             // the curve's discretisation: H and N chosen at the first frequency
+  double tolerance = 0.0;
+  std::vector<double> not_met;  // ω of the converged points whose estimate stayed above the tolerance
+  int highest_harmonics = 0;    // the largest H chosen on the curve
+  double seconds = 0.0;         // the first ladder, the sweep and every point's ladder
+};
+
+// Throws InputError naming --accuracy, --max-harmonics or --harmonics (the
+// first H, start_harmonics) as chooseHarmonics does, before any solve.
+// `candidates`: the scene's model and its variants (ρ scaled) that the first
+// frequency's ladder chooses from (chooseDiscretisation); the curve keeps the
+// chosen one.
+AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics, int max_harmonics,
+                              Solver& solver, const SolverOptions& solver_options,
+                              const ContinuationOptions& options, bool arclength,
+                              const Progress& sweep_progress = nullptr, const Progress& check_progress = nullptr);
+
+// The model of one point of such a curve: `curve_model` at the point's ω
+// and on its harmonics (doublings of the curve's H, N following H).
+HbModel pointModel(const HbModel& curve_model, const CurvePoint& point);
+
+}  // namespace eqhb

@@ -1,0 +1,108 @@
+// A frequency-response curve to an accuracy target: H chosen at the first
+// frequency, raised on the points whose estimate exceeds the tolerance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "eqhb/accuracy/accuracy_sweep.h"
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/orbits/shooting.h"
+#include "eqhb/orbits/smooth_flow.h"
+#include "eqhb/scenes/scene.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+SolverOptions tightOptions() {
+  SolverOptions options;
+  options.residual_tolerance = 1e-10;
+  options.max_iterations = 400;
+  return options;
+}
+
+ContinuationOptions grid(double from, double to, double step) {
+  ContinuationOptions c;
+  c.from = from;
+  c.to = to;
+  c.step = step;
+  c.min_step = 1e-6;
+  return c;
+}
+
+HbModel scene(const std::string& file) { return loadScene(test::problem(file)).model; }
+
+// The estimate of a point's solution on the curve's H, computed afresh.
+double estimateAtCurveH(const AccurateCurve& a, double omega, Solver& solver, const SolverOptions& options) {
+  HbModel m = a.model;
+  m.omega = omega;
+  auto system = makeHbSystem(m, true);
+  const SolverResult r = solver.solve(*system, Eigen::VectorXd::Zero(system->size()), options);
+  EXPECT_TRUE(r.converged()) << "omega = " << omega;
+  return estimateError(m, system->fullCoefficients(r.solution), solver, options, true).max_abs;
+}
+
+TEST(AccuracySweep, RaisesHExactlyWhereTheCurvesHMissesTheTolerance) {
+  auto solver = makeSolver("dogleg");
+  const SolverOptions options = tightOptions();
+  const double tolerance = 5e-3;
+  const AccurateCurve a = sweepToAccuracy({scene("coulomb-oscillator.toml")}, tolerance, 5, 320, *solver, options,
+                                          grid(0.5, 1.0, 0.05), false);
+  ASSERT_TRUE(a.first.reached) << a.first.failure;
+  EXPECT_TRUE(a.not_met.empty());
+  const int curve_h = a.model.basis.count();
+  int raised = 0;
+  for (const CurvePoint& p : a.curve.points) {
+    ASSERT_TRUE(p.converged) << p.omega;
+    EXPECT_EQ(p.accuracy_met, 1) << p.omega;
+    EXPECT_LE(p.error_estimate, tolerance) << p.omega;
+    // H is the curve's times a power of two, and N follows it.
+    ASSERT_GE(p.harmonics, curve_h);
+    EXPECT_EQ(p.harmonics % curve_h, 0);
+    EXPECT_EQ(p.harmonics / curve_h & (p.harmonics / curve_h - 1), 0) << p.harmonics;
+    const HbModel at = pointModel(a.model, p);
+    EXPECT_EQ(at.samples, p.samples);
+    EXPECT_EQ(p.full.size(), at.structure.dofs() * at.basis.size() + at.lawComponents() * at.basis.size());
+    const double at_curve_h = estimateAtCurveH(a, p.omega, *solver, options);
+    if (p.harmonics > curve_h) {
+      ++raised;
+      EXPECT_GT(at_curve_h, tolerance) << "omega = " << p.omega << ": raised although H = " << curve_h << " met it";
+    } else {
+      EXPECT_LE(at_curve_h, tolerance) << "omega = " << p.omega << ": not raised";
+    }
+  }
+  EXPECT_GT(raised, 0) << "the test needs a curve on which H must rise";
+  EXPECT_EQ(a.highest_harmonics, 20);
+}
+
+TEST(AccuracySweep, NamesThePointsWhereTheLargestHIsNotEnough) {
+  auto solver = makeSolver("dogleg");
+  const AccurateCurve a = sweepToAccuracy({scene("coulomb-oscillator.toml")}, 5e-3, 5, 10, *solver, tightOptions(),
+                                          grid(0.5, 1.0, 0.05), false);
+  ASSERT_FALSE(a.not_met.empty());
+  for (double omega : a.not_met) {
+    bool found = false;
+    for (const CurvePoint& p : a.curve.points)
+      if (p.omega == omega) {
+        found = true;
+        EXPECT_EQ(p.accuracy_met, 0);
+        EXPECT_GT(p.error_estimate, 5e-3);
+        EXPECT_NE(p.accuracy_failure.find("--max-harmonics"), std::string::npos) << p.accuracy_failure;
+      }
+    EXPECT_TRUE(found) << omega;
+  }
+}
+
+TEST(AccuracySweep, RejectsAToleranceThatIsNotARelativeErrorBeforeSolving) {
+  auto solver = makeSolver("dogleg");
+  EXPECT_THROW(sweepToAccuracy({scene("coulomb-oscillator.toml")}, 1.5, 5, 320, *solver, tightOptions(),
+                               grid(0.5, 0.6, 0.05), false),
+               InputError);
+  EXPECT_THROW(sweepToAccuracy({scene("coulomb-oscillator.toml")}, 1e-3, 5, 320, *solver, tightOptions(),
+                               grid(0.5, 0.6, -0.05), false),
+               InputError);
+}
+
+}  // namespace
+}  // namespace eqhb
