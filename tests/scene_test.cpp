@@ -1,6 +1,9 @@
 #include "eqhb/scenes/scene.h"
+#include "eqhb/scenes/law_rho.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/error.h"
@@ -258,6 +261,31 @@ omega = 1.0
               "structure.damping: must be positive semidefinite");
   // The chain's own matrices pass the same rule (k = 0, d = 0 included).
   EXPECT_NO_THROW(parseScene(replaced("k = 1.0\nd = 0.02", "k = 0.0\nd = 0.0"), "scene.toml"));
+}
+
+}  // namespace
+}  // namespace eqhb
+
+namespace eqhb {
+namespace {
+
+// The ρ of each law, as the file and its overrides set it (what --accuracy scales).
+TEST(Scene, LawRhosFollowTheFileAndItsOverrides) {
+  const auto large = lawRhos(test::problem("beam-joint-large.toml"));
+  ASSERT_GE(large.size(), 3u);
+  EXPECT_DOUBLE_EQ(large[0], 1.13e-09);
+  EXPECT_DOUBLE_EQ(large[1], 9.07e-09);
+  EXPECT_DOUBLE_EQ(large[2], 3.06e-08);
+  const auto friction = lawRhos(test::problem("friction-1d.toml"), {"law[0].rho=0.25"});
+  ASSERT_EQ(friction.size(), 1u);
+  EXPECT_DOUBLE_EQ(friction[0], 0.25);
+  const auto cubic = lawRhos(test::problem("cubic.toml"));
+  ASSERT_EQ(cubic.size(), 1u);
+  EXPECT_TRUE(std::isnan(cubic[0])) << "a cubic spring has no rho";
+  const auto damper = lawRhos(test::problem("damper.toml"));  // contact-friction, rho not given
+  ASSERT_FALSE(damper.empty());
+  for (double r : damper) EXPECT_EQ(r, 1.0);
+  EXPECT_THROW(lawRhos(test::problem("friction-1d.toml"), {"law[0].rho=-1"}), InputError);
 }
 
 }  // namespace
