@@ -14,6 +14,7 @@
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/invariants.h"
+#include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/stability/hill_stability.h"
 #include "eqhb/backends/registry.h"
@@ -29,6 +30,7 @@ void addSolveCommand(CLI::App& app, SolveArguments& a) {
   cmd->add_option("--repeat", a.repeat, "Repeat the solve and report the median time")
       ->check(CLI::Range(1, 100000));
   addAccuracyOptions(cmd, a.accuracy);
+  addRefineOptions(cmd, a.refine);
   cmd->add_option("--from-harmonics", a.from_harmonics,
                   "Start from the solution at H0, 2H0, ... (continuation in H: for large H where a cold start fails)");
   addStabilityFlag(cmd, a);
@@ -186,6 +188,8 @@ AccuracyChoice chooseDiscretisationFor(const SolveArguments& a, const RhoCandida
 
 int runSolve(const SolveArguments& given) {
   SolveArguments a = given;
+  // --refine shoot: unsupported laws and a bad restitution fail before any solve.
+  if (!a.refine.method.empty()) orbits::makeFlow(loadSceneWith(a.scene).model, a.refine.restitution);
   // --accuracy: choose H and N first, then report the chosen solution as usual.
   std::optional<AccuracyChoice> choice;
   RhoCandidates candidates;
@@ -211,7 +215,13 @@ int runSolve(const SolveArguments& given) {
   const std::vector<double>& times = run.times;
   const double median = times.size() % 2 ? times[times.size() / 2]
                                          : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
-  const HbSolution solution = summarize(model, system->fullCoefficients(result.solution));
+  // --refine shoot: the exact orbit replaces the harmonic-balance answer.
+  Eigen::VectorXd answer = system->fullCoefficients(result.solution);
+  const HbSolution plain = summarize(model, answer);
+  std::optional<orbits::RefinedSolution> refined;
+  if (!a.refine.method.empty() && result.converged()) refined = refine(model, answer, a.refine);
+  if (refined && refined->converged) answer = refined->full;
+  const HbSolution solution = refined && refined->converged ? refinedSummary(model, *refined) : plain;
   // How the linear algebra went: dense or sparse, set-up, memory.
   const bool sparse_solver = useSparseAlgebra(*run.system, options);
   const auto* condensed = dynamic_cast<const CondensedSystem*>(system);
@@ -224,7 +234,7 @@ int runSolve(const SolveArguments& given) {
   // Stability of the converged solution (Hill's method, full system).
   HillResult hill;
   const bool with_stability = a.stability && result.converged();
-  if (with_stability) hill = hillStability(model, system->fullCoefficients(result.solution));
+  if (with_stability) hill = hillStability(model, answer);
   std::optional<ErrorEstimate> estimate;
   if (choice && choice->estimate.refined_harmonics) estimate = choice->estimate;
   else if (a.accuracy.error_estimate && result.converged()) {
@@ -265,7 +275,7 @@ int runSolve(const SolveArguments& given) {
     out["dofs"] = channels["dofs"];
     out["laws"] = channels["laws"];
     nlohmann::json invariants = nlohmann::json::array();
-    for (const auto& report : checkInvariants(model, system->fullCoefficients(result.solution))) {
+    for (const auto& report : checkInvariants(model, answer)) {
       nlohmann::json measures;
       for (const auto& [name, value] : report.violations) measures[name] = value;
       invariants.push_back({{"law", report.law + 1}, {"type", report.type}, {"violations", measures}});
@@ -277,6 +287,7 @@ int runSolve(const SolveArguments& given) {
       out["accuracy"] = accuracyJson(*choice, *a.accuracy.tolerance, candidates.factors);
     }
     if (estimate) out["error_estimate"] = errorEstimateJson(*estimate);
+    if (refined) out["refinement"] = refinementJson(*refined, plain, a.refine.restitution);
     if (a.trajectory) {
       // One period on the model's N samples: t, x per DOF, λ per law component.
       nlohmann::json t = nlohmann::json::array();
@@ -307,12 +318,16 @@ int runSolve(const SolveArguments& given) {
     if (estimate)
       std::cout << "estimated relative error of max|x|: " << estimate->max_abs << " (solve at H = "
                 << estimate->refined_harmonics << (estimate->available ? "" : ", which did NOT converge") << ")\n";
+    if (refined)
+      std::cout << "refined by shooting: " << (refined->converged ? "exact periodic orbit" : "NOT converged: " + refined->failure)
+                << ", period residual " << refined->orbit.period_residual << " after " << refined->orbit.iterations
+                << " Newton steps, " << refined->seconds << " s (max|x| above: the orbit's; coefficients: its truncation)\n";
     if (choice)
       std::cout << "--accuracy " << *a.accuracy.tolerance << ": " << (choice->reached ? "reached" : "NOT reached")
                 << " at H = " << model.basis.count() << ", N = " << model.samples << ", rho = "
                 << rhoJson(candidates.scene_rho, candidates.factors[choice->candidate]).dump() << " in " << choice->seconds
                 << " s of solves\n";
-    for (const auto& report : checkInvariants(model, system->fullCoefficients(result.solution))) {
+    for (const auto& report : checkInvariants(model, answer)) {
       std::cout << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";
       for (const auto& [name, value] : report.violations) std::cout << " " << name << " " << value;
       std::cout << "\n";
@@ -343,6 +358,10 @@ int runSolve(const SolveArguments& given) {
   if (estimate && !estimate->available)
     std::cerr << "eqhb: warning: the error estimate's solve at H = " << estimate->refined_harmonics
               << " did not converge: the estimate is not reliable\n";
+  if (refined && !refined->converged) {
+    std::cerr << "eqhb: --refine shoot: " << refined->failure << "; reporting the harmonic-balance solution\n";
+    return 1;
+  }
   return result.converged() ? 0 : 1;
 }
 

@@ -14,6 +14,7 @@
 #include "eqhb/solvers/solver.h"
 #include "eqhb/stability/hill_stability.h"
 #include "accuracy_options.h"
+#include "refine_options.h"
 #include "scene_arguments.h"
 
 namespace eqhb::cli {
@@ -34,6 +35,7 @@ struct SolveArguments {
   std::string linear_algebra = "auto";  // --linear-algebra: auto, dense or sparse
   bool stability = false;  // --stability: Floquet multipliers by Hill's method
   AccuracyArguments accuracy;           // --error-estimate, --accuracy (solve only)
+  RefineArguments refine;               // --refine shoot (solve only)
   Eigen::VectorXd start_full;           // initial guess, FullSystem layout (empty: zero)
 };
 

@@ -1,0 +1,133 @@
+#include "eqhb/orbits/orbit_refinement.h"
+
+#include <gtest/gtest.h>
+
+#include "eqhb/accuracy/error_estimate.h"
+#include "eqhb/backends/registry.h"
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/orbits/smooth_flow.h"
+#include "eqhb/scenes/scene.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+using orbits::RefinementOptions;
+using orbits::refineByShooting;
+
+// m ẍ + k x + F sgn(ẋ) = P cos ωt with m = k = P = 1 (no damping).
+HbModel denHartog(double omega, double friction, int harmonics) {
+  HbModel model;
+  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
+                                    Eigen::MatrixXd::Identity(1, 1));
+  model.structure.loads.push_back({0, 1, 1.0, 0.0});
+  model.laws.push_back({{0}, std::make_shared<Coulomb1D>(friction, CoulombForm::kMinMax)});
+  model.basis = HarmonicSet(HarmonicKind::kOdd, harmonics);
+  model.samples = 16 * harmonics;
+  model.omega = omega;
+  return model;
+}
+
+// Den Hartog (1931): X / x_st = sqrt(V² − β² U²), V = 1/(1 − r²), U = tan(π/(2r))/r.
+double denHartogAmplitude(double r, double beta) {
+  const double v = 1.0 / (1.0 - r * r), u = std::tan(M_PI / (2.0 * r)) / r;
+  return std::sqrt(v * v - beta * beta * u * u);
+}
+
+Eigen::VectorXd harmonicBalance(const HbModel& model) {
+  auto system = makeHbSystem(model, true);
+  SolverOptions options;
+  options.residual_tolerance = 1e-10;
+  const auto result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), options);
+  EXPECT_TRUE(result.converged());
+  return system->fullCoefficients(result.solution);
+}
+
+// Root mean square over one period and every DOF of x_series − x_orbit, on
+// 3001 instants (not the projection's): the L2 distance of a series to the orbit.
+double l2Distance(const HbModel& model, const orbits::ShootingResult& orbit, const Eigen::VectorXd& full) {
+  const auto flow = orbits::makeFlow(model, 0.0);
+  orbits::FlowSamples at;
+  const int count = 3001;
+  for (int s = 0; s < count; ++s) at.times.push_back(orbit.start_time + flow->period() * s / count);
+  EXPECT_TRUE(flow->integrate(orbit.state, orbit.start_time, flow->period(), false, &at).ok);
+  double sum = 0.0;
+  const int n = model.structure.dofs();
+  for (int s = 0; s < count; ++s) {
+    const Eigen::VectorXd y = orbits::harmonicState(model, full, at.times[s]);
+    for (int i = 0; i < n; ++i) sum += std::pow(y[i] - at.displacement(s, i), 2);
+  }
+  return std::sqrt(sum / (count * n));
+}
+
+TEST(OrbitRefinement, DenHartogPeakIsExactWherePlainHarmonicBalanceIsNot) {
+  const double r = 1.5, beta = 0.3;
+  const HbModel model = denHartog(r, beta, 5);
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  const auto refined = refineByShooting(model, hb, RefinementOptions());
+  ASSERT_TRUE(refined.converged) << refined.failure;
+  const double exact = denHartogAmplitude(r, beta);
+  EXPECT_NEAR(refined.max_abs[0] / exact, 1.0, 1e-9);
+  // Plain harmonic balance at the same H is off by far more.
+  const double hb_error = std::abs(peakDisplacements(model, hb)[0] / exact - 1.0);
+  EXPECT_GT(hb_error, 1e-5);
+  // The refined series is the L2 projection of the orbit: closer than HB,
+  // and moving any coefficient away from it only increases the distance.
+  const double refined_l2 = l2Distance(model, refined.orbit, refined.full);
+  EXPECT_LT(refined_l2, 0.1 * l2Distance(model, refined.orbit, hb));
+  for (int c : {0, 1, 2, 5}) {
+    for (double delta : {-1e-4, 1e-4}) {
+      Eigen::VectorXd moved = refined.full;
+      moved[c] += delta;
+      EXPECT_GT(l2Distance(model, refined.orbit, moved), refined_l2) << "coefficient " << c << ", " << delta;
+    }
+  }
+}
+
+TEST(OrbitRefinement, ForcesFollowTheLawsSignConvention) {
+  // friction-1d at ω = 0.4 (stick-slip): the refined force's first harmonic
+  // agrees with harmonic balance's to its accuracy, and with a direct
+  // quadrature of the orbit's force samples.
+  HbModel model = loadScene(test::problem("friction-1d.toml")).model;
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  const auto refined = refineByShooting(model, hb, RefinementOptions());
+  ASSERT_TRUE(refined.converged) << refined.failure;
+  const int nb = model.basis.size(), n = model.structure.dofs();
+  const Eigen::Vector2d refined_force(refined.full[n * nb], refined.full[n * nb + 1]);
+  const Eigen::Vector2d hb_force(hb[n * nb], hb[n * nb + 1]);
+  // (harmonic balance's own error on the force's first harmonic is 2 % here)
+  EXPECT_LT((refined_force - hb_force).norm(), 0.05 * hb_force.norm());
+  const auto flow = orbits::makeFlow(model, 0.0);
+  orbits::FlowSamples at;
+  const int count = 20000;
+  for (int s = 0; s < count; ++s) at.times.push_back(refined.orbit.start_time + flow->period() * s / count);
+  ASSERT_TRUE(flow->integrate(refined.orbit.state, refined.orbit.start_time, flow->period(), false, &at).ok);
+  Eigen::Vector2d quadrature = Eigen::Vector2d::Zero();
+  for (int s = 0; s < count; ++s)
+    quadrature += 2.0 / count * at.force(s, 0) *
+                  Eigen::Vector2d(std::cos(model.omega * at.times[s]), std::sin(model.omega * at.times[s]));
+  EXPECT_LT((refined_force - quadrature).norm(), 1e-3 * quadrature.norm());
+  // And the stick-slip orbit is much closer to its projection than to HB.
+  EXPECT_LT(l2Distance(model, refined.orbit, refined.full), 0.1 * l2Distance(model, refined.orbit, hb));
+}
+
+TEST(OrbitRefinement, RefusesWhatItCannotRefine) {
+  const HbModel model = denHartog(1.5, 0.3, 5);
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  RefinementOptions few;
+  few.samples = 5;  // k_max = 9 needs 19
+  EXPECT_THROW(refineByShooting(model, hb, few), InputError);
+  RefinementOptions bounce;
+  bounce.restitution = 1.5;
+  EXPECT_THROW(refineByShooting(model, hb, bounce), InputError);
+  HbModel shared = model;
+  shared.laws.push_back(shared.laws[0]);
+  EXPECT_THROW(refineByShooting(shared, Eigen::VectorXd::Zero(3 * model.basis.size()), RefinementOptions()),
+               InputError);
+  const Scene jenkins = loadScene(test::problem("jenkins-1d.toml"));
+  EXPECT_THROW(refineByShooting(jenkins.model, Eigen::VectorXd::Zero(100), RefinementOptions()), InputError);
+}
+
+}  // namespace
+}  // namespace eqhb
