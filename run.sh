@@ -78,6 +78,10 @@ case "${1:-}" in
       beam-damper-elastic
     ./build/eqhb-convergence --out results $quick | tee results/convergence.txt
     ./build/eqhb-orbits --out results $quick >/dev/null
+    # Work-precision against the exact orbits and the rates in H: CSV, JSON,
+    # charts precision_SCENE.*, and a section appended to the report.
+    ./build/eqhb-precision --out results $quick >/dev/null
+    /usr/bin/python3 bench/precision_charts.py results results/report.md >/dev/null
     ./build/eqhb-hill --out results $quick >/dev/null
     ./build/eqhb-micro --benchmark_min_time=0.02 --benchmark_out=results/micro.json \
       --benchmark_out_format=json >/dev/null

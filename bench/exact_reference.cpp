@@ -1,0 +1,35 @@
+#include "exact_reference.h"
+
+#include "eqhb/accuracy/error_estimate.h"
+#include "eqhb/orbits/smooth_flow.h"
+
+namespace eqhb::bench {
+
+ExactOrbit exactOrbit(const HbModel& model, double restitution, const Eigen::VectorXd& hb) {
+  ExactOrbit out;
+  const auto flow = orbits::makeFlow(model, restitution);
+  const double t0 = orbits::quietStartTime(model, hb);
+  out.orbit = orbits::shootPeriodicOrbit(*flow, orbits::harmonicState(model, hb, t0), t0, orbits::ShootingOptions());
+  if (!out.orbit.converged) return out;
+  orbits::FlowSamples samples;
+  const int count = 4096;
+  for (int s = 0; s < count; ++s) samples.times.push_back(t0 + flow->period() * s / count);
+  if (!flow->integrate(out.orbit.state, t0, flow->period(), false, &samples).ok) return out;
+  out.times = samples.times;
+  out.displacement = samples.displacement;
+  return out;
+}
+
+SeriesError seriesError(const HbModel& model, const Eigen::VectorXd& full, const ExactOrbit& exact) {
+  SeriesError out;
+  const int n = model.structure.dofs();
+  for (size_t s = 0; s < exact.times.size(); ++s) {
+    const Eigen::VectorXd y = orbits::harmonicState(model, full, exact.times[s]);
+    for (int i = 0; i < n; ++i) out.sup = std::max(out.sup, std::abs(y[i] - exact.displacement(s, i)));
+  }
+  out.sup /= exact.orbit.max_abs.maxCoeff();
+  out.max_abs = worstRelativeDifference(peakDisplacements(model, full), exact.orbit.max_abs);
+  return out;
+}
+
+}  // namespace eqhb::bench

@@ -1,0 +1,32 @@
+// The exact periodic orbit of a scene as the reference of truth (shooting
+// from a harmonic-balance start), densely sampled, and the distance of any
+// truncated Fourier series to it.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/orbits/shooting.h"
+
+namespace eqhb::bench {
+
+struct ExactOrbit {
+  orbits::ShootingResult orbit;
+  std::vector<double> times;     // t0 + iT/S
+  Eigen::MatrixXd displacement;  // S x n
+  bool ok() const { return orbit.converged && !times.empty(); }
+};
+
+// Shoots from `hb` (FullSystem layout on `model`) and samples 4096 instants.
+ExactOrbit exactOrbit(const HbModel& model, double restitution, const Eigen::VectorXd& hb);
+
+struct SeriesError {
+  double sup = 0.0;      // max over the samples and DOFs of |x − x_exact| / max|x_exact|
+  double max_abs = 0.0;  // worst relative error of max_t|x_i| per DOF (error_estimate.h's measure)
+};
+
+// `full` on `model`'s basis against the exact orbit.
+SeriesError seriesError(const HbModel& model, const Eigen::VectorXd& full, const ExactOrbit& exact);
+
+}  // namespace eqhb::bench
