@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "eqhb/accuracy/error_estimate.h"
@@ -109,7 +110,7 @@ const char* rhoPolicyName(RhoPolicy policy) {
 std::string PrecisionCurve::name() const {
   std::string s = form.empty() ? "no form" : form;
   s += std::string(", ρ ") + rhoPolicyName(rho) + ", " + (condensed ? "condensed" : "full") + ", " + backend;
-  return refine ? s + " + shooting" : s;
+  return refine ? s + (coarse_start ? " + shooting from H0" : " + shooting") : s;
 }
 
 std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<std::string>& backends) {
@@ -133,6 +134,7 @@ std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<st
       if (backend != "dogleg" || condensed != base_condensed)
         curves.push_back({forms.front(), base_policy, condensed, backend, false});
   for (const auto& form : forms) curves.push_back({form, base_policy, base_condensed, "dogleg", true});
+  curves.push_back({forms.front(), base_policy, base_condensed, "dogleg", true, true});
   return curves;
 }
 
@@ -164,9 +166,11 @@ std::vector<PrecisionPoint> runCurve(const PrecisionScene& scene, const Precisio
       continue;
     }
     const HbModel model = withHarmonics(load(scene, curve.form, rho).model, h);
-    p.samples = model.samples;
+    // A coarse start solves at H₀ only; the orbit is projected on `model`'s H.
+    const HbModel solved = curve.coarse_start ? withHarmonics(model, first) : model;
+    p.samples = solved.samples;
     p.rho = rho.value_or(0.0);
-    const Timed t = solveTimed(model, curve, std::min(h, first), repeats);
+    const Timed t = solveTimed(solved, curve, std::min(h, first), repeats);
     p.seconds = t.seconds + adaptive_seconds;
     p.iterations = t.result.iterations;
     p.converged = t.result.converged();
@@ -175,7 +179,8 @@ std::vector<PrecisionPoint> runCurve(const PrecisionScene& scene, const Precisio
     if (p.converged && curve.refine) {
       orbits::RefinementOptions options;
       options.restitution = scene.restitution;
-      const auto refined = orbits::refineByShooting(model, t.full, options);
+      options.output_harmonics = h;
+      const auto refined = orbits::refineByShooting(solved, t.full, options);
       p.seconds += refined.seconds;
       p.converged = refined.converged;
       p.failure = refined.failure;

@@ -36,7 +36,10 @@ struct PrecisionCurve {
   // Harmonic balance followed by shooting (orbit_refinement.h): the error is
   // that of the exact orbit's truncation on the same harmonics.
   bool refine = false;
-  std::string name() const;  // "minmax, ρ fixed, condensed, dogleg" (+ " + shooting")
+  // With refine: harmonic balance only at H₀ (the first H of the ladder),
+  // then shooting, the orbit projected on each H of the ladder.
+  bool coarse_start = false;
+  std::string name() const;  // "minmax, ρ fixed, condensed, dogleg" (+ " + shooting" (" from H0"))
 };
 
 struct PrecisionPoint {
@@ -54,7 +57,8 @@ struct PrecisionPoint {
 // The curves measured on a scene: every exact form × ρ policy on the own
 // dogleg and the condensed system (the full one for contact, which the
 // dogleg solves there), the scene's first form at the fixed ρ on the other
-// backends and systems, and harmonic balance followed by shooting per form.
+// backends and systems, harmonic balance followed by shooting per form, and
+// shooting from H₀ projected on every H for the first form.
 std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<std::string>& backends);
 
 // One curve over the ladder of H: each point solved by continuation in H

@@ -85,6 +85,27 @@ TEST(OrbitRefinement, DenHartogPeakIsExactWherePlainHarmonicBalanceIsNot) {
   }
 }
 
+TEST(OrbitRefinement, CoarseStartProjectsOnMoreHarmonics) {
+  // HB at H = 5 starts shooting; the orbit projected on 40 harmonics is far
+  // closer to the orbit, and its first 5 harmonics are the H = 5 projection's.
+  const HbModel model = denHartog(1.5, 0.3, 5);
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  const auto coarse = refineByShooting(model, hb, RefinementOptions());
+  RefinementOptions wide;
+  wide.output_harmonics = 40;
+  const auto fine = refineByShooting(model, hb, wide);
+  ASSERT_TRUE(coarse.converged && fine.converged);
+  EXPECT_EQ(fine.basis.count(), 40);
+  EXPECT_EQ(fine.full.size(), 2 * fine.basis.size());
+  HbModel fine_model = model;
+  fine_model.basis = fine.basis;
+  fine_model.samples = 16 * 40;
+  EXPECT_LT(l2Distance(fine_model, fine.orbit, fine.full), 0.01 * l2Distance(model, coarse.orbit, coarse.full));
+  // (up to the aliasing of the coarse projection's 288 instants, ~288^-3)
+  for (int c = 0; c < model.basis.size(); ++c) EXPECT_NEAR(fine.full[c], coarse.full[c], 1e-7) << c;
+  EXPECT_NEAR(fine.max_abs[0] / denHartogAmplitude(1.5, 0.3), 1.0, 1e-9);
+}
+
 TEST(OrbitRefinement, ForcesFollowTheLawsSignConvention) {
   // friction-1d at ω = 0.4 (stick-slip): the refined force's first harmonic
   // agrees with harmonic balance's to its accuracy, and with a direct
@@ -118,6 +139,9 @@ TEST(OrbitRefinement, RefusesWhatItCannotRefine) {
   RefinementOptions few;
   few.samples = 5;  // k_max = 9 needs 19
   EXPECT_THROW(refineByShooting(model, hb, few), InputError);
+  RefinementOptions negative;
+  negative.output_harmonics = -1;
+  EXPECT_THROW(refineByShooting(model, hb, negative), InputError);
   RefinementOptions bounce;
   bounce.restitution = 1.5;
   EXPECT_THROW(refineByShooting(model, hb, bounce), InputError);

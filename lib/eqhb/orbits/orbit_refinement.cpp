@@ -15,7 +15,7 @@ namespace {
 // Aliasing of the trapezoidal rule folds harmonic k ± S onto k: with the
 // displacement's coefficients falling as k^-3 (friction) or k^-2 (impacts)
 // that is (32 k_max)^-3 or ^-2, far below the truncation error of k_max.
-int defaultSamples(const HbModel& model) { return std::max(256, 32 * model.basis.highest()); }
+int defaultSamples(const HarmonicSet& basis) { return std::max(256, 32 * basis.highest()); }
 
 // λ of every law component from the displacement coefficients x (FullSystem
 // layout, first n channels) by the linear dynamics of each harmonic.
@@ -45,13 +45,20 @@ void forcesFromDynamics(const HbModel& model, Eigen::VectorXd* full) {
 
 }  // namespace
 
+HarmonicSet RefinementOptions::outputBasis(const HbModel& model) const {
+  return output_harmonics ? HarmonicSet(model.basis.kind(), output_harmonics) : model.basis;
+}
+
 void RefinementOptions::validate(const HbModel& model) const {
   shooting.validate();
   if (!(restitution >= 0.0 && restitution <= 1.0))
     throwInputError("restitution", formatNumber(restitution), "must be in [0, 1]");
-  if (samples != 0 && samples < model.basis.minimumSamples())
+  if (output_harmonics < 0)
+    throwInputError("output_harmonics", std::to_string(output_harmonics), "must be >= 0");
+  const HarmonicSet basis = outputBasis(model);
+  if (samples != 0 && samples < basis.minimumSamples())
     throwInputError("samples", std::to_string(samples),
-                    "must be 0 (automatic) or >= 2 k_max + 1 = " + std::to_string(model.basis.minimumSamples()));
+                    "must be 0 (automatic) or >= 2 k_max + 1 = " + std::to_string(basis.minimumSamples()));
   // The forces are read off the dynamics on the law's DOFs: two laws on one
   // DOF could not be told apart.
   std::set<int> used;
@@ -95,10 +102,14 @@ RefinedSolution refineByShooting(const HbModel& model, const Eigen::VectorXd& fu
   RefinedSolution out;
   const double t0 = quietStartTime(model, full);
   out.orbit = shootPeriodicOrbit(*flow, harmonicState(model, full, t0), t0, options.shooting);
-  out.samples = options.samples ? options.samples : defaultSamples(model);
+  HbModel output = model;
+  output.basis = options.outputBasis(model);
+  output.samples = std::max(output.samples, output.basis.minimumSamples());
+  out.basis = output.basis;
+  out.samples = options.samples ? options.samples : defaultSamples(output.basis);
   if (!out.orbit.converged) {
     out.failure = "shooting did not converge: " + out.orbit.failure;
-  } else if (!projectOrbit(model, *flow, out.orbit, out.samples, &out.full)) {
+  } else if (!projectOrbit(output, *flow, out.orbit, out.samples, &out.full)) {
     out.failure = "the flow failed while sampling the orbit";
   } else {
     out.converged = true;

@@ -29,24 +29,32 @@ namespace eqhb::orbits {
 struct RefinementOptions {
   ShootingOptions shooting;
   double restitution = 0.0;  // Newton's impact coefficient of contact laws, in [0, 1]
-  // Instants per period for the projection; 0: max(256, 32 k_max). Else >= 2 k_max + 1.
+  // Harmonics of the truncation, same kind as the model's: 0 for the model's H.
+  // Shooting's cost hardly depends on the start's H, so a coarse HB start can
+  // be projected on many harmonics (its error then is the truncation's at that H).
+  int output_harmonics = 0;
+  // Instants per period for the projection; 0: max(256, 32 k_max) of the
+  // output basis. Else >= 2 k_max + 1.
   int samples = 0;
   // Throws InputError naming the field.
   void validate(const HbModel& model) const;
+  // The basis of the truncation for `model`.
+  HarmonicSet outputBasis(const HbModel& model) const;
 };
 
 struct RefinedSolution {
   bool converged = false;    // shooting converged and the orbit was sampled
   std::string failure;       // why not
   ShootingResult orbit;
-  Eigen::VectorXd full;      // [x; λ] coefficients of the exact orbit on model.basis (FullSystem layout)
+  HarmonicSet basis{HarmonicKind::kOdd, 1};  // of the truncation: the model's or output_harmonics
+  Eigen::VectorXd full;      // [x; λ] coefficients of the exact orbit on `basis` (FullSystem layout)
   Eigen::VectorXd max_abs;   // exact max_t |x_i(t)| of the orbit
   int samples = 0;           // instants of the projection
   double seconds = 0.0;      // shooting and projection
 };
 
 // Shoots from `full` (a harmonic-balance solution of `model`, FullSystem
-// layout) and projects the orbit on model.basis. Throws InputError for laws
+// layout) and projects the orbit on model.basis (or output_harmonics). Throws InputError for laws
 // without an exact flow (see makeFlow) and bad options.
 RefinedSolution refineByShooting(const HbModel& model, const Eigen::VectorXd& full, const RefinementOptions& options);
 
