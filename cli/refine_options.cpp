@@ -9,11 +9,16 @@ void addRefineOptions(CLI::App* cmd, RefineArguments& a) {
       ->check(CLI::IsMember({"shoot"}));
   cmd->add_option("--restitution", a.restitution, "With --refine shoot: Newton impact coefficient e of contact laws")
       ->capture_default_str();
+  cmd->add_option("--refine-harmonics", a.harmonics,
+                  "With --refine shoot: the orbit's Fourier truncation on this many harmonics (default: --harmonics); "
+                  "shooting costs about the same from any H, so a coarse solve can report many harmonics")
+      ->check(CLI::PositiveNumber);
 }
 
 orbits::RefinedSolution refine(const HbModel& model, const Eigen::VectorXd& full, const RefineArguments& a) {
   orbits::RefinementOptions options;
   options.restitution = a.restitution;
+  options.output_harmonics = a.harmonics;
   return orbits::refineByShooting(model, full, options);
 }
 
@@ -32,6 +37,7 @@ nlohmann::json refinementJson(const orbits::RefinedSolution& refined, const HbSo
                         {"period_residual", refined.orbit.period_residual},
                         {"iterations", refined.orbit.iterations},
                         {"flow_evaluations", refined.orbit.flow_evaluations},
+                        {"harmonics", refined.basis.count()},
                         {"samples", refined.samples},
                         {"seconds", refined.seconds},
                         {"restitution", restitution},

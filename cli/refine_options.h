@@ -15,6 +15,7 @@ namespace eqhb::cli {
 struct RefineArguments {
   std::string method;        // --refine: "" (none) or "shoot"
   double restitution = 0.0;  // --restitution of contact laws, in [0, 1]
+  int harmonics = 0;         // --refine-harmonics: the truncation's H (0: the solve's)
 };
 
 void addRefineOptions(CLI::App* command, RefineArguments& args);
@@ -28,7 +29,7 @@ orbits::RefinedSolution refine(const HbModel& model, const Eigen::VectorXd& full
 HbSolution refinedSummary(const HbModel& model, const orbits::RefinedSolution& refined);
 
 // {"method", "converged", "failure", "period_residual", "iterations",
-//  "flow_evaluations", "samples", "seconds", "restitution",
+//  "flow_evaluations", "harmonics", "samples", "seconds", "restitution",
 //  "hb_max_abs": [per DOF, plain harmonic balance], "max_abs": [per DOF, exact]}
 nlohmann::json refinementJson(const orbits::RefinedSolution& refined, const HbSolution& plain, double restitution);
 

@@ -190,6 +190,8 @@ int runSolve(const SolveArguments& given) {
   SolveArguments a = given;
   // --refine shoot: unsupported laws and a bad restitution fail before any solve.
   if (!a.refine.method.empty()) orbits::makeFlow(loadSceneWith(a.scene).model, a.refine.restitution);
+  if (a.refine.method.empty() && a.refine.harmonics)
+    throwInputError("--refine-harmonics", std::to_string(a.refine.harmonics), "needs --refine shoot");
   // --accuracy: choose H and N first, then report the chosen solution as usual.
   std::optional<AccuracyChoice> choice;
   RhoCandidates candidates;
@@ -216,12 +218,18 @@ int runSolve(const SolveArguments& given) {
   const double median = times.size() % 2 ? times[times.size() / 2]
                                          : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
   // --refine shoot: the exact orbit replaces the harmonic-balance answer.
-  Eigen::VectorXd answer = system->fullCoefficients(result.solution);
+  // With --refine-harmonics the orbit is reported on another H (`reported`).
+  const Eigen::VectorXd hb_answer = system->fullCoefficients(result.solution);
+  Eigen::VectorXd answer = hb_answer;
+  HbModel reported = model;
   const HbSolution plain = summarize(model, answer);
   std::optional<orbits::RefinedSolution> refined;
   if (!a.refine.method.empty() && result.converged()) refined = refine(model, answer, a.refine);
-  if (refined && refined->converged) answer = refined->full;
-  const HbSolution solution = refined && refined->converged ? refinedSummary(model, *refined) : plain;
+  if (refined && refined->converged) {
+    answer = refined->full;
+    if (refined->basis.count() != model.basis.count()) reported = withHarmonics(model, refined->basis.count());
+  }
+  const HbSolution solution = refined && refined->converged ? refinedSummary(reported, *refined) : plain;
   // How the linear algebra went: dense or sparse, set-up, memory.
   const bool sparse_solver = useSparseAlgebra(*run.system, options);
   const auto* condensed = dynamic_cast<const CondensedSystem*>(system);
@@ -234,7 +242,7 @@ int runSolve(const SolveArguments& given) {
   // Stability of the converged solution (Hill's method, full system).
   HillResult hill;
   const bool with_stability = a.stability && result.converged();
-  if (with_stability) hill = hillStability(model, answer);
+  if (with_stability) hill = hillStability(model, hb_answer);
   std::optional<ErrorEstimate> estimate;
   if (choice && choice->estimate.refined_harmonics) estimate = choice->estimate;
   else if (a.accuracy.error_estimate && result.converged()) {
@@ -271,11 +279,11 @@ int runSolve(const SolveArguments& given) {
     out["setup_seconds"] = run.setup_seconds;
     if (condensed) out["factor_mib"] = factor_mib;
     out["peak_rss_mib"] = peak_rss_mib;
-    const nlohmann::json channels = solutionJson(model, solution);
+    const nlohmann::json channels = solutionJson(reported, solution);
     out["dofs"] = channels["dofs"];
     out["laws"] = channels["laws"];
     nlohmann::json invariants = nlohmann::json::array();
-    for (const auto& report : checkInvariants(model, answer)) {
+    for (const auto& report : checkInvariants(reported, answer)) {
       nlohmann::json measures;
       for (const auto& [name, value] : report.violations) measures[name] = value;
       invariants.push_back({{"law", report.law + 1}, {"type", report.type}, {"violations", measures}});
@@ -291,7 +299,7 @@ int runSolve(const SolveArguments& given) {
     if (a.trajectory) {
       // One period on the model's N samples: t, x per DOF, λ per law component.
       nlohmann::json t = nlohmann::json::array();
-      for (int i = 0; i < model.samples; ++i) t.push_back(2 * M_PI / model.omega * i / model.samples);
+      for (int i = 0; i < reported.samples; ++i) t.push_back(2 * M_PI / model.omega * i / reported.samples);
       nlohmann::json trajectory = {{"t", t}};
       for (const auto& c : solution.displacements)
         trajectory[c.label] = std::vector<double>(c.samples.data(), c.samples.data() + c.samples.size());
@@ -321,13 +329,14 @@ int runSolve(const SolveArguments& given) {
     if (refined)
       std::cout << "refined by shooting: " << (refined->converged ? "exact periodic orbit" : "NOT converged: " + refined->failure)
                 << ", period residual " << refined->orbit.period_residual << " after " << refined->orbit.iterations
-                << " Newton steps, " << refined->seconds << " s (max|x| above: the orbit's; coefficients: its truncation)\n";
+                << " Newton steps, " << refined->seconds << " s (max|x| above: the orbit's; coefficients: its truncation on H = "
+                << refined->basis.count() << ")\n";
     if (choice)
       std::cout << "--accuracy " << *a.accuracy.tolerance << ": " << (choice->reached ? "reached" : "NOT reached")
                 << " at H = " << model.basis.count() << ", N = " << model.samples << ", rho = "
                 << rhoJson(candidates.scene_rho, candidates.factors[choice->candidate]).dump() << " in " << choice->seconds
                 << " s of solves\n";
-    for (const auto& report : checkInvariants(model, answer)) {
+    for (const auto& report : checkInvariants(reported, answer)) {
       std::cout << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";
       for (const auto& [name, value] : report.violations) std::cout << " " << name << " " << value;
       std::cout << "\n";
