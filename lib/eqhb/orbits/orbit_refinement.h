@@ -33,7 +33,7 @@ struct RefinementOptions {
   // Shooting's cost hardly depends on the start's H, so a coarse HB start can
   // be projected on many harmonics (its error then is the truncation's at that H).
   int output_harmonics = 0;
-  // Instants per period for the projection; 0: max(256, 32 k_max) of the
+  // Instants per period for the projection; 0: max(256, 8 k_max) of the
   // output basis. Else >= 2 k_max + 1.
   int samples = 0;
   // Throws InputError naming the field.
