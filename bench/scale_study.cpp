@@ -294,19 +294,29 @@ std::vector<ScaleRow> runScaleStudy(bool quick, const std::vector<std::string>& 
     structure("beam-joint-large H=7 condensed, 100-point response", spec);
   }
   {
-    // Brake–Reuss-sized: 481 DOFs, 122 contacts, harmonics 0..3, N = 128.
+    // Brake–Reuss-sized: 481 DOFs, 122 contacts, N = 128. With harmonics
+    // 0..3 (the reference model's set) and 1D Coulomb contacts the mean of a
+    // contact that sticks over the whole period is undetermined (any offset
+    // within the friction limit is periodic; the reference model fixes it by
+    // a static preload, which a chain has not): the Jacobian is singular and
+    // the solve stops not_progressing. The same size on the odd harmonics
+    // 1, 3, 5, 7 is well posed: 976 condensed, 4,824 full unknowns.
     CaseSpec spec;
     spec.chain.dofs = 481;
     spec.chain.omega = kScaleOmega;
     spec.chain.contacts = 122;
-    spec.chain.harmonics = 3;
-    spec.chain.set = "all";
     spec.chain.samples = 128;
     spec.solver = "dogleg";
-    for (bool condensed : {true, false}) {
-      spec.condensed = condensed;
-      spec.repeats = 3;
-      structure(std::string("481 DOFs, 122 contacts, H=0..3, ") + (condensed ? "condensed" : "full"), spec);
+    spec.repeats = 3;
+    for (bool all : {true, false}) {
+      spec.chain.harmonics = all ? 3 : 4;
+      spec.chain.set = all ? "all" : "odd";
+      for (bool condensed : {true, false}) {
+        spec.condensed = condensed;
+        structure(std::string("481 DOFs, 122 contacts, ") + (all ? "H=0..3 (ill-posed: stuck means), " : "H=1,3,5,7, ") +
+                      (condensed ? "condensed" : "full"),
+                  spec);
+      }
     }
   }
   {
