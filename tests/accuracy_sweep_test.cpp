@@ -94,6 +94,22 @@ TEST(AccuracySweep, NamesThePointsWhereTheLargestHIsNotEnough) {
   }
 }
 
+TEST(AccuracySweep, TheCurveStartsFromTheFirstLaddersSolution) {
+  // friction-1d at ω = 0.1: the ladder picks ρ = 0.01 and H = 20, on which a
+  // cold start does not converge; the curve starts from the ladder's solution.
+  auto solver = makeSolver("dogleg");
+  std::vector<HbModel> candidates;
+  for (const char* rho : {"1", "0.1", "0.01"})
+    candidates.push_back(loadScene(test::problem("friction-1d.toml"), {std::string("law[0].rho=") + rho}).model);
+  const AccurateCurve a =
+      sweepToAccuracy(candidates, 1e-2, 5, 320, *solver, tightOptions(), grid(0.1, 0.12, 0.01), false);
+  ASSERT_TRUE(a.first.reached) << a.first.failure;
+  EXPECT_EQ(a.curve.failed_points, 0);
+  ASSERT_EQ(a.curve.points.size(), 3u);
+  for (const CurvePoint& p : a.curve.points) EXPECT_EQ(p.accuracy_met, 1) << p.omega;
+  EXPECT_TRUE(a.not_met.empty());
+}
+
 TEST(AccuracySweep, RejectsAToleranceThatIsNotARelativeErrorBeforeSolving) {
   auto solver = makeSolver("dogleg");
   EXPECT_THROW(sweepToAccuracy({scene("coulomb-oscillator.toml")}, 1.5, 5, 320, *solver, tightOptions(),

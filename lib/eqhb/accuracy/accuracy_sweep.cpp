@@ -61,8 +61,13 @@ AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tol
   // an estimate (or the first H if even that failed) and its points say so.
   out.model = out.first.model;
   out.model.omega = candidates.front().omega;
-  out.curve = arclength ? sweepArclength(out.model, solver, solver_options, options, sweep_progress)
-                        : sweepSequential(out.model, solver, solver_options, options, sweep_progress);
+  // The curve starts from the first ladder's solution: a cold start on its H
+  // may fail where the ladder, warm from rung to rung, converged (friction-1d
+  // at ω = 0.1 with ρ = 0.01 on H = 20).
+  ContinuationOptions seeded = options;
+  if (out.first.result.converged()) seeded.start_full = out.first.full;
+  out.curve = arclength ? sweepArclength(out.model, solver, solver_options, seeded, sweep_progress)
+                        : sweepSequential(out.model, solver, solver_options, seeded, sweep_progress);
   for (size_t i = 0; i < out.curve.points.size(); ++i) {
     CurvePoint& p = out.curve.points[i];
     if (!p.converged) continue;

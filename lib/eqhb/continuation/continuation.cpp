@@ -123,7 +123,8 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   auto system = makeHbSystem(m, options.condensed, solver_options.linear_algebra);
   const double direction = options.to > options.from ? 1.0 : -1.0;
   const int grid = static_cast<int>(options.gridPoints()) - 1;
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(system->size());
+  Eigen::VectorXd z = options.start_full.size() ? system->fromFullCoefficients(options.start_full)
+                                                : Eigen::VectorXd::Zero(system->size());
   double last_converged_omega = NAN;
   for (int i = 0; i <= grid; ++i) {
     const double target = options.from + direction * i * options.step;
@@ -278,7 +279,9 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
   const double lo = std::min(options.from, options.to), hi = std::max(options.from, options.to);
 
   // First point: a plain solve at `from`, else by continuation in H.
-  SolverResult first = solver.solve(*system, Eigen::VectorXd::Zero(n), solver_options);
+  SolverResult first = solver.solve(
+      *system, options.start_full.size() ? system->fromFullCoefficients(options.start_full) : Eigen::VectorXd::Zero(n),
+      solver_options);
   if (!first.converged()) {
     Eigen::VectorXd full;
     first = solveByHarmonicContinuation(m, solver, solver_options, 1, options.condensed, &full);

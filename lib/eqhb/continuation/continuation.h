@@ -67,6 +67,9 @@ struct ContinuationOptions {
   int max_points = 20000;
   int target_iterations = 12;   // arclength step adaptation aims at this
   bool condensed = true;
+  // The first point's start: its [x; λ] coefficients (FullSystem layout, the
+  // model's H) at `from`, e.g. a solution already known there; empty: zero.
+  Eigen::VectorXd start_full;
   // Throws InputError naming the field.
   void validate() const;
   // Points of the sequential grid, floor(|to − from| / step) + 1, as a
