@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
                                    {"contact.toml", 0.5, 0.0},       {"contact.toml", 0.5, 1.0},
                                    {"friction-2d-sliding.toml", 0.6, 0.0}, {"friction-2d.toml", 0.1, 0.0},
                                    {"stribeck.toml", 0.2, 0.0},      {"stribeck.toml", 0.4, 0.0},
-                                   {"cubic.toml", 0.5, 0.0}};
+                                   {"cubic.toml", 0.5, 0.0},         {"jenkins-1d.toml", 0.4, 0.0}};
   const std::vector<int> steps = quick ? std::vector<int>{250, 1000} : std::vector<int>{250, 500, 1000, 2000, 4000};
   const std::vector<int> harmonics = quick ? std::vector<int>{5, 20} : std::vector<int>{5, 10, 20, 40, 80, 160};
   std::ostringstream md;
@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
     text.str("");
   };
   md << "# Exact periodic orbits as references of truth\n\n"
-     << "Shooting from harmonic balance (H = the scene's), event-driven: closed-form phases (Coulomb 1D, "
+     << "Shooting from harmonic balance (H = the scene's), event-driven: closed-form phases (Coulomb 1D, Jenkins on one DOF, "
      << "Signorini), Gauss–Legendre order 6 (cubic, Coulomb 2D with stick–slip, Stribeck). "
      << "Errors are relative to max|x| of the exact orbit: `sup` = max over the period and DOFs of |x − x_exact|, "
      << "`max|x|` = relative error of the largest displacement. Moreau–Jean θ = ½ is started from harmonic "

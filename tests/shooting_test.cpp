@@ -528,11 +528,84 @@ TEST(Shooting, BriefPlanarReleaseInsideOneStepIsFound) {
   }
 }
 
-TEST(Shooting, RejectsLawsItCannotIntegrate) {
+// Elastic dry friction (Jenkins, k_t = 5): the slider position is a state.
+// The orbit from harmonic balance, its monodromy against finite
+// differences, and harmonic balance converging to it as H grows.
+TEST(Shooting, JenkinsOrbitMonodromyAndHarmonicBalanceError) {
   const HbModel model = loadScene(test::problem("jenkins-1d.toml")).model;
-  EXPECT_FALSE(PiecewiseLinearFlow::supports(model));
-  EXPECT_FALSE(orbits::SmoothFlow::supports(model));
-  EXPECT_THROW(orbits::makeFlow(model, 0.0), InputError);
+  ASSERT_TRUE(PiecewiseLinearFlow::supports(model));
+  const PiecewiseLinearFlow flow(model, 0.0);
+  EXPECT_EQ(flow.stateSize(), 5);  // x1, x2, v1, v2, w
+  const Eigen::VectorXd hb = harmonicBalance(model);
+  const double t0 = orbits::quietStartTime(model, hb);
+  const auto orbit = shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
+  ASSERT_TRUE(orbit.converged) << orbit.failure;
+  EXPECT_LE(orbit.period_residual, 1e-11);
+  EXPECT_TRUE(orbit.stable);
+  EXPECT_EQ(orbit.events.at("slip"), 2);
+  EXPECT_EQ(orbit.events.at("stick"), 2);
+  // On the orbit the spring force stays within the limit: |k_t (x2 − w)| <= μN.
+  orbits::FlowSamples samples;
+  for (int s = 0; s < 256; ++s) samples.times.push_back(t0 + flow.period() * s / 256);
+  const auto run = flow.integrate(orbit.state, t0, flow.period(), false, &samples);
+  ASSERT_TRUE(run.ok) << run.failure;
+  EXPECT_LE(samples.force.cwiseAbs().maxCoeff(), 7.2 * (1.0 + 1e-12));
+  // The monodromy from a stuck instant (force well inside the limit), where
+  // every perturbation keeps the event sequence, against finite differences;
+  // and from the slipping start, where w is slaved to x: ∂P/∂w = 0.
+  Eigen::Index stuck = 0;
+  samples.force.col(0).cwiseAbs().minCoeff(&stuck);
+  const double t_stuck = samples.times[stuck];
+  const auto to_stuck = flow.integrate(orbit.state, t0, t_stuck - t0, false);
+  ASSERT_TRUE(to_stuck.ok) << to_stuck.failure;
+  EXPECT_LT(jacobianMismatch(flow, to_stuck.end, t_stuck, flow.period()), 1e-5);
+  const auto from_slip = flow.integrate(orbit.state, t0, flow.period(), true);
+  EXPECT_EQ(from_slip.jacobian.col(4).cwiseAbs().maxCoeff(), 0.0);
+  // Harmonic balance against the exact orbit: the sup error falls with H.
+  std::vector<double> errors;
+  for (int h : {5, 10, 20, 40}) {
+    HbModel m = loadScene(test::problem("jenkins-1d.toml"), {"harmonic_balance.harmonics=" + std::to_string(h),
+                                                            "harmonic_balance.samples=" + std::to_string(32 * h)})
+                    .model;
+    const Eigen::VectorXd full = harmonicBalance(m);
+    double sup = 0.0;
+    for (size_t s = 0; s < samples.times.size(); ++s)
+      sup = std::max(sup, (orbits::harmonicState(m, full, samples.times[s]).head(2) -
+                           samples.displacement.row(s).transpose()).cwiseAbs().maxCoeff());
+    errors.push_back(sup / orbit.max_abs.maxCoeff());
+  }
+  for (size_t i = 1; i < errors.size(); ++i) EXPECT_LT(errors[i], 0.7 * errors[i - 1]) << i;
+  EXPECT_LT(errors.back(), 5e-3);
+}
+
+// k_t → ∞: the elastic orbit tends to the rigid Coulomb one of friction-1d.
+TEST(Shooting, StiffJenkinsOrbitApproachesTheCoulombOrbit) {
+  auto shoot = [](const HbModel& model) {
+    const auto flow = orbits::makeFlow(model, 0.0);
+    const Eigen::VectorXd hb = harmonicBalance(model);
+    const double t0 = orbits::quietStartTime(model, hb);
+    return shootPeriodicOrbit(*flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
+  };
+  const auto rigid = shoot(loadScene(test::problem("friction-1d.toml")).model);
+  ASSERT_TRUE(rigid.converged) << rigid.failure;
+  std::vector<double> distances;
+  for (const char* k_t : {"1e2", "1e3"}) {
+    const auto elastic = shoot(loadScene(test::problem("jenkins-1d.toml"), {std::string("law.k_t=") + k_t}).model);
+    ASSERT_TRUE(elastic.converged) << k_t << ": " << elastic.failure;
+    distances.push_back((elastic.max_abs - rigid.max_abs).cwiseAbs().maxCoeff() / rigid.max_abs.maxCoeff());
+  }
+  EXPECT_LT(distances[1], 0.3 * distances[0]);
+  EXPECT_LT(distances[1], 5e-3);  // 2.3e-3 at k_t = 1e3
+}
+
+TEST(Shooting, RejectsLawsItCannotIntegrate) {
+  for (const HbModel& model :
+       {loadScene(test::problem("contact-friction-2d.toml")).model,
+        loadScene(test::problem("friction-2d-sliding.toml"), {"law.type=\"jenkins\"", "law.k_t=5"}).model}) {
+    EXPECT_FALSE(PiecewiseLinearFlow::supports(model));
+    EXPECT_FALSE(orbits::SmoothFlow::supports(model));
+    EXPECT_THROW(orbits::makeFlow(model, 0.0), InputError);
+  }
   EXPECT_THROW(PiecewiseLinearFlow flow(linearChain(false), 1.5), InputError);
   EXPECT_THROW(orbits::makeFlow(linearChain(false), -0.1), InputError);
 }

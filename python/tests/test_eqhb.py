@@ -165,7 +165,7 @@ BAD = [
     (lambda: eqhb.sweep(eqhb.load_scene(SCENE), 0.1, 0.2, step=0.0), "step"),
     (lambda: eqhb.simulate(eqhb.load_scene(SCENE), theta=2.0), "theta"),
     (lambda: eqhb.shoot(eqhb.load_scene(SCENE), restitution=2.0), "restitution"),
-    (lambda: eqhb.shoot(eqhb.load_scene(PROBLEMS / "jenkins-1d.toml")), "law"),
+    (lambda: eqhb.shoot(eqhb.load_scene(PROBLEMS / "contact-friction-2d.toml")), "law"),
 ]
 
 

@@ -7,6 +7,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/laws/signorini.h"
 
 namespace eqhb::orbits {
@@ -53,11 +54,17 @@ double locateZero(const Eigen::RowVectorXd& c, const Eigen::MatrixXd& generator,
   return hi;
 }
 
+const Jenkins* isJenkins1D(const Law* law) {
+  const auto* jenkins = dynamic_cast<const Jenkins*>(law);
+  return jenkins && jenkins->dimension() == 1 ? jenkins : nullptr;
+}
+
 }  // namespace
 
 bool PiecewiseLinearFlow::supports(const HbModel& model) {
   for (const auto& attached : model.laws)
-    if (!dynamic_cast<const Coulomb1D*>(attached.law.get()) && !dynamic_cast<const Signorini*>(attached.law.get()))
+    if (!dynamic_cast<const Coulomb1D*>(attached.law.get()) && !dynamic_cast<const Signorini*>(attached.law.get()) &&
+        !isJenkins1D(attached.law.get()))
       return false;
   return true;
 }
@@ -94,7 +101,7 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
     cos_load_[h][load.dof] += load.cos_amplitude;
     sin_load_[h][load.dof] += load.sin_amplitude;
   }
-  nz_ = 2 * n_ + 1 + 2 * static_cast<int>(harmonics_.size());
+  m_ = 2 * n_;
   for (size_t l = 0; l < model.laws.size(); ++l) {
     const Law* law = model.laws[l].law.get();
     LawSite site;
@@ -104,15 +111,23 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
     } else if (const auto* contact = dynamic_cast<const Signorini*>(law)) {
       site.contact = true;
       site.gap = contact->gap();
+    } else if (const Jenkins* jenkins = isJenkins1D(law)) {
+      site.limit = jenkins->muN();
+      site.stiffness = jenkins->stiffness();
+      site.slider = m_++;
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
-                      "exact orbits handle coulomb-1d, signorini (closed form), cubic, coulomb-2d, stribeck "
+                      "exact orbits handle coulomb-1d, jenkins on 1 DOF, signorini (closed form), cubic, coulomb-2d, stribeck "
                       "and coulomb-1d (smooth phases) laws; signorini does not mix with the smooth ones");
     }
     sites_.push_back(site);
   }
+  nz_ = m_ + 1 + 2 * static_cast<int>(harmonics_.size());
   // Fastest rate: natural frequency bound, damping rate, forcing.
-  double rate = std::max(std::sqrt((mass_inverse_ * stiffness_).cwiseAbs().rowwise().sum().maxCoeff()),
+  Eigen::MatrixXd stuck_stiffness = stiffness_;  // with every elastic slider stuck
+  for (const LawSite& site : sites_)
+    if (site.slider >= 0) stuck_stiffness(site.dof, site.dof) += site.stiffness;
+  double rate = std::max(std::sqrt((mass_inverse_ * stuck_stiffness).cwiseAbs().rowwise().sum().maxCoeff()),
                          (mass_inverse_ * damping_).cwiseAbs().rowwise().sum().maxCoeff());
   for (int k : harmonics_) rate = std::max(rate, k * omega_);
   rate_ = std::max(rate, omega_);
@@ -120,16 +135,16 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
 
 Eigen::VectorXd PiecewiseLinearFlow::augment(const Eigen::VectorXd& y, double t) const {
   Eigen::VectorXd z(nz_);
-  z.head(2 * n_) = y;
+  z.head(m_) = y;
   refreshForcing(z, t);
   return z;
 }
 
 void PiecewiseLinearFlow::refreshForcing(Eigen::VectorXd& z, double t) const {
-  z[2 * n_] = 1.0;
+  z[m_] = 1.0;
   for (size_t h = 0; h < harmonics_.size(); ++h) {
-    z[2 * n_ + 1 + 2 * h] = std::cos(harmonics_[h] * omega_ * t);
-    z[2 * n_ + 2 + 2 * h] = std::sin(harmonics_[h] * omega_ * t);
+    z[m_ + 1 + 2 * h] = std::cos(harmonics_[h] * omega_ * t);
+    z[m_ + 2 + 2 * h] = std::sin(harmonics_[h] * omega_ * t);
   }
 }
 
@@ -142,16 +157,22 @@ const PiecewiseLinearFlow::Phase& PiecewiseLinearFlow::phase(const std::vector<M
     const int dof = sites_[l].dof;
     if (modes[l] == Mode::kSlipPositive) sliding[dof] -= sites_[l].limit;
     if (modes[l] == Mode::kSlipNegative) sliding[dof] += sites_[l].limit;
-    if (modes[l] == Mode::kStick || modes[l] == Mode::kClosed) p.constrained.push_back(dof);
+    if (sites_[l].slider < 0 && (modes[l] == Mode::kStick || modes[l] == Mode::kClosed)) p.constrained.push_back(dof);
   }
   // b = B z: the force on the structure except the constraint forces.
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n_, nz_);
   b.leftCols(n_) = -stiffness_;
   b.middleCols(n_, n_) = -damping_;
-  b.col(2 * n_) = constant_load_ + sliding;
+  // A stuck elastic slider: force −k_t (x − w) on its DOF.
+  for (size_t l = 0; l < sites_.size(); ++l)
+    if (sites_[l].slider >= 0 && modes[l] == Mode::kStick) {
+      b(sites_[l].dof, sites_[l].dof) -= sites_[l].stiffness;
+      b(sites_[l].dof, sites_[l].slider) += sites_[l].stiffness;
+    }
+  b.col(m_) = constant_load_ + sliding;
   for (size_t h = 0; h < harmonics_.size(); ++h) {
-    b.col(2 * n_ + 1 + 2 * h) = cos_load_[h];
-    b.col(2 * n_ + 2 + 2 * h) = sin_load_[h];
+    b.col(m_ + 1 + 2 * h) = cos_load_[h];
+    b.col(m_ + 2 + 2 * h) = sin_load_[h];
   }
   Eigen::MatrixXd q = mass_inverse_;
   const int g = static_cast<int>(p.constrained.size());
@@ -167,9 +188,11 @@ const PiecewiseLinearFlow::Phase& PiecewiseLinearFlow::phase(const std::vector<M
   p.generator = Eigen::MatrixXd::Zero(nz_, nz_);
   p.generator.block(0, n_, n_, n_).setIdentity();
   p.generator.middleRows(n_, n_) = q * b;
+  for (size_t l = 0; l < sites_.size(); ++l)  // a slipping slider moves with its DOF: ẇ = ẋ
+    if (sites_[l].slider >= 0 && modes[l] != Mode::kStick) p.generator(sites_[l].slider, n_ + sites_[l].dof) = 1.0;
   for (size_t h = 0; h < harmonics_.size(); ++h) {
     const double kw = harmonics_[h] * omega_;
-    const int c = 2 * n_ + 1 + 2 * static_cast<int>(h);
+    const int c = m_ + 1 + 2 * static_cast<int>(h);
     p.generator(c, c + 1) = -kw;  // d/dt cos = −kω sin
     p.generator(c + 1, c) = kw;   // d/dt sin = kω cos
   }
@@ -198,19 +221,19 @@ std::vector<PiecewiseLinearFlow::Event> PiecewiseLinearFlow::events(const std::v
         out.push_back(e);
         break;
       case Mode::kStick: {
-        const Eigen::RowVectorXd r = constraintRow(site.dof);
+        const Eigen::RowVectorXd r = site.slider >= 0 ? springForceRow(site) : constraintRow(site.dof);
         e.kind = "slip";
         e.functional = -r;  // μN − r
-        e.functional[2 * n_] += site.limit;
+        e.functional[m_] += site.limit;
         out.push_back(e);
         e.functional = r;   // μN + r
-        e.functional[2 * n_] += site.limit;
+        e.functional[m_] += site.limit;
         out.push_back(e);
         break;
       }
       case Mode::kOpen:
         e.functional[site.dof] = -1.0;  // g0 − x
-        e.functional[2 * n_] = site.gap;
+        e.functional[m_] = site.gap;
         e.kind = "impact";
         out.push_back(e);
         break;
@@ -233,7 +256,15 @@ std::vector<PiecewiseLinearFlow::Mode> PiecewiseLinearFlow::chooseModes(const Ei
     if (!free_choice[l]) continue;
     const LawSite& site = sites_[l];
     const double v = z[n_ + site.dof];
-    if (site.contact)
+    if (site.slider >= 0) {
+      // Elastic: stuck inside the limit; on it, slipping where the DOF moves
+      // against the spring force (r = −μN while ẋ > 0), else stuck.
+      const double r = springForceRow(site).dot(z);
+      const double tie = kTieTolerance * std::max(site.limit, std::numeric_limits<double>::min());
+      modes[l] = (r <= -site.limit + tie && v > 0.0)  ? Mode::kSlipPositive
+                 : (r >= site.limit - tie && v < 0.0) ? Mode::kSlipNegative
+                                                      : Mode::kStick;
+    } else if (site.contact)
       modes[l] = (z[site.dof] < site.gap || v < 0.0) ? Mode::kOpen : Mode::kClosed;
     else
       modes[l] = v > 0.0 ? Mode::kSlipPositive : v < 0.0 ? Mode::kSlipNegative : Mode::kStick;
@@ -247,7 +278,7 @@ std::vector<PiecewiseLinearFlow::Mode> PiecewiseLinearFlow::chooseModes(const Ei
     double worst_excess = 0.0;
     Mode release = Mode::kOpen;
     for (size_t l = 0; l < sites_.size(); ++l) {
-      if (!free_choice[l] || (modes[l] != Mode::kStick && modes[l] != Mode::kClosed)) continue;
+      if (!free_choice[l] || sites_[l].slider >= 0 || (modes[l] != Mode::kStick && modes[l] != Mode::kClosed)) continue;
       const auto i = std::find(p.constrained.begin(), p.constrained.end(), sites_[l].dof) - p.constrained.begin();
       const double f = p.constraint_force.row(i).dot(z);
       // At a tie (force on the boundary of its set to round-off) the rate
@@ -272,6 +303,13 @@ std::vector<PiecewiseLinearFlow::Mode> PiecewiseLinearFlow::chooseModes(const Ei
   return modes;
 }
 
+Eigen::RowVectorXd PiecewiseLinearFlow::springForceRow(const LawSite& site) const {
+  Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(nz_);  // r = −k_t (x − w)
+  r[site.dof] = -site.stiffness;
+  r[site.slider] = site.stiffness;
+  return r;
+}
+
 double PiecewiseLinearFlow::lawForce(int l, Mode mode, const Phase& p, const Eigen::VectorXd& z) const {
   const LawSite& site = sites_[l];
   switch (mode) {
@@ -279,6 +317,8 @@ double PiecewiseLinearFlow::lawForce(int l, Mode mode, const Phase& p, const Eig
     case Mode::kSlipNegative: return site.limit;
     case Mode::kOpen: return 0.0;
     case Mode::kStick:
+      if (site.slider >= 0) return springForceRow(site).dot(z);
+      [[fallthrough]];
     case Mode::kClosed: {
       const auto i = std::find(p.constrained.begin(), p.constrained.end(), site.dof) - p.constrained.begin();
       const double f = p.constraint_force.row(i).dot(z);
@@ -291,7 +331,7 @@ double PiecewiseLinearFlow::lawForce(int l, Mode mode, const Phase& p, const Eig
 FlowResult PiecewiseLinearFlow::integrate(const Eigen::VectorXd& y0, double t0, double duration,
                                           bool with_jacobian, FlowSamples* samples) const {
   FlowResult result;
-  if (y0.size() != 2 * n_ || !y0.allFinite() || !(duration >= 0.0) || !std::isfinite(t0)) {
+  if (y0.size() != m_ || !y0.allFinite() || !(duration >= 0.0) || !std::isfinite(t0)) {
     result.failure = "initial state or interval not finite or of the wrong size";
     return result;
   }
@@ -304,13 +344,25 @@ FlowResult PiecewiseLinearFlow::integrate(const Eigen::VectorXd& y0, double t0, 
       return result;
     }
   std::vector<Mode> modes = chooseModes(z, std::vector<Mode>(laws, Mode::kOpen), std::vector<bool>(laws, true));
+  // A slipping elastic slider starts where its spring holds the limit:
+  // w = x ∓ μN/k_t (a state beyond the limit is brought back onto it, and
+  // a perturbation of w alone does not move the orbit).
+  for (int l = 0; l < laws; ++l)
+    if (sites_[l].slider >= 0 && modes[l] != Mode::kStick)
+      z[sites_[l].slider] =
+          z[sites_[l].dof] + (modes[l] == Mode::kSlipPositive ? -1.0 : 1.0) * sites_[l].limit / sites_[l].stiffness;
   Eigen::MatrixXd jacobian;
   if (with_jacobian) {
     // A state starting constrained: perturbations off the constraint return
     // to it at once (the stop / plastic-impact saltation at t0).
-    jacobian = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
+    jacobian = Eigen::MatrixXd::Identity(m_, m_);
     for (int l = 0; l < laws; ++l) {
-      if (modes[l] == Mode::kStick || modes[l] == Mode::kClosed) jacobian.row(n_ + sites_[l].dof).setZero();
+      if (sites_[l].slider < 0 && (modes[l] == Mode::kStick || modes[l] == Mode::kClosed))
+        jacobian.row(n_ + sites_[l].dof).setZero();
+      if (sites_[l].slider >= 0 && modes[l] != Mode::kStick) {  // δw = δx
+        jacobian.row(sites_[l].slider).setZero();
+        jacobian(sites_[l].slider, sites_[l].dof) = 1.0;
+      }
       if (modes[l] == Mode::kClosed) jacobian.row(sites_[l].dof).setZero();
     }
   }
@@ -410,7 +462,7 @@ FlowResult PiecewiseLinearFlow::integrate(const Eigen::VectorXd& y0, double t0, 
       z_a = z_b;
     }
     if (tau_event > 0.0) immediate_events = 0;
-    if (with_jacobian) jacobian = (p.generator * tau_event).exp().topLeftCorner(2 * n_, 2 * n_) * jacobian;
+    if (with_jacobian) jacobian = (p.generator * tau_event).exp().topLeftCorner(m_, m_) * jacobian;
     t += tau_event;
     z = z_event;
     refreshForcing(z, t);
@@ -423,12 +475,17 @@ FlowResult PiecewiseLinearFlow::integrate(const Eigen::VectorXd& y0, double t0, 
     }
     const Event& ev = watch[fired];
     const LawSite& site = sites_[ev.law];
-    const Eigen::VectorXd f_before = (p.generator * z).head(2 * n_);
+    const Eigen::VectorXd f_before = (p.generator * z).head(m_);
     const double g_rate = ev.functional.dot(p.generator * z);
-    Eigen::MatrixXd reset = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
+    Eigen::MatrixXd reset = Eigen::MatrixXd::Identity(m_, m_);
     std::vector<bool> free_choice(laws, false);
     std::string kind = ev.kind;
-    if (ev.kind == "stop") {
+    if (ev.kind == "stop" && site.slider >= 0) {
+      // The DOF turns back with the spring force on the limit: the force
+      // leaves it inwards, the slider stops (no reset of the state).
+      modes[ev.law] = Mode::kStick;
+      kind = "stick";
+    } else if (ev.kind == "stop") {
       z[n_ + site.dof] = 0.0;
       free_choice[ev.law] = true;
       modes = chooseModes(z, modes, free_choice);
@@ -455,8 +512,8 @@ FlowResult PiecewiseLinearFlow::integrate(const Eigen::VectorXd& y0, double t0, 
     ++result.events[kind];
     if (with_jacobian) {
       const Phase& after = phase(modes);
-      const Eigen::VectorXd f_after = (after.generator * z).head(2 * n_);
-      const Eigen::RowVectorXd gradient = ev.functional.head(2 * n_);
+      const Eigen::VectorXd f_after = (after.generator * z).head(m_);
+      const Eigen::RowVectorXd gradient = ev.functional.head(m_);
       // A grazing event (ġ = 0) has no saltation term: the event time does
       // not move to first order.
       if (g_rate != 0.0) {
@@ -467,7 +524,7 @@ FlowResult PiecewiseLinearFlow::integrate(const Eigen::VectorXd& y0, double t0, 
       }
     }
   }
-  result.end = z.head(2 * n_);
+  result.end = z.head(m_);
   result.jacobian = jacobian;
   result.ok = true;
   return result;

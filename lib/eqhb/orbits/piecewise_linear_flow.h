@@ -1,6 +1,12 @@
 // Event-driven integration of a linear structure with exact Coulomb 1D
-// friction and Signorini contact (with Newton's impact law), phase by phase
-// in closed form.
+// friction, elastic dry friction on one DOF (Jenkins: spring k_t in series
+// with a slider) and Signorini contact (with Newton's impact law), phase by
+// phase in closed form.
+//
+// A Jenkins slider adds its position w to the state. Stuck, it is a spring:
+// force −k_t (x − w) on its DOF, ẇ = 0, until |k_t (x − w)| reaches μN
+// (event "slip"); slipping, the force is the constant ∓μN and ẇ = ẋ, until ẋ
+// vanishes (the DOF turns back, the force leaves the limit inwards: "stick").
 //
 // Between events every law is in one mode — slip in +x or −x (constant force
 // ∓μN), stick (velocity held at 0 by the force the structure needs, |r| <= μN),
@@ -73,11 +79,12 @@ class Flow {
 
 class PiecewiseLinearFlow : public Flow {
  public:
-  // Throws InputError when a law is not Coulomb 1D or Signorini or
+  // Throws InputError when a law is not Coulomb 1D, Jenkins on 1 DOF or Signorini or
   // restitution e is outside [0, 1].
   PiecewiseLinearFlow(const HbModel& model, double restitution);
 
-  int stateSize() const override { return 2 * n_; }
+  // [x; v; w]: w the positions of the elastic (Jenkins) sliders, in law order.
+  int stateSize() const override { return m_; }
   double period() const override { return 2.0 * M_PI / omega_; }
   // True if this flow can integrate the model's laws.
   static bool supports(const HbModel& model);
@@ -95,6 +102,8 @@ class PiecewiseLinearFlow : public Flow {
     int dof = 0;
     double limit = 0.0;  // μN (friction)
     double gap = 0.0;    // g0 (contact)
+    double stiffness = 0.0;  // k_t (elastic friction)
+    int slider = -1;         // index of the slider position w in the state, elastic friction only
   };
   struct Phase {
     Eigen::MatrixXd generator;       // Â
@@ -116,8 +125,9 @@ class PiecewiseLinearFlow : public Flow {
   Eigen::VectorXd augment(const Eigen::VectorXd& y, double t) const;
   void refreshForcing(Eigen::VectorXd& z, double t) const;
   double lawForce(int l, Mode mode, const Phase& p, const Eigen::VectorXd& z) const;
+  Eigen::RowVectorXd springForceRow(const LawSite& site) const;
 
-  int n_ = 0, nz_ = 0;
+  int n_ = 0, m_ = 0, nz_ = 0;  // DOFs, state size, augmented size
   double omega_ = 1.0, restitution_ = 0.0;
   Eigen::MatrixXd mass_inverse_, damping_, stiffness_;
   Eigen::VectorXd constant_load_;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/laws/signorini.h"
 
 namespace eqhb::orbits {
@@ -125,18 +126,32 @@ double distanceToOrbit(const Flow& flow, const ShootingResult& orbit, const Eige
 
 Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full, double t) {
   const int n = model.structure.dofs(), nb = model.basis.size();
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
-  for (int i = 0; i < n; ++i)
+  // Value and rate at t of the series whose coefficients start at `first`.
+  auto synthesize = [&](int first, double& value, double& rate) {
+    value = rate = 0.0;
     for (size_t h = 0; h < model.basis.harmonics().size(); ++h) {
-      const int k = model.basis.harmonics()[h], o = i * nb + model.basis.offset(static_cast<int>(h));
+      const int k = model.basis.harmonics()[h], o = first + model.basis.offset(static_cast<int>(h));
       if (k == 0) {
-        y[i] += full[o];
+        value += full[o];
         continue;
       }
       const double kw = k * model.omega, c = std::cos(kw * t), s = std::sin(kw * t);
-      y[i] += full[o] * c + full[o + 1] * s;
-      y[n + i] += kw * (-full[o] * s + full[o + 1] * c);
+      value += full[o] * c + full[o + 1] * s;
+      rate += kw * (-full[o] * s + full[o + 1] * c);
     }
+  };
+  std::vector<double> sliders;  // w = x + r/k_t of each Jenkins law on one DOF
+  for (size_t l = 0; l < model.laws.size(); ++l) {
+    const auto* jenkins = dynamic_cast<const Jenkins*>(model.laws[l].law.get());
+    if (!jenkins || jenkins->dimension() != 1) continue;
+    double x = 0.0, r = 0.0, rate = 0.0;
+    synthesize(model.laws[l].dofs[0] * nb, x, rate);
+    synthesize((n + model.componentIndex(static_cast<int>(l), 0)) * nb, r, rate);
+    sliders.push_back(x + r / jenkins->stiffness());
+  }
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n + static_cast<int>(sliders.size()));
+  for (int i = 0; i < n; ++i) synthesize(i * nb, y[i], y[n + i]);
+  for (size_t j = 0; j < sliders.size(); ++j) y[2 * n + static_cast<int>(j)] = sliders[j];
   return y;
 }
 

@@ -52,7 +52,9 @@ ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start
 double distanceToOrbit(const Flow& flow, const ShootingResult& orbit, const Eigen::MatrixXd& displacement);
 
 // y(t) = [x(t); ẋ(t)] of the displacement Fourier series in `full`
-// ([x; λ] coefficients on the model's basis).
+// ([x; λ] coefficients on the model's basis), followed by the slider
+// position w = x + r/k_t of each Jenkins law on one DOF (the state of
+// PiecewiseLinearFlow).
 Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full, double t);
 
 // The instant of the period (among N samples) where the harmonic solution

@@ -25,6 +25,8 @@ class Jenkins : public Law {
   bool usesForceRate() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   double forceLevel() const override { return mu_n_; }
+  double muN() const { return mu_n_; }
+  double stiffness() const { return 1.0 / compliance_; }  // k_t
   double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess max(‖r‖/μN − 1, 0); sliding_force_error max over
   // samples clearly slipping (‖u‖ > kElasticSlidingFraction of max, u the
