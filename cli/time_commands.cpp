@@ -18,16 +18,18 @@ namespace eqhb::cli {
 namespace {
 
 void addTimeOptions(CLI::App* cmd, TimeArguments& t) {
+  // Defaults shown are the general ones; a scene's [time_reference] replaces them.
   t.step = cmd->add_option("--step", t.options.step,
-                           "Time step h (adjusted to divide the period; default: the scene's [time_reference] or)")
+                           "Time step h, adjusted to divide the period (default: the scene's [time_reference], else)")
                ->capture_default_str();
-  t.periods = cmd->add_option("--periods", t.options.max_periods, "Most periods to integrate (scene or)")
+  t.periods = cmd->add_option("--periods", t.options.max_periods, "Most periods to integrate (scene's, else)")
                   ->capture_default_str();
-  t.theta = cmd->add_option("--theta", t.options.theta, "θ of the Moreau–Jean scheme, in [0.5, 1] (scene or)")
+  t.theta = cmd->add_option("--theta", t.options.theta, "θ of the Moreau–Jean scheme, in [0.5, 1] (scene's, else)")
                 ->capture_default_str();
-  t.periodic_tolerance = cmd->add_option("--periodic-tolerance", t.options.periodic_tolerance,
-                                         "Relative change of the period-start state that counts as periodic (scene or)")
-                             ->capture_default_str();
+  t.periodic_tolerance =
+      cmd->add_option("--periodic-tolerance", t.options.periodic_tolerance,
+                      "Relative change of the period-start state that counts as periodic (scene's, else)")
+          ->capture_default_str();
   cmd->add_option("--max-seconds", t.options.max_seconds,
                   "Stop integrating after this wall-clock time if not yet periodic (0: no limit; exit 1)")
       ->capture_default_str();
@@ -37,6 +39,7 @@ void addTimeOptions(CLI::App* cmd, TimeArguments& t) {
 
 nlohmann::json referenceJson(const HbModel& model, const TimeReference& ref) {
   nlohmann::json out = {{"periodic", ref.periodic},
+                        {"timed_out", ref.timed_out},
                         {"periods", ref.periods},
                         {"step", ref.step},
                         {"steps_per_period", ref.steps_per_period},

@@ -39,6 +39,8 @@ add_test(NAME cli.simulate_command_line_over_scene_defaults
 add_test(NAME cli.simulate_negative_max_seconds
          COMMAND ${EXPECT_EXIT} 2 "max seconds = -1: must be finite and >= 0" ${EQHB_CLI} simulate ${STRIBECK}
                  --max-seconds -1)
+add_test(NAME cli.simulate_wall_clock_limit_json
+         COMMAND ${EXPECT_EXIT} 1 "\"timed_out\": true" ${EQHB_CLI} simulate ${STRIBECK} --theta 0.5 --max-seconds 0.5 --json)
 
 # Bad input to the joint laws: exit 2, naming the field (parse-time checks,
 # so each runs in milliseconds).
