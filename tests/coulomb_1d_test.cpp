@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "eqhb/error.h"
@@ -17,6 +18,50 @@ LawSamples samplesOf(const std::vector<double>& v, const std::vector<double>& r)
     s.force(i, 0) = r[i];
   }
   return s;
+}
+
+// One time step of a unit mass under a constant free acceleration a (no
+// friction) from v0 = ±speed, as Law::solveStep sees it: D = h, u_free =
+// v0 + a h. The end velocity v0 + a h + h λ must be the exact one of the
+// contact under Coulomb's law.
+double exactEndVelocity(double v0, double a, double h, double mu_n) {
+  const double s = v0 > 0.0 ? 1.0 : -1.0;
+  const double slowing = a - s * mu_n;  // acceleration while sliding the old way
+  const double t_zero = slowing * s < 0.0 ? -v0 / slowing : h + 1.0;
+  if (t_zero >= h) return v0 + slowing * h;  // no zero within the step
+  if (std::abs(a) <= mu_n) return 0.0;       // stops and sticks
+  return (a + s * mu_n) * (h - t_zero);      // reverses: slides the other way
+}
+
+TEST(Coulomb1D, AStepHoldsTheExactImpulseWhenTheVelocityReverses) {
+  const double mu_n = 0.3, h = 0.01;
+  const Coulomb1D law(mu_n, CoulombForm::kMinMax);
+  StepProblem step;
+  step.h = h;
+  step.theta = 0.5;
+  step.delassus = LocalMatrix::Constant(1, 1, h);
+  step.x_start = LocalVector::Zero(1);
+  step.force_start = LocalVector::Zero(1);
+  int reversals = 0;
+  for (double sign : {1.0, -1.0})
+    for (double speed : {1e-4, 2e-3, 5e-3, 9e-3, 0.05})
+      for (double a : {-2.0, -0.8, -0.5, -0.31, -0.2, 0.0, 0.25, 0.6, 1.5}) {
+        const double v0 = sign * speed, accel = sign * a;
+        step.v_start = LocalVector::Constant(1, v0);
+        step.u_free = LocalVector::Constant(1, v0 + accel * h);
+        const double lambda = law.solveStep(step)[0];
+        EXPECT_LE(std::abs(lambda), mu_n * (1.0 + 1e-15));
+        const double end = v0 + accel * h + h * lambda, exact = exactEndVelocity(v0, accel, h, mu_n);
+        EXPECT_NEAR(end, exact, 1e-15) << "v0 = " << v0 << ", a = " << accel;
+        if (exact * v0 < 0.0) ++reversals;
+      }
+  EXPECT_GE(reversals, 10);  // the cases include reversals inside the step
+  // From rest the step sticks or slips as before: λ = proj(−u_free / D).
+  step.v_start = LocalVector::Zero(1);
+  step.u_free = LocalVector::Constant(1, 0.5 * h);
+  EXPECT_DOUBLE_EQ(law.solveStep(step)[0], -0.3);
+  step.u_free = LocalVector::Constant(1, -0.1 * h);
+  EXPECT_DOUBLE_EQ(law.solveStep(step)[0], 0.1);
 }
 
 const CoulombForm kAllForms[] = {CoulombForm::kMinMax, CoulombForm::kProjection,

@@ -7,6 +7,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/orbits/shooting.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/backends/registry.h"
 #include "test_support.h"
@@ -86,6 +87,33 @@ TEST(TimeIntegrator, ContinuouslySlidingCoulombOscillatorAgreesWithHarmonicBalan
     EXPECT_LT(errors[0].relative_l2, previous) << "the error must fall with H";
     previous = errors[0].relative_l2;
   }
+}
+
+// Against the exact orbit (event-driven shooting), the midpoint rule stays
+// second order through the two velocity reversals per period. A reversal
+// step that ends at rest or slides all the step the new way is first order,
+// with a size set by where the reversal falls between steps: at 1000, 2000
+// and 4000 steps a period the error stayed at 7.7e-5 of max|x|.
+TEST(TimeIntegrator, MidpointRuleIsSecondOrderThroughVelocityReversals) {
+  const Scene scene = loadScene(test::problem("coulomb-oscillator.toml"));
+  const orbits::PiecewiseLinearFlow flow(scene.model, 0.0);
+  Eigen::VectorXd start(2);
+  start << 1.5, 0.0;
+  const auto orbit = orbits::shootPeriodicOrbit(flow, start, 0.0, orbits::ShootingOptions());
+  ASSERT_TRUE(orbit.converged) << orbit.failure;
+  ASSERT_EQ(orbit.events.at("reversal"), 2);
+  std::vector<double> errors;
+  for (int steps : {1000, 2000, 4000}) {
+    TimeOptions options;
+    options.step = flow.period() / steps;
+    options.periodic_tolerance = 1e-12;
+    const TimeReference ref = integrateToSteadyState(scene.model, options);  // from rest
+    ASSERT_TRUE(ref.periodic) << steps;
+    errors.push_back(orbits::distanceToOrbit(flow, orbit, ref.displacement));
+  }
+  EXPECT_LT(errors[2], 1e-6);
+  EXPECT_GT(errors[0] / errors[2], 10.0) << "O(h²): a step 4 times smaller divides the error by about 16";
+  for (size_t i = 1; i < errors.size(); ++i) EXPECT_GT(errors[i - 1] / errors[i], 2.5) << "halving h";
 }
 
 TEST(TimeIntegrator, ExactLawsHoldAtEveryStep) {

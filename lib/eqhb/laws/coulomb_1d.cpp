@@ -35,9 +35,23 @@ Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, double rho, double beta)
     throwInputError("beta", formatNumber(beta), "regularisation slope must be finite and > 0");
 }
 
+double reversingStepForce(double v_start, double u_free, double delassus, double limit, double projected) {
+  if (v_start == 0.0 || !(limit > 0.0)) return projected;
+  const double s = v_start > 0.0 ? 1.0 : -1.0;
+  const double u_old = u_free - s * delassus * limit;  // end velocity under the old slip force
+  if (s * u_old > 0.0) return projected;               // still sliding the old way at the end
+  // The mean force that keeps the velocity from changing: within the limit,
+  // the mass stops and sticks, and u_end = 0 (the projection) is exact.
+  const double hold = (v_start - u_free) / delassus;
+  if (std::abs(hold) <= limit) return projected;
+  const double phi = v_start / (v_start - u_old);  // in (0, 1]: s u_old <= 0 < s v_start
+  return s * limit * (1.0 - 2.0 * phi);
+}
+
 LocalVector Coulomb1D::solveStep(const StepProblem& step) const {
   LocalVector force(1);
-  force[0] = std::clamp(-step.u_free[0] / step.delassus(0, 0), -mu_n_, mu_n_);
+  const double d = step.delassus(0, 0), u_free = step.u_free[0];
+  force[0] = reversingStepForce(step.v_start[0], u_free, d, mu_n_, std::clamp(-u_free / d, -mu_n_, mu_n_));
   return force;
 }
 

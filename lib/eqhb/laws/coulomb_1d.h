@@ -32,6 +32,22 @@ std::vector<std::pair<std::string, double>> frictionViolations(
     const Eigen::Ref<const Eigen::VectorXd>& limit, double velocity_scale);
 std::string coulombFormName(CoulombForm form);
 
+// The force held over a time step (Law::solveStep) of a 1D friction contact
+// that slides at v_start and whose free end velocity is u_free (D the
+// step's Delassus value, `limit` the friction limit near v = 0). When the
+// old slip force takes the velocity through zero inside the step and the
+// mass cannot stay at rest there (the force that holds it exceeds the
+// limit), the contact REVERSES at the fraction φ = v_start / (v_start − u_old)
+// of the step (u_old the end velocity under the old slip force), and the
+// step holds the mean force φ(−s L) + (1 − φ)(s L), s = sign(v_start): the
+// impulse of the step is then exact under a constant acceleration. Returns
+// `projected` (the stick-or-slide choice on u_end) otherwise. Without it a
+// reversal step ends at rest (a one-step stick the motion does not have) or
+// slides all the step the new way: a velocity error of up to 2 L h / m per
+// reversal, first order in h, whose size depends on where the reversal falls
+// between two steps.
+double reversingStepForce(double v_start, double u_free, double delassus, double limit, double projected);
+
 class Coulomb1D : public Law {
  public:
   // Throws InputError: μN >= 0, ρ > 0, β > 0, all finite.
@@ -49,7 +65,9 @@ class Coulomb1D : public Law {
   // clearly sliding samples of |r + μN sign(v)| / μN.
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
                                                          const PhysicalScales& scales) const override;
-  // λ = proj_[−μN, μN](−u_free / D): stick (u_end = 0) if that fits, else slide.
+  // λ = proj_[−μN, μN](−u_free / D): stick (u_end = 0) if that fits, else
+  // slide; a reversal inside the step holds the mean force
+  // (reversingStepForce).
   LocalVector solveStep(const StepProblem& step) const override;
 
   CoulombForm form() const { return form_; }

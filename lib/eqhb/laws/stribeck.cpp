@@ -41,10 +41,14 @@ void Stribeck::evaluate(LawSamples& s, bool with_derivatives) const {
 LocalVector Stribeck::solveStep(const StepProblem& step) const {
   LocalVector force(1);
   const double d = step.delassus(0, 0), u_free = step.u_free[0];
-  if (std::abs(u_free) <= d * limit(0.0)) {
-    force[0] = -u_free / d;  // sticks: u_end = 0
-    return force;
-  }
+  // A reversal inside the step holds the mean force; the speed there is
+  // O(h), so the limit on both sides is L(0) up to O(h) (O(h²) in the impulse).
+  force[0] = reversingStepForce(step.v_start[0], u_free, d, limit(0.0), stickOrSlideForce(u_free, d));
+  return force;
+}
+
+double Stribeck::stickOrSlideForce(double u_free, double d) const {
+  if (std::abs(u_free) <= d * limit(0.0)) return -u_free / d;  // sticks: u_end = 0
   // φ(w) = w − |u_free| + D L(w): φ(0) < 0 <= φ(|u_free|).
   double low = 0.0, high = std::abs(u_free), w = high;
   for (int iteration = 0; iteration < 200 && high - low > 1e-15 * std::abs(u_free); ++iteration) {
@@ -55,8 +59,7 @@ LocalVector Stribeck::solveStep(const StepProblem& step) const {
     const double newton = dphi > 0.0 ? w - phi / dphi : -1.0;
     w = newton > low && newton < high ? newton : 0.5 * (low + high);
   }
-  force[0] = -std::copysign(limit(w), u_free);
-  return force;
+  return -std::copysign(limit(w), u_free);
 }
 
 std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSamples& s,
