@@ -152,6 +152,40 @@ TEST(Laws, ExactFormsVanishOnTheirGraphs) {
   EXPECT_GT(std::abs(s.psi(2, 0)), 1e-3);
 }
 
+// A Stribeck step slides with the limit at the step's θ-velocity
+// (θ u_end + (1 − θ) v_start), sticks within L(0), and reverses inside the
+// step with the mean force at L(0).
+TEST(Laws, StribeckStepTakesTheLimitAtTheThetaVelocity) {
+  const Stribeck law(1.0, 1.5, 0.5);
+  const double h = 0.01;
+  StepProblem step;
+  step.h = h;
+  step.delassus = LocalMatrix::Constant(1, 1, h);
+  step.x_start = LocalVector::Zero(1);
+  step.force_start = LocalVector::Zero(1);
+  for (double theta : {0.5, 1.0})
+    for (double v0 : {0.3, -0.3, 0.0})
+      for (double a : {-6.0, 4.0}) {  // beyond L(0): slides
+        if (v0 * a < 0.0 && std::abs(v0) < (std::abs(a) + 1.5) * h) continue;  // would reverse
+        step.theta = theta;
+        step.v_start = LocalVector::Constant(1, v0);
+        step.u_free = LocalVector::Constant(1, v0 + a * h);
+        const double lambda = law.solveStep(step)[0], end = v0 + a * h + h * lambda;
+        const double mid = theta * end + (1.0 - theta) * v0;
+        EXPECT_NEAR(lambda, -std::copysign(law.limit(mid), end), 1e-13) << theta << " " << v0 << " " << a;
+      }
+  step.theta = 0.5;
+  step.v_start = LocalVector::Constant(1, 0.0);
+  step.u_free = LocalVector::Constant(1, 1.2 * h);  // within L(0) = 1.5: sticks
+  EXPECT_NEAR(law.solveStep(step)[0], -1.2, 1e-14);
+  // Reversal: from v0 = 0.004 under a free acceleration −4, zero after
+  // 0.004 / 5.5 and slides back at −2.5 for the rest of the step.
+  step.v_start = LocalVector::Constant(1, 0.004);
+  step.u_free = LocalVector::Constant(1, 0.004 - 4.0 * h);
+  const double lambda = law.solveStep(step)[0], t_zero = 0.004 / 5.5;
+  EXPECT_NEAR(0.004 - 4.0 * h + h * lambda, -2.5 * (h - t_zero), 1e-15);
+}
+
 TEST(Laws, NonPhysicalParametersAreRejected) {
   EXPECT_THROW(Coulomb2D(-1.0, Coulomb2DForm::kMax), InputError);
   EXPECT_THROW(Signorini(std::nan(""), SignoriniForm::kMin), InputError);

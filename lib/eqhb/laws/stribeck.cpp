@@ -43,23 +43,31 @@ LocalVector Stribeck::solveStep(const StepProblem& step) const {
   const double d = step.delassus(0, 0), u_free = step.u_free[0];
   // A reversal inside the step holds the mean force; the speed there is
   // O(h), so the limit on both sides is L(0) up to O(h) (O(h²) in the impulse).
-  force[0] = reversingStepForce(step.v_start[0], u_free, d, limit(0.0), stickOrSlideForce(u_free, d));
+  force[0] = reversingStepForce(step.v_start[0], u_free, d, limit(0.0),
+                                stickOrSlideForce(u_free, step.v_start[0], d, step.theta));
   return force;
 }
 
-double Stribeck::stickOrSlideForce(double u_free, double d) const {
+double Stribeck::stickOrSlideForce(double u_free, double v_start, double d, double theta) const {
   if (std::abs(u_free) <= d * limit(0.0)) return -u_free / d;  // sticks: u_end = 0
-  // φ(w) = w − |u_free| + D L(w): φ(0) < 0 <= φ(|u_free|).
+  // Slides the way of u_free with u_end = s w: the limit is taken at the
+  // step's θ-velocity v_θ = θ u_end + (1 − θ) v_start, as the structure's
+  // forces are (at u_end alone the step would be first order for θ = ½).
+  // φ(w) = w − |u_free| + D L(v_θ(w)): φ(0) < 0 <= φ(|u_free|), as L(v) <= L(0).
+  const double s = u_free > 0.0 ? 1.0 : -1.0;
+  auto speed = [&](double w) { return std::abs(theta * s * w + (1.0 - theta) * v_start); };
   double low = 0.0, high = std::abs(u_free), w = high;
   for (int iteration = 0; iteration < 200 && high - low > 1e-15 * std::abs(u_free); ++iteration) {
-    const double phi = w - std::abs(u_free) + d * limit(w);
+    const double phi = w - std::abs(u_free) + d * limit(speed(w));
     if (phi > 0.0) high = w;
     else low = w;
-    const double dphi = 1.0 - d * drop_ * std::exp(-w / v_s_) / v_s_;
+    // dv_θ/dw = θ s sign(v_θ); L'(v) = −drop e^{−|v|/v_s} sign(v) / v_s.
+    const double mid = theta * s * w + (1.0 - theta) * v_start;
+    const double dphi = 1.0 - d * theta * s * (mid >= 0.0 ? 1.0 : -1.0) * drop_ * std::exp(-speed(w) / v_s_) / v_s_;
     const double newton = dphi > 0.0 ? w - phi / dphi : -1.0;
     w = newton > low && newton < high ? newton : 0.5 * (low + high);
   }
-  return -std::copysign(limit(w), u_free);
+  return -s * limit(speed(w));
 }
 
 std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSamples& s,

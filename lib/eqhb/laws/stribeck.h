@@ -24,7 +24,8 @@ class Stribeck : public Law {
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
                                                          const PhysicalScales& scales) const override;
   // Stick if |u_free| <= D L(0); else slide with w = |u_end| > 0 solving
-  // w = |u_free| − D L(w) (bracketed bisection–Newton), λ = −L(w) sign(u_free);
+  // w = |u_free| − D L(v_θ) (bracketed bisection–Newton), λ = −L(v_θ) sign(u_free),
+  // v_θ = θ u_end + (1 − θ) v_start the velocity of the θ-method's forces;
   // a reversal inside the step holds the mean force (reversingStepForce).
   LocalVector solveStep(const StepProblem& step) const override;
   double limit(double v) const;
@@ -33,8 +34,8 @@ class Stribeck : public Law {
   double slidingVelocity() const { return v_s_; }         // v_s
 
  private:
-  // λ on the end velocity alone: stick if |u_free| <= D L(0), else slide.
-  double stickOrSlideForce(double u_free, double d) const;
+  // λ without the reversal: stick if |u_free| <= D L(0), else slide.
+  double stickOrSlideForce(double u_free, double v_start, double d, double theta) const;
   double dynamic_, drop_, v_s_, rho_;
 };
 
