@@ -116,8 +116,8 @@ def simulate(model, omega=None, *, step=1e-4, periods=5000, theta=0.5, periodic_
 
 def shoot(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", restitution=0.0, tolerance=1e-11,
           max_iterations=40):
-    """The exact periodic orbit by shooting (Coulomb 1D and Signorini laws
-    in closed form, cubic, planar Coulomb with stick-slip and Stribeck by
+    """The exact periodic orbit by shooting (Coulomb 1D, Jenkins on one DOF
+    and Signorini laws in closed form, cubic, planar Coulomb with stick-slip and Stribeck by
     Gauss-Legendre phases with located events;
     Newton on the period map with saltation matrices), started from the
     harmonic-balance solution. Returns converged, period_residual, iterations,

@@ -242,8 +242,8 @@ py::dict simulate(const PyModel& m, std::optional<double> omega, double step, in
   return referenceDict(model, reference);
 }
 
-// The exact periodic orbit by shooting (Coulomb 1D and Signorini laws in
-// closed form; cubic, planar Coulomb and Stribeck by the smooth-phase flow),
+// The exact periodic orbit by shooting (Coulomb 1D, Jenkins on one DOF and
+// Signorini laws in closed form; cubic, planar Coulomb and Stribeck by the smooth-phase flow),
 // started from the harmonic-balance solution at the same ω, with its Floquet
 // multipliers and one period sampled on N instants.
 py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
