@@ -27,6 +27,7 @@
 #include "eqhb/backends/registry.h"
 #include "terminal/progress.h"
 #include "terminal/verbosity.h"
+#include "report_number.h"
 
 namespace fs = std::filesystem;
 using namespace eqhb;
@@ -164,13 +165,7 @@ Case runCase(const std::string& study, const fs::path& path, const std::vector<s
   return c;
 }
 
-std::string number(double x) {
-  if (std::isnan(x)) return "-";
-  std::ostringstream out;
-  out.precision(3);
-  out << x;
-  return out.str();
-}
+std::string number(double x) { return bench::reportNumber(x, 3, "-"); }
 
 std::string table(const std::vector<Case>& cases, const std::string& study) {
   std::ostringstream t;

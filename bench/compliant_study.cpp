@@ -9,6 +9,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/joints/contact_friction.h"
 #include "eqhb/scenes/scene.h"
+#include "report_number.h"
 
 namespace eqhb::bench {
 
@@ -50,13 +51,7 @@ Solved solveFromRest(const std::filesystem::path& path, const std::vector<std::s
   return s;
 }
 
-std::string number(double x) {
-  if (std::isnan(x)) return "-";
-  std::ostringstream out;
-  out.precision(3);
-  out << x;
-  return out.str();
-}
+std::string number(double x) { return bench::reportNumber(x, 3, "-"); }
 
 }  // namespace
 

@@ -8,16 +8,13 @@
 #include "eqhb/accuracy/error_estimate.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/continuation.h"
+#include "report_number.h"
 
 namespace eqhb::bench {
 
 namespace {
 
-std::string number(double x, int digits = 3) {
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
-}
+std::string number(double x, int digits = 3) { return bench::reportNumber(x, digits); }
 
 // Errors below this are rounding: no ratio is taken.
 constexpr double kRoundingLevel = 1e-9;

@@ -23,17 +23,14 @@
 #include "eqhb/scenes/scene.h"
 #include "eqhb/stability/curve_stability.h"
 #include "eqhb/stability/hill_stability.h"
+#include "report_number.h"
 
 namespace {
 
 using namespace eqhb;
 using Complex = std::complex<double>;
 
-std::string number(double x, int digits = 3) {
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
-}
+std::string number(double x, int digits = 3) { return bench::reportNumber(x, digits); }
 
 std::string problem(const std::string& name) { return std::string(EQHB_PROBLEMS_DIR) + "/" + name; }
 

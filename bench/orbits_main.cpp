@@ -19,6 +19,7 @@
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"
 #include "error_estimates.h"
+#include "report_number.h"
 
 namespace {
 
@@ -37,11 +38,7 @@ struct Exact {
   double scale = 0.0;            // max|x| over DOFs
 };
 
-std::string number(double x, int digits = 3) {
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
-}
+std::string number(double x, int digits = 3) { return bench::reportNumber(x, digits); }
 
 Eigen::VectorXd harmonicBalance(HbModel model, int harmonics, bool* converged) {
   model.basis = HarmonicSet(model.basis.kind(), harmonics);

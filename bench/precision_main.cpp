@@ -18,18 +18,14 @@
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/scenes/scene.h"
 #include "precision_study.h"
+#include "report_number.h"
 
 namespace {
 
 using namespace eqhb;
 using namespace eqhb::bench;
 
-std::string number(double x, int digits = 3) {
-  if (std::isnan(x)) return "–";
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
-}
+std::string number(double x, int digits = 3) { return bench::reportNumber(x, digits, "–"); }
 
 // The scene's own discretisation, solved by the own dogleg, as the start of
 // the reference orbit.
