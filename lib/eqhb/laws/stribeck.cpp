@@ -55,19 +55,19 @@ double Stribeck::stickOrSlideForce(double u_free, double v_start, double d, doub
   // forces are (at u_end alone the step would be first order for θ = ½).
   // φ(w) = w − |u_free| + D L(v_θ(w)): φ(0) < 0 <= φ(|u_free|), as L(v) <= L(0).
   const double s = u_free > 0.0 ? 1.0 : -1.0;
-  auto speed = [&](double w) { return std::abs(theta * s * w + (1.0 - theta) * v_start); };
+  auto velocity = [&](double w) { return theta * s * w + (1.0 - theta) * v_start; };
   double low = 0.0, high = std::abs(u_free), w = high;
   for (int iteration = 0; iteration < 200 && high - low > 1e-15 * std::abs(u_free); ++iteration) {
-    const double phi = w - std::abs(u_free) + d * limit(speed(w));
+    const double v_theta = velocity(w), speed = std::abs(v_theta);
+    const double phi = w - std::abs(u_free) + d * limit(speed);
     if (phi > 0.0) high = w;
     else low = w;
     // dv_θ/dw = θ s sign(v_θ); L'(v) = −drop e^{−|v|/v_s} sign(v) / v_s.
-    const double mid = theta * s * w + (1.0 - theta) * v_start;
-    const double dphi = 1.0 - d * theta * s * (mid >= 0.0 ? 1.0 : -1.0) * drop_ * std::exp(-speed(w) / v_s_) / v_s_;
+    const double dphi = 1.0 - d * theta * s * (v_theta >= 0.0 ? 1.0 : -1.0) * drop_ * std::exp(-speed / v_s_) / v_s_;
     const double newton = dphi > 0.0 ? w - phi / dphi : -1.0;
     w = newton > low && newton < high ? newton : 0.5 * (low + high);
   }
-  return -s * limit(speed(w));
+  return -s * limit(std::abs(velocity(w)));
 }
 
 std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSamples& s,
