@@ -26,19 +26,19 @@ struct FourierTransform::Plans {
   double* real = nullptr;          // N samples
   fftw_complex* spectrum = nullptr;  // N/2 + 1 bins
   fftw_plan forward = nullptr;     // real -> spectrum
-  fftw_plan backward = nullptr;    // spectrum -> real (destroys spectrum)
+  fftw_plan backward = nullptr;    // spectrum -> real (destroys spectrum); none with half-wave sampling
 
-  explicit Plans(int samples) : n(samples) {
+  Plans(int samples, bool with_backward) : n(samples) {
     real = fftw_alloc_real(n);
     spectrum = fftw_alloc_complex(n / 2 + 1);
     const std::lock_guard<std::mutex> lock(plannerMutex());
     forward = fftw_plan_dft_r2c_1d(n, real, spectrum, FFTW_ESTIMATE);
-    backward = fftw_plan_dft_c2r_1d(n, spectrum, real, FFTW_ESTIMATE);
+    if (with_backward) backward = fftw_plan_dft_c2r_1d(n, spectrum, real, FFTW_ESTIMATE);
   }
   ~Plans() {
     const std::lock_guard<std::mutex> lock(plannerMutex());
     fftw_destroy_plan(forward);
-    fftw_destroy_plan(backward);
+    if (backward != nullptr) fftw_destroy_plan(backward);
     fftw_free(real);
     fftw_free(spectrum);
   }
@@ -103,7 +103,7 @@ FourierTransform::FourierTransform(const HarmonicSet& basis, int samples, Sampli
   if (samples > kMaxSamples)
     throwInputError("samples", std::to_string(samples), "must be <= " + std::to_string(kMaxSamples));
   half_wave_ = sampling == Sampling::kHalfWave && basis.kind() == HarmonicKind::kOdd && samples % 2 == 0;
-  plans_ = std::make_unique<Plans>(activeSamples());
+  plans_ = std::make_unique<Plans>(activeSamples(), !half_wave_);  // half-wave synthesis has its own plan
   if (half_wave_) half_ = std::make_unique<HalfWavePlans>(samples);
 }
 
