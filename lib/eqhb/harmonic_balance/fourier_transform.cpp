@@ -57,40 +57,65 @@ struct FourierTransform::Plans {
 };
 
 // Odd harmonics on the first half period (θ_i = 2πi/N, i < M = N/2): with
-// k = 2m + 1, Σ_k (a_k − ib_k) e^{ikθ_i} = e^{iθ_i} Σ_m C_m e^{2πi·mi/M}, a
-// complex inverse FFT of size M and a twiddle; the projection is the same
-// backwards, (4/N) Σ_{i<M} y_i e^{−ikθ_i} (the second half repeats the first
-// for antiperiodic y and odd k).
+// k = 2m + 1, x_i = Re Σ_m C_m e^{ikθ_i}, C_m = a_k − ib_k, only m < L
+// non-zero, L the least divisor of M above the highest m. Splitting
+// i = p + Pq (P = M/L, p < P, q < L) gives e^{ikθ_i} = T_pm e^{iπq/L}
+// e^{2πi·mq/L} with T_pm = e^{ikθ_p}, so the synthesis is P transforms of
+// size L of C_m T_pm, each output twisted by e^{iπq/L}: the full transform
+// of size M pruned to its non-zero bins (L = 16, P = 32 instead of 512 for
+// H = 10, N = 1024). The projection, (4/N) Σ_{i<M} y_i e^{−ikθ_i} (the
+// second half repeats the first for antiperiodic y and odd k), is the same
+// backwards: P transforms of y_i e^{−iπq/L} over q, summed against conj T_pm.
+// The transforms read and write i = p + Pq in place through their strides.
 struct FourierTransform::HalfWavePlans {
-  int m = 0;
-  std::vector<double> cos_theta, sin_theta;
-  fftw_complex* bins = nullptr;     // synthesis input: zero but at the basis' bins
-  fftw_complex* twisted = nullptr;  // projection input y_i e^{−iθ_i}
-  fftw_complex* out = nullptr;
-  fftw_plan backward = nullptr;     // bins -> out (input preserved)
-  fftw_plan forward = nullptr;      // twisted -> out
+  int m = 0, length = 0, batches = 0;                 // M, L, P
+  std::vector<double> twist_cos, twist_sin;           // e^{iπq/L} at sample i = p + Pq
+  std::vector<double> inner_cos, inner_sin;           // T_pm at [m * P + p], m < L
+  fftw_complex* bins = nullptr;     // synthesis input C_m T_pm at [p * L + m]: zero but at the basis' bins
+  fftw_complex* samples = nullptr;  // synthesis output, projection input y_i e^{−iπq/L}, at i
+  fftw_complex* moments = nullptr;  // projection output at [p * L + m]
+  fftw_plan backward = nullptr;     // bins -> samples (input preserved)
+  fftw_plan forward = nullptr;      // samples -> moments
 
-  explicit HalfWavePlans(int samples) : m(samples / 2), cos_theta(m), sin_theta(m) {
+  HalfWavePlans(int samples_per_period, int highest_bin)
+      : m(samples_per_period / 2), length(leastDivisorAbove(m, highest_bin)), batches(m / length),
+        twist_cos(m), twist_sin(m), inner_cos(static_cast<size_t>(length) * batches),
+        inner_sin(inner_cos.size()) {
     for (int i = 0; i < m; ++i) {
-      const double theta = 2.0 * M_PI * i / samples;
-      cos_theta[i] = std::cos(theta);
-      sin_theta[i] = std::sin(theta);
+      const double phase = M_PI * (i / batches) / length;
+      twist_cos[i] = std::cos(phase);
+      twist_sin[i] = std::sin(phase);
     }
+    for (int b = 0; b < length; ++b)
+      for (int p = 0; p < batches; ++p) {
+        const double theta = 2.0 * M_PI * (2 * b + 1) * p / samples_per_period;
+        inner_cos[b * batches + p] = std::cos(theta);
+        inner_sin[b * batches + p] = std::sin(theta);
+      }
     bins = fftw_alloc_complex(m);
-    twisted = fftw_alloc_complex(m);
-    out = fftw_alloc_complex(m);
+    samples = fftw_alloc_complex(m);
+    moments = fftw_alloc_complex(m);
     std::memset(bins, 0, sizeof(fftw_complex) * m);
     const std::lock_guard<std::mutex> lock(plannerMutex());
-    backward = fftw_plan_dft_1d(m, bins, out, FFTW_BACKWARD, FFTW_ESTIMATE | FFTW_PRESERVE_INPUT);
-    forward = fftw_plan_dft_1d(m, twisted, out, FFTW_FORWARD, FFTW_ESTIMATE);
+    const int n[] = {length};
+    backward = fftw_plan_many_dft(1, n, batches, bins, nullptr, 1, length, samples, nullptr, batches, 1,
+                                  FFTW_BACKWARD, FFTW_ESTIMATE | FFTW_PRESERVE_INPUT);
+    forward = fftw_plan_many_dft(1, n, batches, samples, nullptr, batches, 1, moments, nullptr, 1, length,
+                                 FFTW_FORWARD, FFTW_ESTIMATE);
   }
   ~HalfWavePlans() {
     const std::lock_guard<std::mutex> lock(plannerMutex());
     fftw_destroy_plan(backward);
     fftw_destroy_plan(forward);
     fftw_free(bins);
-    fftw_free(twisted);
-    fftw_free(out);
+    fftw_free(samples);
+    fftw_free(moments);
+  }
+  // The least divisor of m greater than `highest` (m itself at worst).
+  static int leastDivisorAbove(int m, int highest) {
+    for (int l = highest + 1; l < m; ++l)
+      if (m % l == 0) return l;
+    return m;
   }
 };
 
@@ -104,7 +129,7 @@ FourierTransform::FourierTransform(const HarmonicSet& basis, int samples, Sampli
     throwInputError("samples", std::to_string(samples), "must be <= " + std::to_string(kMaxSamples));
   half_wave_ = sampling == Sampling::kHalfWave && basis.kind() == HarmonicKind::kOdd && samples % 2 == 0;
   plans_ = std::make_unique<Plans>(activeSamples(), !half_wave_);  // half-wave synthesis has its own plan
-  if (half_wave_) half_ = std::make_unique<HalfWavePlans>(samples);
+  if (half_wave_) half_ = std::make_unique<HalfWavePlans>(samples, (basis.highest() - 1) / 2);
 }
 
 FourierTransform::~FourierTransform() = default;
@@ -118,11 +143,16 @@ void FourierTransform::synthesize(const double* coefficients, double* samples) {
     for (size_t h = 0; h < ks.size(); ++h) {
       const double* c = coefficients + basis_.offset(static_cast<int>(h));
       const int m = (ks[h] - 1) / 2;
-      w.bins[m][0] = c[0];
-      w.bins[m][1] = -c[1];
+      const double* tc = w.inner_cos.data() + static_cast<size_t>(m) * w.batches;
+      const double* ts = w.inner_sin.data() + static_cast<size_t>(m) * w.batches;
+      for (int p = 0; p < w.batches; ++p) {  // (a − ib) T_pm
+        w.bins[p * w.length + m][0] = c[0] * tc[p] + c[1] * ts[p];
+        w.bins[p * w.length + m][1] = c[0] * ts[p] - c[1] * tc[p];
+      }
     }
     fftw_execute(w.backward);
-    for (int i = 0; i < w.m; ++i) samples[i] = w.cos_theta[i] * w.out[i][0] - w.sin_theta[i] * w.out[i][1];
+    for (int i = 0; i < w.m; ++i)
+      samples[i] = w.twist_cos[i] * w.samples[i][0] - w.twist_sin[i] * w.samples[i][1];
     return;
   }
   Plans& p = *plans_;
@@ -146,16 +176,24 @@ void FourierTransform::project(const double* samples, double* coefficients) {
   if (half_wave_) {
     HalfWavePlans& w = *half_;
     for (int i = 0; i < w.m; ++i) {
-      w.twisted[i][0] = samples[i] * w.cos_theta[i];
-      w.twisted[i][1] = -samples[i] * w.sin_theta[i];
+      w.samples[i][0] = samples[i] * w.twist_cos[i];
+      w.samples[i][1] = -samples[i] * w.twist_sin[i];
     }
     fftw_execute(w.forward);
     const double scale = 2.0 / w.m;  // 4/N
     for (size_t h = 0; h < ks.size(); ++h) {
       double* c = coefficients + basis_.offset(static_cast<int>(h));
       const int m = (ks[h] - 1) / 2;
-      c[0] = scale * w.out[m][0];
-      c[1] = -scale * w.out[m][1];
+      const double* tc = w.inner_cos.data() + static_cast<size_t>(m) * w.batches;
+      const double* ts = w.inner_sin.data() + static_cast<size_t>(m) * w.batches;
+      double re = 0.0, im = 0.0;  // Σ_p conj(T_pm) G_pm
+      for (int p = 0; p < w.batches; ++p) {
+        const double gr = w.moments[p * w.length + m][0], gi = w.moments[p * w.length + m][1];
+        re += tc[p] * gr + ts[p] * gi;
+        im += tc[p] * gi - ts[p] * gr;
+      }
+      c[0] = scale * re;
+      c[1] = -scale * im;
     }
     return;
   }

@@ -14,8 +14,9 @@
 // Half-wave sampling (opt-in, odd bases with even N): every channel of an
 // odd basis is antiperiodic, q(t + T/2) = −q(t), so its first N/2 samples
 // determine it. synthesize then writes, and project reads, only those
-// M = N/2 samples (one complex FFT of size M with a twiddle e^{±iθ} folds the
-// odd harmonics k = 2m + 1 onto the bins m); gram reads M weights that must be
+// M = N/2 samples (a complex FFT of size M with a twiddle e^{±iθ} folds the
+// odd harmonics k = 2m + 1 onto the bins m, pruned to the bins the basis
+// uses); gram reads M weights that must be
 // half-period periodic (the even partials of an odd law), whose moments exist
 // only at even orders. The results equal the full-period ones when the
 // sampled functions have those symmetries; the law assembly uses it for laws
