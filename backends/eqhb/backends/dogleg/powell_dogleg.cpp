@@ -40,9 +40,10 @@ void rotateColumns(double* __restrict x, double* __restrict y, Eigen::Index n, d
   }
 }
 
-template <typename X, typename Y>
-void rotate(X&& x, Y&& y, double c, double s) {
-  for (Eigen::Index k = 0; k < x.size(); ++k) {
+// Rows of the column-major R, `stride` apart: a plain pointer loop (Eigen's
+// row blocks cost several times the arithmetic at n = 20).
+void rotateRows(double* x, double* y, Eigen::Index n, Eigen::Index stride, double c, double s) {
+  for (Eigen::Index k = 0; k < n * stride; k += stride) {
     const double xi = x[k], yi = y[k];
     x[k] = c * xi + s * yi;
     y[k] = -s * xi + c * yi;
@@ -165,7 +166,7 @@ void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
     double c, s;
     u[i - 1] = givens(u[i - 1], u[i], &c, &s);
     u[i] = 0.0;
-    rotate(r.row(i - 1).tail(n - i + 1), r.row(i).tail(n - i + 1), c, s);
+    rotateRows(&r(i - 1, i - 1), &r(i, i - 1), n - i + 1, n, c, s);
     rotateColumns(q.col(i - 1).data(), q.col(i).data(), q.rows(), c, s);
     double a = qtf[i - 1], b = qtf[i];
     qtf[i - 1] = c * a + s * b;
@@ -177,7 +178,7 @@ void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
   for (Eigen::Index i = 0; i + 1 < n; ++i) {
     double c, s;
     givens(r(i, i), r(i + 1, i), &c, &s);
-    rotate(r.row(i).tail(n - i), r.row(i + 1).tail(n - i), c, s);
+    rotateRows(&r(i, i), &r(i + 1, i), n - i, n, c, s);
     r(i + 1, i) = 0.0;
     rotateColumns(q.col(i).data(), q.col(i + 1).data(), q.rows(), c, s);
     double a = qtf[i], b = qtf[i + 1];
