@@ -137,5 +137,27 @@ TEST(HalfWaveTransform, AgreesWithTheFullPeriod) {
   EXPECT_FALSE(odd_n.halfWave());
 }
 
+// Two channels synthesised by one transform (real and imaginary parts)
+// equal two separate syntheses, with and without half-wave sampling.
+TEST(HalfWaveTransform, PairEqualsTwoSyntheses) {
+  for (int count : {1, 3, 10}) {
+    for (int n : {64, 1024, 130, 134}) {
+      for (Sampling sampling : {Sampling::kHalfWave, Sampling::kFullPeriod}) {
+        HarmonicSet basis(HarmonicKind::kOdd, count);
+        FourierTransform transform(basis, n, sampling);
+        const int m = transform.activeSamples();
+        const Eigen::VectorXd c1 = Eigen::VectorXd::Random(basis.size()), c2 = Eigen::VectorXd::Random(basis.size());
+        Eigen::VectorXd x1(m), x2(m), y1(m), y2(m);
+        transform.synthesize(c1.data(), x1.data());
+        transform.synthesize(c2.data(), x2.data());
+        transform.synthesizePair(c1.data(), c2.data(), y1.data(), y2.data());
+        EXPECT_LT((y1 - x1).cwiseAbs().maxCoeff(), 1e-13 * basis.size()) << count << " " << n;
+        EXPECT_LT((y2 - x2).cwiseAbs().maxCoeff(), 1e-13 * basis.size()) << count << " " << n;
+        EXPECT_GT(x2.cwiseAbs().maxCoeff(), 0.1);  // the channels are not trivially zero
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace eqhb

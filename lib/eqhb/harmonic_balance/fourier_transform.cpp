@@ -67,6 +67,11 @@ struct FourierTransform::Plans {
 // second half repeats the first for antiperiodic y and odd k), is the same
 // backwards: P transforms of y_i e^{−iπq/L} over q, summed against conj T_pm.
 // The transforms read and write i = p + Pq in place through their strides.
+//
+// Two channels at once (synthesizePair): x¹ + ix² = ½ Σ_m [(C¹_m + iC²_m)
+// e^{ikθ} + (conj C¹_m + i conj C²_m) e^{−ikθ}], and −k = 2(−m − 1) + 1 puts
+// the second terms on the bins L − 1 − m: one complex transform for two
+// real channels, with L at least twice the basis' bins.
 struct FourierTransform::HalfWavePlans {
   int m = 0, length = 0, batches = 0;                 // M, L, P
   std::vector<double> twist_cos, twist_sin;           // e^{iπq/L} at sample i = p + Pq
@@ -75,10 +80,11 @@ struct FourierTransform::HalfWavePlans {
   fftw_complex* samples = nullptr;  // synthesis output, projection input y_i e^{−iπq/L}, at i
   fftw_complex* moments = nullptr;  // projection output at [p * L + m]
   fftw_plan backward = nullptr;     // bins -> samples (input preserved)
-  fftw_plan forward = nullptr;      // samples -> moments
+  fftw_plan forward = nullptr;      // samples -> moments (projection plans only)
 
-  HalfWavePlans(int samples_per_period, int highest_bin)
-      : m(samples_per_period / 2), length(leastDivisorAbove(m, highest_bin)), batches(m / length),
+  // L is the least divisor of M that is >= least_length.
+  HalfWavePlans(int samples_per_period, int least_length, bool with_projection)
+      : m(samples_per_period / 2), length(leastDivisorFrom(m, least_length)), batches(m / length),
         twist_cos(m), twist_sin(m), inner_cos(static_cast<size_t>(length) * batches),
         inner_sin(inner_cos.size()) {
     for (int i = 0; i < m; ++i) {
@@ -100,20 +106,21 @@ struct FourierTransform::HalfWavePlans {
     const int n[] = {length};
     backward = fftw_plan_many_dft(1, n, batches, bins, nullptr, 1, length, samples, nullptr, batches, 1,
                                   FFTW_BACKWARD, FFTW_ESTIMATE | FFTW_PRESERVE_INPUT);
-    forward = fftw_plan_many_dft(1, n, batches, samples, nullptr, batches, 1, moments, nullptr, 1, length,
-                                 FFTW_FORWARD, FFTW_ESTIMATE);
+    if (with_projection)
+      forward = fftw_plan_many_dft(1, n, batches, samples, nullptr, batches, 1, moments, nullptr, 1, length,
+                                   FFTW_FORWARD, FFTW_ESTIMATE);
   }
   ~HalfWavePlans() {
     const std::lock_guard<std::mutex> lock(plannerMutex());
     fftw_destroy_plan(backward);
-    fftw_destroy_plan(forward);
+    if (forward != nullptr) fftw_destroy_plan(forward);
     fftw_free(bins);
     fftw_free(samples);
     fftw_free(moments);
   }
-  // The least divisor of m greater than `highest` (m itself at worst).
-  static int leastDivisorAbove(int m, int highest) {
-    for (int l = highest + 1; l < m; ++l)
+  // The least divisor of m that is >= least (m itself at worst).
+  static int leastDivisorFrom(int m, int least) {
+    for (int l = least; l < m; ++l)
       if (m % l == 0) return l;
     return m;
   }
@@ -129,7 +136,11 @@ FourierTransform::FourierTransform(const HarmonicSet& basis, int samples, Sampli
     throwInputError("samples", std::to_string(samples), "must be <= " + std::to_string(kMaxSamples));
   half_wave_ = sampling == Sampling::kHalfWave && basis.kind() == HarmonicKind::kOdd && samples % 2 == 0;
   plans_ = std::make_unique<Plans>(activeSamples(), !half_wave_);  // half-wave synthesis has its own plan
-  if (half_wave_) half_ = std::make_unique<HalfWavePlans>(samples, (basis.highest() - 1) / 2);
+  if (half_wave_) {
+    const int bins = (basis.highest() + 1) / 2;  // m = 0 .. (k_max − 1)/2
+    half_ = std::make_unique<HalfWavePlans>(samples, bins, true);
+    pairs_ = std::make_unique<HalfWavePlans>(samples, 2 * bins, false);  // M >= k_max + 1 = 2 bins
+  }
 }
 
 FourierTransform::~FourierTransform() = default;
@@ -169,6 +180,39 @@ void FourierTransform::synthesize(const double* coefficients, double* samples) {
   }
   fftw_execute(p.backward);
   std::memcpy(samples, p.real, sizeof(double) * p.n);
+}
+
+void FourierTransform::synthesizePair(const double* first, const double* second, double* first_samples,
+                                      double* second_samples) {
+  if (!half_wave_) {
+    synthesize(first, first_samples);
+    synthesize(second, second_samples);
+    return;
+  }
+  const auto& ks = basis_.harmonics();
+  HalfWavePlans& w = *pairs_;
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int o = basis_.offset(static_cast<int>(h));
+    const double a1 = first[o], b1 = first[o + 1], a2 = second[o], b2 = second[o + 1];
+    // ½(C¹ + iC²) and ½(conj C¹ + i conj C²), C = a − ib
+    const double ur = 0.5 * (a1 + b2), ui = 0.5 * (a2 - b1);
+    const double vr = 0.5 * (a1 - b2), vi = 0.5 * (a2 + b1);
+    const int m = (ks[h] - 1) / 2, mirror = w.length - 1 - m;
+    const double* tc = w.inner_cos.data() + static_cast<size_t>(m) * w.batches;
+    const double* ts = w.inner_sin.data() + static_cast<size_t>(m) * w.batches;
+    for (int p = 0; p < w.batches; ++p) {  // U T_pm and V conj T_pm
+      w.bins[p * w.length + m][0] = ur * tc[p] - ui * ts[p];
+      w.bins[p * w.length + m][1] = ur * ts[p] + ui * tc[p];
+      w.bins[p * w.length + mirror][0] = vr * tc[p] + vi * ts[p];
+      w.bins[p * w.length + mirror][1] = vi * tc[p] - vr * ts[p];
+    }
+  }
+  fftw_execute(w.backward);
+  for (int i = 0; i < w.m; ++i) {
+    const double re = w.samples[i][0], im = w.samples[i][1];
+    first_samples[i] = w.twist_cos[i] * re - w.twist_sin[i] * im;
+    second_samples[i] = w.twist_cos[i] * im + w.twist_sin[i] * re;
+  }
 }
 
 void FourierTransform::project(const double* samples, double* coefficients) {

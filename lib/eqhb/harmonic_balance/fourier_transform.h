@@ -59,6 +59,10 @@ class FourierTransform {
   int activeSamples() const { return half_wave_ ? samples_ / 2 : samples_; }
 
   void synthesize(const double* coefficients, double* samples);
+  // Two channels at once: with half-wave sampling, one complex transform
+  // for both (the real and imaginary parts); otherwise two synthesize calls.
+  void synthesizePair(const double* first, const double* second, double* first_samples,
+                      double* second_samples);
   void project(const double* samples, double* coefficients);
   // out (basis.size() x basis.size()) = Q diag(weights) P.
   void gram(const double* weights, Eigen::Ref<Eigen::MatrixXd> out);
@@ -80,6 +84,7 @@ class FourierTransform {
   bool half_wave_ = false;
   std::unique_ptr<Plans> plans_;  // real FFT of the active samples (gram; all of it on the full period)
   std::unique_ptr<HalfWavePlans> half_;
+  std::unique_ptr<HalfWavePlans> pairs_;  // synthesizePair's, on twice the bins
 };
 
 }  // namespace eqhb

@@ -1,5 +1,6 @@
 #include "eqhb/harmonic_balance/law_assembly.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace eqhb {
@@ -19,40 +20,51 @@ LawAssembly::LawAssembly(const HbModel& model)
   const int nb = model.basis.size();
   const int n = transform_.activeSamples();
   slots_.resize(laws_.size());
+  int most_channels = 0;
   for (size_t l = 0; l < laws_.size(); ++l) {
     const int d = laws_[l].law->dimension();
     Slot& s = slots_[l];
     s.displacement_coefficients.setZero(nb, d);
     s.force_coefficients.setZero(nb, d);
     s.psi_coefficients.setZero(nb, d);
-    s.velocity_coefficients.setZero(nb);
+    s.derived_coefficients.setZero(nb, 2 * d);
+    most_channels = std::max(most_channels, 4 * d);  // x, ẋ, λ, λ̇ per component
     s.samples.resize(n, d);
     s.displacement_blocks.assign(d * d, Eigen::MatrixXd::Zero(nb, nb));
     s.force_blocks.assign(d * d, Eigen::MatrixXd::Zero(nb, nb));
   }
   gram_scratch_.setZero(nb, nb);
   velocity_scratch_.setZero(nb, nb);
+  channels_.resize(most_channels);
 }
 
 bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
   Slot& s = slots_[l];
   const Law& law = *laws_[l].law;
   const int d = law.dimension();
+  // The channels to synthesise, two at a time (one transform per pair with
+  // half-wave sampling); the derivatives' coefficients have their own columns.
+  auto& channels = channels_;  // sized at construction: no allocation here
+  int count = 0;
   for (int a = 0; a < d; ++a) {
     if (law.usesDisplacement())
-      transform_.synthesize(s.displacement_coefficients.col(a).data(),
-                            s.samples.displacement.col(a).data());
+      channels[count++] = {s.displacement_coefficients.col(a).data(), s.samples.displacement.col(a).data()};
     if (law.usesVelocity()) {
-      transform_.differentiate(s.displacement_coefficients.col(a).data(), omega,
-                               s.velocity_coefficients.data());
-      transform_.synthesize(s.velocity_coefficients.data(), s.samples.velocity.col(a).data());
+      double* velocity = s.derived_coefficients.col(2 * a).data();
+      transform_.differentiate(s.displacement_coefficients.col(a).data(), omega, velocity);
+      channels[count++] = {velocity, s.samples.velocity.col(a).data()};
     }
-    transform_.synthesize(s.force_coefficients.col(a).data(), s.samples.force.col(a).data());
+    channels[count++] = {s.force_coefficients.col(a).data(), s.samples.force.col(a).data()};
     if (law.usesForceRate()) {
-      transform_.differentiate(s.force_coefficients.col(a).data(), omega, s.velocity_coefficients.data());
-      transform_.synthesize(s.velocity_coefficients.data(), s.samples.force_rate.col(a).data());
+      double* force_rate = s.derived_coefficients.col(2 * a + 1).data();
+      transform_.differentiate(s.force_coefficients.col(a).data(), omega, force_rate);
+      channels[count++] = {force_rate, s.samples.force_rate.col(a).data()};
     }
   }
+  for (int c = 0; c + 1 < count; c += 2)
+    transform_.synthesizePair(channels[c].first, channels[c + 1].first, channels[c].second,
+                              channels[c + 1].second);
+  if (count % 2 == 1) transform_.synthesize(channels[count - 1].first, channels[count - 1].second);
   law.evaluate(s.samples, with_jacobian);
   // NaN and Inf propagate through a sum, which vectorises (allFinite's
   // early-exit loop does not and costs as much as the law on N samples).

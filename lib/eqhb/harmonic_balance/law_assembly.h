@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <utility>
 #include <vector>
 
 #include "eqhb/harmonic_balance/fourier_transform.h"
@@ -47,7 +48,7 @@ class LawAssembly {
  private:
   struct Slot {
     Eigen::MatrixXd displacement_coefficients, force_coefficients, psi_coefficients;
-    Eigen::VectorXd velocity_coefficients;
+    Eigen::MatrixXd derived_coefficients;  // nb x 2d: velocity and λ̇ of each component
     LawSamples samples;
     std::vector<Eigen::MatrixXd> displacement_blocks, force_blocks;
   };
@@ -55,6 +56,7 @@ class LawAssembly {
   FourierTransform transform_;
   std::vector<Slot> slots_;
   Eigen::MatrixXd gram_scratch_, velocity_scratch_;
+  std::vector<std::pair<const double*, double*>> channels_;  // (coefficients, samples) to synthesise
 };
 
 }  // namespace eqhb
