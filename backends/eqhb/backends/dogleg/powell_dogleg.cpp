@@ -13,21 +13,31 @@ namespace {
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
 // Rotation (c, s) with [c s; −s c] (a, b)ᵀ = (h, 0)ᵀ, h = √(a² + b²) > 0,
-// returned. The ratio of the smaller to the larger magnitude keeps the
-// square free of overflow and underflow; std::hypot's correctly rounded
-// result is not needed here and costs several times more.
+// returned. The rotations of an update form a chain (each needs the last
+// one's h or rotated diagonal), so their latency counts: within the range
+// where a² + b² neither overflows nor underflows, one square root and one
+// division; outside it the ratio of the smaller to the larger magnitude
+// keeps the square finite. std::hypot's correctly rounded result is not
+// needed here and costs several times more.
 double givens(double a, double b, double* c, double* s) {
   if (b == 0.0) {
     *c = 1.0;
     *s = 0.0;
     return a;
   }
-  const double abs_a = std::abs(a), abs_b = std::abs(b);
-  const double large = std::max(abs_a, abs_b), small = std::min(abs_a, abs_b);
-  const double t = small / large;
-  const double h = large * std::sqrt(1.0 + t * t);
-  *c = a / h;
-  *s = b / h;
+  const double squares = a * a + b * b;
+  double h;
+  if (squares > std::numeric_limits<double>::min() && squares < std::numeric_limits<double>::infinity()) {
+    h = std::sqrt(squares);
+  } else {
+    const double abs_a = std::abs(a), abs_b = std::abs(b);
+    const double large = std::max(abs_a, abs_b), small = std::min(abs_a, abs_b);
+    const double t = small / large;
+    h = large * std::sqrt(1.0 + t * t);
+  }
+  const double inverse = 1.0 / h;
+  *c = a * inverse;
+  *s = b * inverse;
   return h;
 }
 
