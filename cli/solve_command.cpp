@@ -33,7 +33,30 @@ void addSolveCommand(CLI::App& app, SolveArguments& a) {
   addRefineOptions(cmd, a.refine);
   cmd->add_option("--from-harmonics", a.from_harmonics,
                   "Start from the solution at H0, 2H0, ... (continuation in H: for large H where a cold start fails)");
+  cmd->add_option("--cold-start", a.cold_start,
+                  "Without --from-harmonics: start from the solution of a coarse harmonic balance (about H/3 "
+                  "harmonics on few samples; solved again from zero if that start fails) or from zero")
+      ->check(CLI::IsMember({"coarse", "zero"}))
+      ->capture_default_str();
   addStabilityFlag(cmd, a);
+}
+
+nlohmann::json coldStartJson(const ColdStartReport& r, const std::string& otherwise) {
+  nlohmann::json out = {{"kind", r.used ? "coarse" : otherwise}};
+  if (!r.used) return out;
+  out["harmonics"] = r.harmonics;
+  out["samples"] = r.samples;
+  out["converged"] = r.coarse.converged();
+  out["iterations"] = r.coarse.iterations;
+  out["residual_evaluations"] = r.coarse.residual_evaluations;
+  out["jacobian_evaluations"] = r.coarse.jacobian_evaluations;
+  out["retried_from_zero"] = r.retried_from_zero;
+  if (r.retried_from_zero) {
+    out["first_attempt"] = {{"termination", terminationName(r.first_attempt.termination)},
+                            {"iterations", r.first_attempt.iterations},
+                            {"residual_norm", r.first_attempt.final_norm}};
+  }
+  return out;
 }
 
 void addStabilityFlag(CLI::App* cmd, SolveArguments& a) {
@@ -163,11 +186,22 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
     z0 = system->fromFullCoefficients(transferCoefficients(seed_model, model, seed));
   }
   if (a.start_full.size()) z0 = system->fromFullCoefficients(a.start_full);
+  // A cold start begins at a coarse harmonic balance, made once here.
+  std::unique_ptr<CoarseStart> coarse;
+  if (a.cold_start == "coarse" && !a.from_harmonics && !a.start_full.size()) {
+    const auto coarse_setup = std::chrono::steady_clock::now();
+    coarse = std::make_unique<CoarseStart>(model, !a.full, options.linear_algebra);
+    if (!coarse->available()) coarse.reset();
+    run.setup_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - coarse_setup).count();
+  }
   for (int i = 0; i < a.repeat; ++i) {
-    run.result = solver->solve(*system, z0, options);
+    // The time of a solve includes its coarse start.
+    const auto solve_start = std::chrono::steady_clock::now();
+    run.result = coarse ? coarse->solve(*solver, *system, options, &run.cold_start) : solver->solve(*system, z0, options);
     if (run.result.termination == Termination::kInvalidOptions)
       throw InputError("--option: " + run.result.native_message);
-    run.times.push_back(run.result.seconds);
+    run.times.push_back(coarse ? std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count()
+                               : run.result.seconds);
   }
   std::sort(run.times.begin(), run.times.end());
   run.options = options;
@@ -264,6 +298,9 @@ int runSolve(const SolveArguments& given) {
     out["termination"] = terminationName(result.termination);
     out["native_code"] = result.native_code;
     out["native_message"] = result.native_message;
+    out["cold_start"] = coldStartJson(run.cold_start, a.start_full.size() ? "given"
+                                                      : a.from_harmonics ? "from-harmonics"
+                                                                         : "zero");
     out["iterations"] = result.iterations;
     out["residual_evaluations"] = result.residual_evaluations;
     out["jacobian_evaluations"] = result.jacobian_evaluations;
@@ -313,8 +350,18 @@ int runSolve(const SolveArguments& given) {
               << " (" << HarmonicSet::kindName(model.basis.kind()) << "), N = " << model.samples
               << ", " << (system->condensed() ? "condensed" : "full") << " system of "
               << system->size() << " unknowns\n"
-              << result.summary() << "\n"
-              << "linear algebra: " << (sparse_solver ? "sparse" : "dense");
+              << result.summary() << "\n";
+    const ColdStartReport& cold = run.cold_start;
+    if (cold.used) {
+      std::cout << "cold start: coarse harmonic balance at H = " << cold.harmonics << ", N = " << cold.samples << ", "
+                << (cold.coarse.converged() ? "converged" : "NOT converged (started from zero)") << " in "
+                << cold.coarse.iterations << " iterations, " << cold.coarse.residual_evaluations << " residual and "
+                << cold.coarse.jacobian_evaluations << " Jacobian evaluations\n";
+      if (cold.retried_from_zero)
+        std::cout << "  the solve from it stopped (" << terminationName(cold.first_attempt.termination) << " after "
+                  << cold.first_attempt.iterations << " iterations); solved again from zero (above)\n";
+    }
+    std::cout << "linear algebra: " << (sparse_solver ? "sparse" : "dense");
     if (condensed)
       std::cout << ", A_k factored " << (sparse_factors ? "sparse (UMFPACK)" : "dense") << " ("
                 << factor_mib << " MiB of factors)";

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "eqhb/continuation/coarse_start.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/solvers/solver.h"
@@ -32,6 +33,7 @@ struct SolveArguments {
   double time_limit = 0.0;
   int repeat = 1;
   std::optional<int> from_harmonics;  // seed by continuation in H from this H₀
+  std::string cold_start = "coarse";  // --cold-start: coarse (CoarseStart) or zero
   std::string linear_algebra = "auto";  // --linear-algebra: auto, dense or sparse
   bool stability = false;  // --stability: Floquet multipliers by Hill's method
   AccuracyArguments accuracy;           // --error-estimate, --accuracy (solve only)
@@ -47,6 +49,7 @@ struct HbRun {
   SolverOptions options;
   std::vector<double> times;  // sorted
   double setup_seconds = 0.0;  // building the system (pattern, factorisations)
+  ColdStartReport cold_start;  // the coarse start of the last repeat (used = false: none)
 };
 HbRun solveHarmonicBalance(const SolveArguments& args);
 // The common solver options and the --option pass-through; throws InputError.
@@ -54,6 +57,10 @@ SolverOptions solverOptions(const SolveArguments& args);
 
 // One channel's Fourier coefficients as {"harmonics", "cos", "sin"}.
 nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd& coefficients);
+// The coarse start of a cold solve as JSON (harmonics, samples, its solve,
+// whether the fine solve was retried from zero); without one, only the kind
+// of start, `otherwise` ("zero", "from-harmonics", "given").
+nlohmann::json coldStartJson(const ColdStartReport& report, const std::string& otherwise);
 // Every DOF and law component of a solution [x; λ]: "dofs" and "laws" arrays
 // with coefficients and the largest magnitude over one period.
 nlohmann::json solutionJson(const HbModel& model, const HbSolution& solution);

@@ -1,0 +1,64 @@
+#include "eqhb/continuation/coarse_start.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "eqhb/harmonic_balance/hb_solution.h"
+
+namespace eqhb {
+
+namespace {
+constexpr int kFewestFineHarmonics = 4;  // below, the coarse rung would be most of the fine one
+}  // namespace
+
+HbModel coarseModel(const HbModel& fine) {
+  if (fine.basis.count() < kFewestFineHarmonics) return fine;
+  HbModel coarse = fine;
+  coarse.basis = HarmonicSet(fine.basis.kind(), (fine.basis.count() + 1) / 3);
+  const int wanted = std::max(4 * coarse.basis.highest(), coarse.basis.minimumSamples());
+  int samples = 8;
+  while (samples < wanted) samples *= 2;
+  coarse.samples = std::min(samples, fine.samples);
+  return coarse;
+}
+
+CoarseStart::CoarseStart(const HbModel& fine, bool condensed, LinearAlgebra linear_algebra)
+    : fine_(fine), coarse_(eqhb::coarseModel(fine)) {
+  if (coarse_.basis.count() == fine_.basis.count()) return;
+  system_ = makeHbSystem(coarse_, condensed, linear_algebra);
+  zero_coarse_ = Eigen::VectorXd::Zero(system_->size());
+}
+
+SolverResult CoarseStart::solve(Solver& solver, HbSystem& fine_system, const SolverOptions& options,
+                                ColdStartReport* report) {
+  ColdStartReport local;
+  ColdStartReport& r = report ? *report : local;
+  r = ColdStartReport();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(fine_system.size());
+  if (!system_) return solver.solve(fine_system, zero, options);
+  r.used = true;
+  r.harmonics = coarse_.basis.count();
+  r.samples = coarse_.samples;
+  // --time-limit bounds the whole cold start: each later solve gets what is left.
+  const auto start = std::chrono::steady_clock::now();
+  auto remaining = [&]() {
+    SolverOptions o = options;
+    if (options.time_limit > 0.0) {
+      const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      o.time_limit = std::max(options.time_limit - spent, 1e-3 * options.time_limit);
+    }
+    return o;
+  };
+  r.coarse = solver.solve(*system_, zero_coarse_, options);
+  // A coarse solve that did not converge is no better a start than zero.
+  if (!r.coarse.converged()) return solver.solve(fine_system, zero, remaining());
+  fine_start_ = fine_system.fromFullCoefficients(
+      transferCoefficients(coarse_, fine_, system_->fullCoefficients(r.coarse.solution)));
+  SolverResult fine = solver.solve(fine_system, fine_start_, remaining());
+  if (fine.converged() || fine.termination == Termination::kInvalidOptions) return fine;
+  r.retried_from_zero = true;
+  r.first_attempt = fine;
+  return solver.solve(fine_system, zero, remaining());
+}
+
+}  // namespace eqhb
