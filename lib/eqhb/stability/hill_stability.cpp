@@ -12,6 +12,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/stability/dense_eigenproblem.h"
 
 namespace eqhb {
 
@@ -179,6 +180,16 @@ class ShiftInvertOperator {
   mutable Eigen::VectorXd rhs_, solution_;
 };
 
+// ν = 1/(s − σ) = 0 is an infinite exponent (a constraint), not a Floquet
+// one; `largest` is the largest |ν| of the spectrum.
+bool isFinite(Complex nu, double largest) { return std::abs(nu) > 1e-11 * largest; }
+
+double largestModulus(const Eigen::VectorXcd& values) {
+  double largest = 0.0;
+  for (Eigen::Index j = 0; j < values.size(); ++j) largest = std::max(largest, std::abs(values[j]));
+  return largest;
+}
+
 struct Spectrum {
   Eigen::VectorXcd values;   // ν = 1/(s − σ)
   Eigen::MatrixXcd vectors;  // E u
@@ -201,10 +212,18 @@ bool denseSpectrum(const HillPencil& pencil, double omega, Spectrum* out, std::s
     const Eigen::MatrixXd solved = lu.solve(b_columns);
     Eigen::MatrixXd reduced(pencil.columns.size(), pencil.columns.size());
     for (size_t c = 0; c < pencil.columns.size(); ++c) reduced.row(c) = solved.row(pencil.columns[c]);
-    Eigen::EigenSolver<Eigen::MatrixXd> solver(reduced, true);
-    if (solver.info() != Eigen::Success) continue;
+    DenseEigenproblem solver;
+    if (!solver.compute(reduced)) continue;
     out->values = solver.eigenvalues();
-    out->vectors = solver.eigenvectors();
+    // Vectors of the finite eigenvalues only, the candidates.
+    std::vector<int> finite;
+    const double largest = largestModulus(out->values);
+    for (Eigen::Index j = 0; j < out->values.size(); ++j)
+      if (isFinite(out->values[j], largest)) finite.push_back(static_cast<int>(j));
+    Eigen::MatrixXcd vectors;
+    solver.eigenvectors(finite, &vectors);
+    out->vectors.setZero(reduced.rows(), reduced.cols());
+    for (size_t c = 0; c < finite.size(); ++c) out->vectors.col(finite[c]) = vectors.col(c);
     out->shift = sigma;
     return true;
   }
@@ -279,13 +298,11 @@ HillResult hillStability(const HbModel& model, const Eigen::VectorXd& full, cons
     const double quantum = odd ? 2.0 * model.omega : model.omega;  // Ω
     const double reference = odd ? 1.0 : 0.0;                       // r
     const double period = 2.0 * M_PI / model.omega;
-    double largest = 0.0;
-    for (Eigen::Index j = 0; j < spectrum.values.size(); ++j) largest = std::max(largest, std::abs(spectrum.values[j]));
+    const double largest = largestModulus(spectrum.values);
     std::vector<FloquetExponent> candidates;
     for (Eigen::Index j = 0; j < spectrum.values.size(); ++j) {
       const Complex nu = spectrum.values[j];
-      // ν = 0 is an infinite exponent (a constraint), not a Floquet one.
-      if (!(std::abs(nu) > 1e-11 * largest)) continue;
+      if (!isFinite(nu, largest)) continue;
       ++result.candidates;
       FloquetExponent e;
       e.exponent = spectrum.shift + 1.0 / nu;

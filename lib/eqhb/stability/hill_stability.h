@@ -29,8 +29,9 @@
 // are exp(s T); the solution is stable iff all lie inside the unit circle.
 //
 // Small systems: the pencil reduced to a standard eigenproblem
-// (A − σB)⁻¹B on the columns where B is nonzero, solved by Eigen's dense
-// EigenSolver. Large ones: the same operator applied through a sparse LU
+// (A − σB)⁻¹B on the columns where B is nonzero, solved dense: eigenvalues
+// by Eigen's real Schur form, eigenvectors of the finite ones only by
+// inverse iteration (dense_eigenproblem.h). Large ones: the same operator applied through a sparse LU
 // and its largest eigenvalues (the exponents nearest the shift σ) from
 // Spectra's Arnoldi solver (shift-invert).
 #pragma once
