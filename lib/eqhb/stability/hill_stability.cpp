@@ -27,6 +27,7 @@ struct HillPencil {
   SparseMatrix a, b_columns;   // A (size x size), B̃ (size x columns)
   std::vector<int> columns;    // p first, then w, then q where Ψ depends on λ̇
   int size = 0, displacement_unknowns = 0;
+  int jacobian_size = 0;       // n0: A = diag(J, I) with J n0 x n0
 };
 
 // The law rows' s-terms: P diag(Ψ_v) P and P diag(Ψ_λ̇) P per (a, b).
@@ -91,6 +92,7 @@ HillPencil buildPencil(const HbModel& model, const Eigen::VectorXd& full) {
   HillPencil pencil;
   pencil.size = n0 + nx;
   pencil.displacement_unknowns = nx;
+  pencil.jacobian_size = n0;
   std::vector<Triplet> a, b;
   a.reserve(jacobian.nonZeros() + nx);
   for (int j = 0; j < jacobian.outerSize(); ++j)
@@ -205,13 +207,31 @@ bool denseSpectrum(const HillPencil& pencil, double omega, Spectrum* out, std::s
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(pencil.size, pencil.size);
   const Eigen::MatrixXd b_columns = Eigen::MatrixXd(pencil.b_columns);
   for (size_t c = 0; c < pencil.columns.size(); ++c) b.col(pencil.columns[c]) = b_columns.col(c);
+  const int n0 = pencil.jacobian_size, m = static_cast<int>(pencil.columns.size());
+  Eigen::MatrixXd reduced(m, m);
   for (double shift : kShifts) {
     const double sigma = shift * omega;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a - sigma * b);
-    if (!(lu.rcond() > 1e-14)) continue;
-    const Eigen::MatrixXd solved = lu.solve(b_columns);
-    Eigen::MatrixXd reduced(pencil.columns.size(), pencil.columns.size());
-    for (size_t c = 0; c < pencil.columns.size(); ++c) reduced.row(c) = solved.row(pencil.columns[c]);
+    if (sigma == 0.0) {
+      // A = diag(J, I): J [p; q] = (B̃ x) on the top n0 rows and w = (B̃ x)
+      // on the rest, so only J is factorised (n0 of the pencil's unknowns).
+      // Singular as diag(J, I) would be judged: rcond(A) from J's with
+      // ‖A‖₁ = max(‖J‖₁, 1) and ‖A⁻¹‖₁ = max(‖J⁻¹‖₁, 1).
+      const Eigen::MatrixXd j = a.topLeftCorner(n0, n0);
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(j);
+      const double norm = j.cwiseAbs().colwise().sum().maxCoeff();
+      const double inverse_norm = 1.0 / (lu.rcond() * norm);
+      if (!(1.0 / (std::max(norm, 1.0) * std::max(inverse_norm, 1.0)) > 1e-14)) continue;
+      const Eigen::MatrixXd solved = lu.solve(b_columns.topRows(n0));
+      for (int c = 0; c < m; ++c) {
+        const int r = pencil.columns[c];
+        reduced.row(c) = r < n0 ? solved.row(r) : b_columns.row(r);
+      }
+    } else {
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a - sigma * b);
+      if (!(lu.rcond() > 1e-14)) continue;
+      const Eigen::MatrixXd solved = lu.solve(b_columns);
+      for (int c = 0; c < m; ++c) reduced.row(c) = solved.row(pencil.columns[c]);
+    }
     DenseEigenproblem solver;
     if (!solver.compute(reduced)) continue;
     out->values = solver.eigenvalues();
