@@ -26,6 +26,7 @@ CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const H
   CurveStability out;
   out.points.resize(curve.points.size());
   bool has_tangents = false;
+  HillStability hill(model, options);
   for (size_t i = 0; i < curve.points.size(); ++i) {
     CurvePoint& p = curve.points[i];
     out.solve_seconds += p.seconds;
@@ -33,9 +34,7 @@ CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const H
     p.stable = -1;
     p.bifurcation.clear();
     if (!p.converged || p.full.size() == 0) continue;
-    HbModel at = model;
-    at.omega = p.omega;
-    out.points[i] = hillStability(at, p.full, options);
+    out.points[i] = hill.analyse(p.omega, p.full);
     if (out.points[i].failure.empty()) p.stable = out.points[i].stable ? 1 : 0;
   }
   std::vector<double> folds;

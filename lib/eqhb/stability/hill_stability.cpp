@@ -31,10 +31,9 @@ struct HillPencil {
 };
 
 // The law rows' s-terms: P diag(Ψ_v) P and P diag(Ψ_λ̇) P per (a, b).
-void addLawRateBlocks(const HbModel& model, std::vector<Triplet>& b, const Eigen::VectorXd& full,
-                      bool* uses_force_rate) {
+void addLawRateBlocks(const HbModel& model, FourierTransform& transform, std::vector<Triplet>& b,
+                      const Eigen::VectorXd& full, bool* uses_force_rate) {
   const int n = model.structure.dofs(), nb = model.basis.size();
-  FourierTransform transform(model.basis, model.samples);
   Eigen::VectorXd rate(nb);
   Eigen::MatrixXd block(nb, nb);
   *uses_force_rate = false;
@@ -78,22 +77,48 @@ void addLawRateBlocks(const HbModel& model, std::vector<Triplet>& b, const Eigen
   }
 }
 
-HillPencil buildPencil(const HbModel& model, const Eigen::VectorXd& full) {
-  FullSystem system(model);
+}  // namespace
+
+// What one model's analyses share from point to point: the full system (its
+// ω set per point) and its Jacobian pattern, the Fourier transform of the law
+// rows, the triplet lists and the dense solver's work space.
+struct HillStability::Work {
+  explicit Work(const HbModel& m)
+      : model(m), system(m), jacobian(system.jacobianPattern()), g(system.size()),
+        transform(model.basis, model.samples) {}
+  HbModel model;  // its ω the current point's
+  FullSystem system;
+  SparseMatrix jacobian;
+  Eigen::VectorXd g;
+  FourierTransform transform;
+  std::vector<Triplet> a, b, b_kept;
+  HillPencil pencil;
+  DenseEigenproblem dense;
+};
+
+namespace {
+
+void buildPencil(HillStability::Work& work, const Eigen::VectorXd& full) {
+  const HbModel& model = work.model;
+  FullSystem& system = work.system;
   const int n = model.structure.dofs(), nb = model.basis.size();
   const int n0 = system.size(), nx = n * nb;
   if (full.size() != n0)
     throwInputError("solution", std::to_string(full.size()) + " coefficients",
                     "must have " + std::to_string(n0) + " ([x; lambda] of the full system)");
-  SparseMatrix jacobian = system.jacobianPattern();
-  Eigen::VectorXd g(n0);
-  system.residualAndSparseJacobian(full, g, jacobian);
+  system.setOmega(model.omega);
+  SparseMatrix& jacobian = work.jacobian;
+  system.residualAndSparseJacobian(full, work.g, jacobian);
 
-  HillPencil pencil;
+  HillPencil& pencil = work.pencil;
   pencil.size = n0 + nx;
   pencil.displacement_unknowns = nx;
   pencil.jacobian_size = n0;
-  std::vector<Triplet> a, b;
+  pencil.columns.clear();
+  std::vector<Triplet>& a = work.a;
+  std::vector<Triplet>& b = work.b;
+  a.clear();
+  b.clear();
   a.reserve(jacobian.nonZeros() + nx);
   for (int j = 0; j < jacobian.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(jacobian, j); it; ++it) a.emplace_back(it.row(), j, it.value());
@@ -120,7 +145,7 @@ HillPencil buildPencil(const HbModel& model, const Eigen::VectorXd& full) {
       }
     }
   bool force_rate = false;
-  addLawRateBlocks(model, b, full, &force_rate);
+  addLawRateBlocks(model, work.transform, b, full, &force_rate);
   // Identity rows: w − s p = 0.
   for (int i = 0; i < nx; ++i) b.emplace_back(n0 + i, i, 1.0);
 
@@ -130,7 +155,8 @@ HillPencil buildPencil(const HbModel& model, const Eigen::VectorXd& full) {
     for (int i = nx; i < n0; ++i) pencil.columns.push_back(i);
   std::vector<int> position(pencil.size, -1);
   for (size_t c = 0; c < pencil.columns.size(); ++c) position[pencil.columns[c]] = static_cast<int>(c);
-  std::vector<Triplet> b_kept;
+  std::vector<Triplet>& b_kept = work.b_kept;
+  b_kept.clear();
   b_kept.reserve(b.size());
   for (const Triplet& e : b)
     if (position[e.col()] >= 0) b_kept.emplace_back(e.row(), position[e.col()], e.value());
@@ -139,7 +165,6 @@ HillPencil buildPencil(const HbModel& model, const Eigen::VectorXd& full) {
   pencil.a.setFromTriplets(a.begin(), a.end());
   pencil.b_columns.resize(pencil.size, static_cast<int>(pencil.columns.size()));
   pencil.b_columns.setFromTriplets(b_kept.begin(), b_kept.end());
-  return pencil;
 }
 
 // κ of an eigenvector's displacement part (header).
@@ -202,7 +227,8 @@ struct Spectrum {
 // point, or a degenerate law Jacobian): σ in units of ω.
 constexpr double kShifts[] = {0.0, -0.0137, 0.0291};
 
-bool denseSpectrum(const HillPencil& pencil, double omega, Spectrum* out, std::string* failure) {
+bool denseSpectrum(const HillPencil& pencil, double omega, DenseEigenproblem& solver, Spectrum* out,
+                   std::string* failure) {
   const Eigen::MatrixXd a = Eigen::MatrixXd(pencil.a);
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(pencil.size, pencil.size);
   const Eigen::MatrixXd b_columns = Eigen::MatrixXd(pencil.b_columns);
@@ -232,7 +258,6 @@ bool denseSpectrum(const HillPencil& pencil, double omega, Spectrum* out, std::s
       const Eigen::MatrixXd solved = lu.solve(b_columns);
       for (int c = 0; c < m; ++c) reduced.row(c) = solved.row(pencil.columns[c]);
     }
-    DenseEigenproblem solver;
     if (!solver.compute(reduced)) continue;
     out->values = solver.eigenvalues();
     // Vectors of the finite eigenvalues only, the candidates.
@@ -297,21 +322,36 @@ void HillOptions::validate() const {
     throwInputError("unit_tolerance", formatNumber(unit_tolerance), "must be finite and >= 0");
 }
 
-HillResult hillStability(const HbModel& model, const Eigen::VectorXd& full, const HillOptions& options) {
-  options.validate();
+HillStability::HillStability(const HbModel& model, const HillOptions& options) : options_(options) {
+  options_.validate();
   model.validate();
+  work_ = std::make_unique<Work>(model);
+}
+
+HillStability::~HillStability() = default;
+
+HillResult hillStability(const HbModel& model, const Eigen::VectorXd& full, const HillOptions& options) {
+  return HillStability(model, options).analyse(model.omega, full);
+}
+
+HillResult HillStability::analyse(double omega, const Eigen::VectorXd& full) {
+  if (!(omega > 0.0) || !std::isfinite(omega)) throwInputError("omega", formatNumber(omega), "must be finite and > 0");
   const auto start = std::chrono::steady_clock::now();
+  const HillOptions& options = options_;
+  HbModel& model = work_->model;
+  model.omega = omega;
   HillResult result;
   const int n = model.structure.dofs();
   result.state_dimension = 2 * n;
-  const HillPencil pencil = buildPencil(model, full);
+  buildPencil(*work_, full);
+  const HillPencil& pencil = work_->pencil;
   result.pencil_size = pencil.size;
   result.sparse = pencil.size > options.dense_limit;
 
   Spectrum spectrum;
   const int wanted = options.sparse_eigenvalues > 0 ? options.sparse_eigenvalues : 40;
   const bool ok = result.sparse ? sparseSpectrum(pencil, model.omega, wanted, &spectrum, &result.failure)
-                                : denseSpectrum(pencil, model.omega, &spectrum, &result.failure);
+                                : denseSpectrum(pencil, model.omega, work_->dense, &spectrum, &result.failure);
   if (ok) {
     result.failure.clear();
     const bool odd = model.basis.kind() == HarmonicKind::kOdd;

@@ -38,6 +38,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,27 @@ struct HillResult {
 // has the wrong size.
 HillResult hillStability(const HbModel& model, const Eigen::VectorXd& full,
                          const HillOptions& options = {});
+
+// The same for many solutions of one model at different ω (the points of a
+// curve): what does not depend on the point (the full system and its
+// Jacobian pattern, Fourier transforms, work space) is made once. Results
+// are hillStability's of the model with that ω.
+class HillStability {
+ public:
+  // Throws InputError if the model or the options are invalid.
+  explicit HillStability(const HbModel& model, const HillOptions& options = {});
+  ~HillStability();
+  HillStability(const HillStability&) = delete;
+  HillStability& operator=(const HillStability&) = delete;
+  // Throws InputError if ω is not finite and > 0 or `full` has the wrong size.
+  HillResult analyse(double omega, const Eigen::VectorXd& full);
+
+  struct Work;  // defined in the source
+
+ private:
+  HillOptions options_;
+  std::unique_ptr<Work> work_;
+};
 
 // Multipliers with |ρ| >= 1 + unit_tolerance.
 int unstableMultipliers(const HillResult& result, double unit_tolerance = HillOptions().unit_tolerance);
