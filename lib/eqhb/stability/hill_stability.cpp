@@ -94,6 +94,8 @@ struct HillStability::Work {
   std::vector<Triplet> a, b, b_kept;
   HillPencil pencil;
   DenseEigenproblem dense;
+  Eigen::SparseLU<SparseMatrix> jacobian_lu;  // sparse path, σ = 0
+  bool jacobian_analysed = false;
 };
 
 namespace {
@@ -187,23 +189,30 @@ double centroid(const HarmonicSet& basis, int dofs, const Eigen::Ref<const Eigen
   return weight > 0.0 ? moment / weight : NAN;
 }
 
-// u ↦ E (A − σB)⁻¹ B̃ u through a sparse LU, for Spectra.
+// u ↦ E (A − σB)⁻¹ B̃ u through a sparse LU, for Spectra. With `solved` =
+// n0 (σ = 0, A = diag(J, I)) the LU is J's: the top n0 rows of the solution
+// are J⁻¹ times those of B̃ u, the rest B̃ u itself; with `solved` = the
+// pencil's size it is the LU of A − σB.
 class ShiftInvertOperator {
  public:
   using Scalar = double;
-  ShiftInvertOperator(const HillPencil& pencil, const Eigen::SparseLU<SparseMatrix>& lu)
-      : pencil_(pencil), lu_(lu), rhs_(pencil.size), solution_(pencil.size) {}
+  ShiftInvertOperator(const HillPencil& pencil, const Eigen::SparseLU<SparseMatrix>& lu, int solved)
+      : pencil_(pencil), lu_(lu), solved_(solved), rhs_(pencil.size), solution_(pencil.size) {}
   Eigen::Index rows() const { return static_cast<Eigen::Index>(pencil_.columns.size()); }
   Eigen::Index cols() const { return rows(); }
   void perform_op(const double* in, double* out) const {
     rhs_.noalias() = pencil_.b_columns * Eigen::Map<const Eigen::VectorXd>(in, rows());
-    solution_ = lu_.solve(rhs_);
-    for (Eigen::Index c = 0; c < rows(); ++c) out[c] = solution_[pencil_.columns[c]];
+    solution_.head(solved_) = lu_.solve(rhs_.head(solved_));
+    for (Eigen::Index c = 0; c < rows(); ++c) {
+      const int r = pencil_.columns[c];
+      out[c] = r < solved_ ? solution_[r] : rhs_[r];
+    }
   }
 
  private:
   const HillPencil& pencil_;
   const Eigen::SparseLU<SparseMatrix>& lu_;
+  const int solved_;
   mutable Eigen::VectorXd rhs_, solution_;
 };
 
@@ -276,7 +285,12 @@ bool denseSpectrum(const HillPencil& pencil, double omega, DenseEigenproblem& so
   return false;
 }
 
-bool sparseSpectrum(const HillPencil& pencil, double omega, int wanted, Spectrum* out, std::string* failure) {
+// `jacobian` is J (the top-left block of A), `jacobian_lu` its LU, whose
+// symbolic analysis (J's pattern is the full system's, fixed) is made at the
+// first call (*analysed false) and kept.
+bool sparseSpectrum(const HillPencil& pencil, double omega, int wanted, const SparseMatrix& jacobian,
+                    Eigen::SparseLU<SparseMatrix>& jacobian_lu, bool* analysed, Spectrum* out,
+                    std::string* failure) {
   SparseMatrix b(pencil.size, pencil.size);
   {
     std::vector<Triplet> entries;
@@ -290,12 +304,23 @@ bool sparseSpectrum(const HillPencil& pencil, double omega, int wanted, Spectrum
   const int ncv = std::min(m, std::max(2 * nev + 1, nev + 20));
   for (double shift : kShifts) {
     const double sigma = shift * omega;
-    SparseMatrix shifted = pencil.a - sigma * b;
-    shifted.makeCompressed();
-    Eigen::SparseLU<SparseMatrix> lu;
-    lu.compute(shifted);
-    if (lu.info() != Eigen::Success) continue;
-    ShiftInvertOperator op(pencil, lu);
+    Eigen::SparseLU<SparseMatrix> shifted_lu;
+    const Eigen::SparseLU<SparseMatrix>* lu = &jacobian_lu;
+    int solved = pencil.jacobian_size;
+    if (sigma == 0.0) {
+      if (!*analysed) jacobian_lu.analyzePattern(jacobian);
+      *analysed = true;
+      jacobian_lu.factorize(jacobian);
+      if (jacobian_lu.info() != Eigen::Success) continue;
+    } else {
+      SparseMatrix shifted = pencil.a - sigma * b;
+      shifted.makeCompressed();
+      shifted_lu.compute(shifted);
+      if (shifted_lu.info() != Eigen::Success) continue;
+      lu = &shifted_lu;
+      solved = pencil.size;
+    }
+    ShiftInvertOperator op(pencil, *lu, solved);
     Spectra::GenEigsSolver<ShiftInvertOperator> solver(op, nev, ncv);
     solver.init();
     solver.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10);
@@ -350,7 +375,8 @@ HillResult HillStability::analyse(double omega, const Eigen::VectorXd& full) {
 
   Spectrum spectrum;
   const int wanted = options.sparse_eigenvalues > 0 ? options.sparse_eigenvalues : 40;
-  const bool ok = result.sparse ? sparseSpectrum(pencil, model.omega, wanted, &spectrum, &result.failure)
+  const bool ok = result.sparse ? sparseSpectrum(pencil, model.omega, wanted, work_->jacobian, work_->jacobian_lu,
+                                                 &work_->jacobian_analysed, &spectrum, &result.failure)
                                 : denseSpectrum(pencil, model.omega, work_->dense, &spectrum, &result.failure);
   if (ok) {
     result.failure.clear();
