@@ -216,6 +216,24 @@ class ShiftInvertOperator {
   mutable Eigen::VectorXd rhs_, solution_;
 };
 
+// Spectra's solver, whose eigenvectors are asked for their leading rows only
+// (the displacement part that the centroid reads) and formed by two real
+// products V·Re + i V·Im instead of one mixed real-complex product.
+class HillArnoldi : public Spectra::GenEigsSolver<ShiftInvertOperator> {
+ public:
+  using Spectra::GenEigsSolver<ShiftInvertOperator>::GenEigsSolver;
+  // Rows [0, rows) of the Ritz vectors; valid after a successful compute()
+  // (all nev converged, in eigenvalues()' order).
+  Eigen::MatrixXcd leadingRows(Eigen::Index rows) const {
+    const auto v = m_fac.matrix_V().topRows(rows);
+    const Eigen::MatrixXd re = v * m_ritz_vec.real(), im = v * m_ritz_vec.imag();
+    Eigen::MatrixXcd out(rows, m_nev);
+    out.real() = re;
+    out.imag() = im;
+    return out;
+  }
+};
+
 // ν = 1/(s − σ) = 0 is an infinite exponent (a constraint), not a Floquet
 // one; `largest` is the largest |ν| of the spectrum.
 bool isFinite(Complex nu, double largest) { return std::abs(nu) > 1e-11 * largest; }
@@ -228,7 +246,7 @@ double largestModulus(const Eigen::VectorXcd& values) {
 
 struct Spectrum {
   Eigen::VectorXcd values;   // ν = 1/(s − σ)
-  Eigen::MatrixXcd vectors;  // E u
+  Eigen::MatrixXcd vectors;  // E u, or its displacement rows only
   double shift = 0.0;
 };
 
@@ -321,7 +339,7 @@ bool sparseSpectrum(const HillPencil& pencil, double omega, int wanted, const Sp
       solved = pencil.size;
     }
     ShiftInvertOperator op(pencil, *lu, solved);
-    Spectra::GenEigsSolver<ShiftInvertOperator> solver(op, nev, ncv);
+    HillArnoldi solver(op, nev, ncv);
     solver.init();
     solver.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10);
     if (solver.info() != Spectra::CompInfo::Successful) {
@@ -329,7 +347,7 @@ bool sparseSpectrum(const HillPencil& pencil, double omega, int wanted, const Sp
       continue;
     }
     out->values = solver.eigenvalues();
-    out->vectors = solver.eigenvectors();
+    out->vectors = solver.leadingRows(pencil.displacement_unknowns);
     out->shift = sigma;
     return true;
   }
