@@ -19,10 +19,9 @@ bool DenseEigenproblem::compute(const Eigen::MatrixXd& a) {
   }
   hessenberg_.compute(a / scale_);
   h_ = hessenberg_.matrixH();
-  t_ = h_;
-  if (!reduceToSchur()) return false;
-  t_ *= scale_;
-  const Eigen::MatrixXd& t = t_;
+  schur_.computeFromHessenberg(h_, Eigen::MatrixXd(), false);
+  if (schur_.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd t = schur_.matrixT() * scale_;
   // The eigenvalues from T exactly as EigenSolver::compute reads them.
   for (Eigen::Index i = 0; i < m;) {
     if (i == m - 1 || t(i + 1, i) == 0.0) {
@@ -42,140 +41,6 @@ bool DenseEigenproblem::compute(const Eigen::MatrixXd& a) {
   }
   // ‖H‖₁, for the size of a pivot that counts as zero
   for (Eigen::Index j = 0; j < m; ++j) h_norm_ = std::max(h_norm_, h_.col(j).cwiseAbs().sum());
-  return true;
-}
-
-// Eigen's RealSchur::computeFromHessenberg without Schur vectors (Eigen
-// 3.4, MPL-2.0; the shifts, deflation tests and the order of every operation
-// are its own), with the reflections and rotations from the left applied to
-// columns up to iu only. A reflection from the left mixes rows within each
-// column, and columns right of iu are never read again (iu only decreases),
-// so T's columns 0..iu, and with them the eigenvalues, come out bit for bit
-// as from the full update. (Cutting the updates from the right to rows from
-// il would not be exact: Eigen leaves the small subdiagonal entry at il in
-// place, and a later window can reach above it again.)
-bool DenseEigenproblem::reduceToSchur() {
-  using Vector3 = Eigen::Vector3d;
-  Eigen::MatrixXd& t = t_;
-  const Eigen::Index size = t.cols();
-  workspace_.resize(size);
-  double* workspace = workspace_.data();
-  const Eigen::Index max_iterations = 40 * size;  // RealSchur's m_maxIterationsPerRow
-  double norm = 0.0;  // computeNormOfT
-  for (Eigen::Index j = 0; j < size; ++j) norm += t.col(j).segment(0, std::min(size, j + 2)).cwiseAbs().sum();
-  const double eps = std::numeric_limits<double>::epsilon();
-  const double zero = std::max(norm * eps * eps, std::numeric_limits<double>::min());
-  if (norm == 0.0) return true;
-
-  auto findSmallSubdiagEntry = [&](Eigen::Index iu) {
-    Eigen::Index res = iu;
-    while (res > 0) {
-      double s = std::abs(t(res - 1, res - 1)) + std::abs(t(res, res));
-      s = std::max(s * eps, zero);
-      if (std::abs(t(res, res - 1)) <= s) break;
-      res--;
-    }
-    return res;
-  };
-  Eigen::Index iu = size - 1, iter = 0, total = 0;
-  double exshift = 0.0;
-  while (iu >= 0) {
-    const Eigen::Index il = findSmallSubdiagEntry(iu);
-    if (il == iu) {  // one root
-      t(iu, iu) = t(iu, iu) + exshift;
-      if (iu > 0) t(iu, iu - 1) = 0.0;
-      iu--;
-      iter = 0;
-      continue;
-    }
-    if (il == iu - 1) {  // two roots: splitOffTwoRows on the 2 x 2 block
-      const double p = 0.5 * (t(iu - 1, iu - 1) - t(iu, iu));
-      const double q = p * p + t(iu, iu - 1) * t(iu - 1, iu);
-      t(iu, iu) += exshift;
-      t(iu - 1, iu - 1) += exshift;
-      if (q >= 0.0) {
-        const double z = std::sqrt(std::abs(q));
-        Eigen::JacobiRotation<double> rot;
-        if (p >= 0.0)
-          rot.makeGivens(p + z, t(iu, iu - 1));
-        else
-          rot.makeGivens(p - z, t(iu, iu - 1));
-        t.block(0, iu - 1, size, 2).applyOnTheLeft(iu - 1, iu, rot.adjoint());
-        t.topRows(iu + 1).applyOnTheRight(iu - 1, iu, rot);
-        t(iu, iu - 1) = 0.0;
-      }
-      if (iu > 1) t(iu - 1, iu - 2) = 0.0;
-      iu -= 2;
-      iter = 0;
-      continue;
-    }
-    // computeShift
-    Vector3 shift(t(iu, iu), t(iu - 1, iu - 1), t(iu, iu - 1) * t(iu - 1, iu));
-    if (iter == 10) {  // Wilkinson's ad hoc shift (the whole diagonal, as Eigen)
-      exshift += shift(0);
-      for (Eigen::Index i = 0; i <= iu; ++i) t(i, i) -= shift(0);
-      const double s = std::abs(t(iu, iu - 1)) + std::abs(t(iu - 1, iu - 2));
-      shift << 0.75 * s, 0.75 * s, -0.4375 * s * s;
-    }
-    if (iter == 30) {  // MATLAB's ad hoc shift
-      double s = (shift(1) - shift(0)) / 2.0;
-      s = s * s + shift(2);
-      if (s > 0.0) {
-        s = std::sqrt(s);
-        if (shift(1) < shift(0)) s = -s;
-        s = s + (shift(1) - shift(0)) / 2.0;
-        s = shift(0) - shift(2) / s;
-        exshift += s;
-        for (Eigen::Index i = 0; i <= iu; ++i) t(i, i) -= s;
-        shift.setConstant(0.964);
-      }
-    }
-    iter = iter + 1;
-    total = total + 1;
-    if (total > max_iterations) return false;
-    // initFrancisQRStep
-    Vector3 first = Vector3::Zero();
-    Eigen::Index im;
-    for (im = iu - 2; im >= il; --im) {
-      const double tmm = t(im, im), r = shift(0) - tmm, s = shift(1) - tmm;
-      first(0) = (r * s - shift(2)) / t(im + 1, im) + t(im, im + 1);
-      first(1) = t(im + 1, im + 1) - tmm - r - s;
-      first(2) = t(im + 2, im + 1);
-      if (im == il) break;
-      const double lhs = t(im, im - 1) * (std::abs(first(1)) + std::abs(first(2)));
-      const double rhs = first(0) * (std::abs(t(im - 1, im - 1)) + std::abs(tmm) + std::abs(t(im + 1, im + 1)));
-      if (std::abs(lhs) < eps * rhs) break;
-    }
-    // performFrancisQRStep, the updates cut to rows and columns il..iu
-    for (Eigen::Index k = im; k <= iu - 2; ++k) {
-      const bool first_iteration = k == im;
-      Vector3 v = first_iteration ? first : Vector3(t.block<3, 1>(k, k - 1));
-      double tau, beta;
-      Eigen::Vector2d ess;
-      v.makeHouseholder(ess, tau, beta);
-      if (beta != 0.0) {
-        if (first_iteration && k > il)
-          t(k, k - 1) = -t(k, k - 1);
-        else if (!first_iteration)
-          t(k, k - 1) = beta;
-        t.block(k, k, 3, iu - k + 1).applyHouseholderOnTheLeft(ess, tau, workspace);
-        t.block(0, k, std::min(iu, k + 3) + 1, 3).applyHouseholderOnTheRight(ess, tau, workspace);
-      }
-    }
-    Eigen::Vector2d v = t.block<2, 1>(iu - 1, iu - 2);
-    double tau, beta;
-    Eigen::Matrix<double, 1, 1> ess;
-    v.makeHouseholder(ess, tau, beta);
-    if (beta != 0.0) {
-      t(iu - 1, iu - 2) = beta;
-      t.block(iu - 1, iu - 1, 2, 2).applyHouseholderOnTheLeft(ess, tau, workspace);
-      t.block(0, iu - 1, iu + 1, 2).applyHouseholderOnTheRight(ess, tau, workspace);
-    }
-    for (Eigen::Index i = im + 2; i <= iu; ++i) {  // round-off below the subdiagonal
-      t(i, i - 2) = 0.0;
-      if (i > im + 2) t(i, i - 3) = 0.0;
-    }
-  }
   return true;
 }
 

@@ -35,13 +35,9 @@ class DenseEigenproblem {
   // y with (H − μI) y ≈ 0 for μ an eigenvalue of H (scaled), largest entry 1.
   void inverseIteration(Complex mu, Eigen::Ref<Eigen::VectorXcd> y);
 
-  // T from H by the real Schur QR iteration, left updates cut at column iu
-  // (false: no convergence within 40 iterations per row, as Eigen).
-  bool reduceToSchur();
-
   Eigen::HessenbergDecomposition<Eigen::MatrixXd> hessenberg_;
-  Eigen::MatrixXd h_, t_;         // H of a / scale, its quasi-triangular T
-  Eigen::VectorXd workspace_;
+  Eigen::RealSchur<Eigen::MatrixXd> schur_;
+  Eigen::MatrixXd h_;             // H of a / scale
   double scale_ = 1.0, h_norm_ = 0.0;
   Eigen::VectorXcd values_;
   RowMajor lu_re_, lu_im_;        // the factors of H − μI
