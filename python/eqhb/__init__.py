@@ -67,14 +67,17 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
 
 def solve(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", system="condensed",
           tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
-          initial=None):
+          initial=None, cold_start="coarse"):
     """One harmonic-balance solve. Returns a dict: converged, termination,
     iterations, residual/jacobian evaluations, residual_norm, seconds, and
     "solution" (harmonics, x_cos/x_sin and lambda_cos/lambda_sin per channel,
     one period sampled: t, x, lambda; max_abs_x, invariants, and "full", the
-    coefficient vector to pass as `initial` to a later solve)."""
+    coefficient vector to pass as `initial` to a later solve). Without
+    `initial`, the solve starts from a coarse harmonic balance (about H/3
+    harmonics on few samples, as `eqhb solve`; "cold_start" in the result
+    says what it did) or, with cold_start="zero", from zero."""
     return _solve(model, omega, harmonics, samples, solver, system, tolerance, max_iterations, max_evaluations,
-                  time_limit, _options(options), _vector(initial, "initial"))
+                  time_limit, _options(options), _vector(initial, "initial"), cold_start)
 
 
 def stability(model, solution, *, omega=None, harmonics=None, samples=None):

@@ -7,11 +7,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <complex>
 #include <optional>
 
 #include "conversions.h"
 #include "eqhb/backends/registry.h"
+#include "eqhb/continuation/coarse_start.h"
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
@@ -121,7 +123,8 @@ HbModel withSettings(const HbModel& base, std::optional<double> omega, std::opti
 py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
                std::optional<int> samples, const std::string& solver_name, const std::string& system,
                double tolerance, int max_iterations, int max_evaluations, double time_limit,
-               const std::map<std::string, std::string>& backend, const std::optional<Eigen::VectorXd>& initial) {
+               const std::map<std::string, std::string>& backend, const std::optional<Eigen::VectorXd>& initial,
+               const std::string& cold_start) {
   const HbModel model = withSettings(m.scene.model, omega, harmonics, samples);
   const SolverOptions options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend);
   auto solver = makeSolver(solver_name);
@@ -137,13 +140,36 @@ py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int>
     if (!initial->allFinite()) throwInputError("initial", "(vector)", "must be finite");
     z0 = hb->fromFullCoefficients(*initial);
   }
+  if (cold_start != "coarse" && cold_start != "zero")
+    throwInputError("cold_start", "\"" + cold_start + "\"", "must be \"coarse\" or \"zero\"");
+  // Without an initial guess, start from a coarse harmonic balance (as `eqhb solve`).
+  std::optional<CoarseStart> coarse;
+  if (!initial && cold_start == "coarse") {
+    coarse.emplace(model, condensedSystem(system), LinearAlgebra::kAuto);
+    if (!coarse->available()) coarse.reset();
+  }
   SolverResult result;
+  ColdStartReport report;
+  double seconds = 0.0;
   {
     py::gil_scoped_release unlocked;
-    result = solver->solve(*hb, z0, options);
+    const auto start = std::chrono::steady_clock::now();
+    result = coarse ? coarse->solve(*solver, *hb, options, &report) : solver->solve(*hb, z0, options);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   if (result.termination == Termination::kInvalidOptions) throw InputError("options: " + result.native_message);
   py::dict d = resultDict(result);
+  d["seconds"] = coarse ? seconds : result.seconds;  // the coarse solve included
+  py::dict cold;
+  cold["kind"] = report.used ? "coarse" : initial ? "given" : "zero";
+  if (report.used) {
+    cold["harmonics"] = report.harmonics;
+    cold["samples"] = report.samples;
+    cold["converged"] = report.coarse.converged();
+    cold["iterations"] = report.coarse.iterations;
+    cold["retried_from_zero"] = report.retried_from_zero;
+  }
+  d["cold_start"] = cold;
   d["system"] = system;
   d["unknowns"] = hb->size();
   d["omega"] = model.omega;
@@ -372,7 +398,8 @@ PYBIND11_MODULE(_eqhb, m) {
 
   m.def("_solve", &solve, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),
         py::arg("solver"), py::arg("system"), py::arg("tolerance"), py::arg("max_iterations"),
-        py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"), py::arg("initial"));
+        py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"), py::arg("initial"),
+        py::arg("cold_start"));
   m.def("_sweep", &sweep, py::arg("model"), py::arg("start"), py::arg("stop"), py::arg("step"), py::arg("method"),
         py::arg("harmonics"), py::arg("samples"), py::arg("solver"), py::arg("system"), py::arg("tolerance"),
         py::arg("max_iterations"), py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"),

@@ -30,6 +30,21 @@ def arrays_model(mass=M, stiffness=K, damping=C, **kw):
     return eqhb.model(mass, stiffness, damping, **settings)
 
 
+def test_coarse_cold_start_finds_the_zero_starts_solution():
+    model = eqhb.load_scene(SCENE)
+    coarse, zero = eqhb.solve(model), eqhb.solve(model, cold_start="zero")
+    assert coarse["converged"] and zero["converged"]
+    assert coarse["cold_start"]["kind"] == "coarse" and zero["cold_start"]["kind"] == "zero"
+    # H = 10 odd: the rung has 3 harmonics; the fine solve needs fewer iterations from it.
+    assert coarse["cold_start"]["harmonics"] == 3 and coarse["cold_start"]["converged"]
+    assert coarse["iterations"] < zero["iterations"]
+    np.testing.assert_allclose(coarse["solution"]["full"], zero["solution"]["full"],
+                               atol=1e-8 * np.max(np.abs(zero["solution"]["full"])))
+    # A given initial guess is used as given.
+    again = eqhb.solve(model, initial=zero["solution"]["full"])
+    assert again["cold_start"]["kind"] == "given" and again["iterations"] == 0
+
+
 def test_version_and_backends():
     assert eqhb.__version__.count(".") == 2
     names = [s["name"] for s in eqhb.solvers()]
@@ -161,6 +176,7 @@ BAD = [
     (lambda: eqhb.solve(eqhb.load_scene(SCENE), tolerance=-1.0), "tolerance"),
     (lambda: eqhb.solve(eqhb.load_scene(SCENE), options={"bogus": 1}), "bogus"),
     (lambda: eqhb.solve(eqhb.load_scene(SCENE), initial=[0.0, 1.0]), "initial"),
+    (lambda: eqhb.solve(eqhb.load_scene(SCENE), cold_start="warm"), "cold_start"),
     (lambda: eqhb.sweep(eqhb.load_scene(SCENE), method="newton"), "method"),
     (lambda: eqhb.sweep(eqhb.load_scene(SCENE), 0.1, 0.2, step=0.0), "step"),
     (lambda: eqhb.simulate(eqhb.load_scene(SCENE), theta=2.0), "theta"),
