@@ -196,6 +196,26 @@ TEST(HillStability, DuffingCurveAgreesWithShootingAndTheMiddleBranchIsUnstable) 
   }
 }
 
+// The damper's two contact faces stick and stay closed over parts of the
+// period: the pencil's infinite eigenvalues are defective there and come out
+// of rounding at |s| of 1e7–1e8 ω with positive real parts. They must not be
+// taken for Floquet exponents (they were: infinite multipliers, "unstable").
+TEST(HillStability, DefectiveInfiniteEigenvaluesOfConstraintsAreNotExponents) {
+  const Scene scene = loadScene(test::problem("damper.toml"), {"harmonic_balance.omega=0.86"});
+  CondensedSystem system(scene.model);
+  const auto solved = makeSolver("dogleg")->solve(system, Eigen::VectorXd::Zero(system.size()), {});
+  ASSERT_TRUE(solved.converged()) << solved.summary();
+  const HillResult r = hillStability(scene.model, system.fullCoefficients(solved.solution));
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  ASSERT_EQ(static_cast<int>(r.exponents.size()), r.state_dimension);
+  for (const auto& e : r.exponents) {
+    EXPECT_LT(std::abs(e.exponent), 100.0 * 0.86) << e.exponent;
+    EXPECT_TRUE(std::isfinite(std::abs(e.multiplier))) << e.exponent;
+  }
+  EXPECT_TRUE(r.stable) << r.spectral_radius;
+  EXPECT_NEAR(r.spectral_radius, 0.9648, 1e-3);
+}
+
 TEST(HillStability, RejectsASolutionOfTheWrongSize) {
   const HbModel model = chain(0.0, HarmonicKind::kAll, 2, 0.5);
   EXPECT_THROW(hillStability(model, Eigen::VectorXd::Zero(3)), InputError);

@@ -235,8 +235,23 @@ class HillArnoldi : public Spectra::GenEigsSolver<ShiftInvertOperator> {
 };
 
 // ν = 1/(s − σ) = 0 is an infinite exponent (a constraint), not a Floquet
-// one; `largest` is the largest |ν| of the spectrum.
-bool isFinite(Complex nu, double largest) { return std::abs(nu) > 1e-11 * largest; }
+// one. In rounding it is not exactly 0: where sticking or a closed contact
+// constrains displacements, the infinite eigenvalues are defective (index 2
+// or 3) and come out at |ν| of about ε^{1/k} of the largest, that is at |s|
+// of 7e6–1e10 ω on the damper and planar-friction scenes, while the finite
+// exponents of the truncated problem lie within a few hundred ω (harmonics
+// up to k_max, the structure's own frequencies). So an eigenvalue is taken as
+// infinite when |ν| is below 1e-11 of the largest |ν| of the spectrum or
+// |s| exceeds kLargestExponent · max(k_max, 1) · ω.
+constexpr double kLargestExponent = 1e5;
+struct FiniteExponent {
+  double largest = 0.0;  // the largest |ν|
+  double shift = 0.0;    // σ
+  double limit = 0.0;    // on |s|
+  bool operator()(Complex nu) const {
+    return std::abs(nu) > 1e-11 * largest && std::abs(shift + 1.0 / nu) <= limit;
+  }
+};
 
 double largestModulus(const Eigen::VectorXcd& values) {
   double largest = 0.0;
@@ -254,8 +269,8 @@ struct Spectrum {
 // point, or a degenerate law Jacobian): σ in units of ω.
 constexpr double kShifts[] = {0.0, -0.0137, 0.0291};
 
-bool denseSpectrum(const HillPencil& pencil, double omega, DenseEigenproblem& solver, Spectrum* out,
-                   std::string* failure) {
+bool denseSpectrum(const HillPencil& pencil, double omega, double exponent_limit, DenseEigenproblem& solver,
+                   Spectrum* out, std::string* failure) {
   const Eigen::MatrixXd a = Eigen::MatrixXd(pencil.a);
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(pencil.size, pencil.size);
   const Eigen::MatrixXd b_columns = Eigen::MatrixXd(pencil.b_columns);
@@ -289,9 +304,9 @@ bool denseSpectrum(const HillPencil& pencil, double omega, DenseEigenproblem& so
     out->values = solver.eigenvalues();
     // Vectors of the finite eigenvalues only, the candidates.
     std::vector<int> finite;
-    const double largest = largestModulus(out->values);
+    const FiniteExponent isFinite{largestModulus(out->values), sigma, exponent_limit};
     for (Eigen::Index j = 0; j < out->values.size(); ++j)
-      if (isFinite(out->values[j], largest)) finite.push_back(static_cast<int>(j));
+      if (isFinite(out->values[j])) finite.push_back(static_cast<int>(j));
     Eigen::MatrixXcd vectors;
     solver.eigenvectors(finite, &vectors);
     out->vectors.setZero(reduced.rows(), reduced.cols());
@@ -393,20 +408,22 @@ HillResult HillStability::analyse(double omega, const Eigen::VectorXd& full) {
 
   Spectrum spectrum;
   const int wanted = options.sparse_eigenvalues > 0 ? options.sparse_eigenvalues : 40;
+  const double exponent_limit = kLargestExponent * std::max(model.basis.highest(), 1) * model.omega;
   const bool ok = result.sparse ? sparseSpectrum(pencil, model.omega, wanted, work_->jacobian, work_->jacobian_lu,
                                                  &work_->jacobian_analysed, &spectrum, &result.failure)
-                                : denseSpectrum(pencil, model.omega, work_->dense, &spectrum, &result.failure);
+                                : denseSpectrum(pencil, model.omega, exponent_limit, work_->dense, &spectrum,
+                                                &result.failure);
   if (ok) {
     result.failure.clear();
     const bool odd = model.basis.kind() == HarmonicKind::kOdd;
     const double quantum = odd ? 2.0 * model.omega : model.omega;  // Ω
     const double reference = odd ? 1.0 : 0.0;                       // r
     const double period = 2.0 * M_PI / model.omega;
-    const double largest = largestModulus(spectrum.values);
+    const FiniteExponent isFinite{largestModulus(spectrum.values), spectrum.shift, exponent_limit};
     std::vector<FloquetExponent> candidates;
     for (Eigen::Index j = 0; j < spectrum.values.size(); ++j) {
       const Complex nu = spectrum.values[j];
-      if (!isFinite(nu, largest)) continue;
+      if (!isFinite(nu)) continue;
       ++result.candidates;
       FloquetExponent e;
       e.exponent = spectrum.shift + 1.0 / nu;
