@@ -35,15 +35,6 @@ double denHartogAmplitude(double r, double beta) {
   return std::sqrt(v * v - beta * beta * u * u);
 }
 
-Eigen::VectorXd harmonicBalance(const HbModel& model) {
-  auto system = makeHbSystem(model, true);
-  SolverOptions options;
-  options.residual_tolerance = 1e-10;
-  const auto result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), options);
-  EXPECT_TRUE(result.converged());
-  return system->fullCoefficients(result.solution);
-}
-
 // Root mean square over one period and every DOF of x_series − x_orbit, on
 // 3001 instants (not the projection's): the L2 distance of a series to the orbit.
 double l2Distance(const HbModel& model, const orbits::ShootingResult& orbit, const Eigen::VectorXd& full) {
@@ -64,7 +55,7 @@ double l2Distance(const HbModel& model, const orbits::ShootingResult& orbit, con
 TEST(OrbitRefinement, DenHartogPeakIsExactWherePlainHarmonicBalanceIsNot) {
   const double r = 1.5, beta = 0.3;
   const HbModel model = denHartog(r, beta, 5);
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto refined = refineByShooting(model, hb, RefinementOptions());
   ASSERT_TRUE(refined.converged) << refined.failure;
   const double exact = denHartogAmplitude(r, beta);
@@ -89,7 +80,7 @@ TEST(OrbitRefinement, CoarseStartProjectsOnMoreHarmonics) {
   // HB at H = 5 starts shooting; the orbit projected on 40 harmonics is far
   // closer to the orbit, and its first 5 harmonics are the H = 5 projection's.
   const HbModel model = denHartog(1.5, 0.3, 5);
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto coarse = refineByShooting(model, hb, RefinementOptions());
   RefinementOptions wide;
   wide.output_harmonics = 40;
@@ -111,7 +102,7 @@ TEST(OrbitRefinement, ForcesFollowTheLawsSignConvention) {
   // agrees with harmonic balance's to its accuracy, and with a direct
   // quadrature of the orbit's force samples.
   HbModel model = loadScene(test::problem("friction-1d.toml")).model;
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto refined = refineByShooting(model, hb, RefinementOptions());
   ASSERT_TRUE(refined.converged) << refined.failure;
   const int nb = model.basis.size(), n = model.structure.dofs();
@@ -135,7 +126,7 @@ TEST(OrbitRefinement, ForcesFollowTheLawsSignConvention) {
 
 TEST(OrbitRefinement, RefusesWhatItCannotRefine) {
   const HbModel model = denHartog(1.5, 0.3, 5);
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   RefinementOptions few;
   few.samples = 5;  // k_max = 9 needs 19
   EXPECT_THROW(refineByShooting(model, hb, few), InputError);

@@ -112,22 +112,12 @@ TEST(Shooting, LinearOrbitIsTheExactResponseAndMultipliersAreExpLambdaT) {
   }
 }
 
-// A harmonic-balance solution of a scene (own dogleg, condensed).
-Eigen::VectorXd harmonicBalance(const HbModel& model) {
-  auto system = makeHbSystem(model, true);
-  SolverOptions options;
-  options.residual_tolerance = 1e-10;
-  const auto result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), options);
-  EXPECT_TRUE(result.converged());
-  return system->fullCoefficients(result.solution);
-}
-
 TEST(Shooting, PeriodMapJacobianMatchesFiniteDifferences) {
   for (double omega : {0.4, 0.55, 0.308}) {
     HbModel model = loadScene(test::problem("friction-1d.toml")).model;
     model.omega = omega;
     const PiecewiseLinearFlow flow(model, 0.0);
-    const Eigen::VectorXd hb = harmonicBalance(model);
+    const Eigen::VectorXd hb = test::harmonicBalance(model);
     const double t0 = orbits::quietStartTime(model, hb);
     const Eigen::VectorXd y0 = orbits::harmonicState(model, hb, t0);
     const auto exact = flow.integrate(y0, t0, flow.period(), true);
@@ -151,7 +141,7 @@ TEST(Shooting, PeriodMapJacobianMatchesFiniteDifferences) {
 TEST(Shooting, FrictionChainFromHarmonicBalanceConvergesNearIt) {
   const HbModel model = loadScene(test::problem("friction-1d.toml")).model;
   const PiecewiseLinearFlow flow(model, 0.0);
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const double t0 = orbits::quietStartTime(model, hb);
   const auto orbit = shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
   ASSERT_TRUE(orbit.converged) << orbit.failure;
@@ -222,7 +212,7 @@ TEST(Shooting, MoreauJeanConvergesToTheExactOrbit) {
     HbModel model = loadScene(test::problem(file)).model;
     model.omega = omega;
     const PiecewiseLinearFlow flow(model, 0.0);
-    const Eigen::VectorXd hb = harmonicBalance(model);
+    const Eigen::VectorXd hb = test::harmonicBalance(model);
     const double t0 = orbits::quietStartTime(model, hb);
     const auto orbit = shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
     ASSERT_TRUE(orbit.converged) << orbit.failure;
@@ -255,7 +245,7 @@ TEST(Shooting, CubicOrbitAgreesWithConvergedHarmonicBalance) {
   model.basis = HarmonicSet(HarmonicKind::kOdd, 15);
   model.samples = 256;
   const auto flow = orbits::makeFlow(model, 0.0);
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto orbit = shootSmooth(model, *flow, hb);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   const Eigen::VectorXd y_hb = orbits::harmonicState(model, hb, orbit.start_time);
@@ -269,7 +259,7 @@ TEST(Shooting, CubicOrbitAgreesWithConvergedHarmonicBalance) {
 TEST(Shooting, PlanarSlidingOrbitAndItsMonodromy) {
   const HbModel model = loadScene(test::problem("friction-2d-sliding.toml")).model;
   const auto flow = orbits::makeFlow(model, 0.0);
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto orbit = shootSmooth(model, *flow, hb);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   EXPECT_LE(orbit.period_residual, 1e-11);
@@ -313,7 +303,7 @@ double jacobianMismatch(const orbits::Flow& flow, const Eigen::VectorXd& y0, dou
 TEST(Shooting, PlanarStickSlipOrbit) {
   const HbModel model = loadScene(test::problem("friction-2d.toml")).model;
   const auto flow = orbits::makeFlow(model, 0.0);
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto orbit = shootSmooth(model, *flow, hb);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   EXPECT_LE(orbit.period_residual, 1e-11);
@@ -345,7 +335,7 @@ TEST(Shooting, PlanarStickSlipOrbit) {
 TEST(Shooting, PlanarStickSlipMonodromyMatchesFiniteDifferences) {
   const HbModel model = loadScene(test::problem("friction-2d.toml")).model;
   const auto flow = orbits::makeFlow(model, 0.0);
-  const auto orbit = shootSmooth(model, *flow, harmonicBalance(model));
+  const auto orbit = shootSmooth(model, *flow, test::harmonicBalance(model));
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   // The monodromy (stop and release saltations) against central
   // differences, over parts of the period and the whole. The differences
@@ -360,7 +350,7 @@ TEST(Shooting, PlanarStickSlipMonodromyMatchesFiniteDifferences) {
 // an independent check of it.
 void expectMoreauJeanConverges(const HbModel& model) {
   const auto flow = orbits::makeFlow(model, 0.0);
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto orbit = shootSmooth(model, *flow, hb);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   std::vector<double> errors;
@@ -392,7 +382,7 @@ TEST(Shooting, StribeckOrbitsAndTheirMonodromy) {
     HbModel model = loadScene(test::problem("stribeck.toml")).model;
     model.omega = omega;
     const auto flow = orbits::makeFlow(model, 0.0);
-    const auto orbit = shootSmooth(model, *flow, harmonicBalance(model));
+    const auto orbit = shootSmooth(model, *flow, test::harmonicBalance(model));
     ASSERT_TRUE(orbit.converged) << orbit.failure;
     EXPECT_LE(orbit.period_residual, 1e-11);
     EXPECT_EQ(orbit.events.count("stick"), omega == 0.2 ? 1u : 0u);
@@ -420,7 +410,7 @@ TEST(Shooting, StribeckWithoutDropIsTheClosedFormCoulombOrbit) {
     stribeck.laws[0].law = std::make_shared<Stribeck>(7.2, 7.2, 0.5);
     const PiecewiseLinearFlow exact(coulomb, 0.0);
     const orbits::SmoothFlow smooth(stribeck);
-    const Eigen::VectorXd hb = harmonicBalance(coulomb);
+    const Eigen::VectorXd hb = test::harmonicBalance(coulomb);
     const double t0 = orbits::quietStartTime(coulomb, hb);
     const auto a = shootPeriodicOrbit(exact, orbits::harmonicState(coulomb, hb, t0), t0, ShootingOptions());
     const auto b = shootPeriodicOrbit(smooth, orbits::harmonicState(coulomb, hb, t0), t0, ShootingOptions());
@@ -439,7 +429,7 @@ TEST(Shooting, CoulombMixedWithCubicGoesWithTheSmoothPhases) {
   HbModel coulomb = loadScene(test::problem("friction-1d.toml")).model;
   coulomb.omega = 0.308;
   const PiecewiseLinearFlow exact(coulomb, 0.0);
-  const Eigen::VectorXd hb = harmonicBalance(coulomb);
+  const Eigen::VectorXd hb = test::harmonicBalance(coulomb);
   const double t0 = orbits::quietStartTime(coulomb, hb);
   const auto a = shootPeriodicOrbit(exact, orbits::harmonicState(coulomb, hb, t0), t0, ShootingOptions());
   ASSERT_TRUE(a.converged) << a.failure;
@@ -538,7 +528,7 @@ TEST(Shooting, JenkinsOrbitMonodromyAndHarmonicBalanceError) {
   ASSERT_TRUE(PiecewiseLinearFlow::supports(model));
   const PiecewiseLinearFlow flow(model, 0.0);
   EXPECT_EQ(flow.stateSize(), 5);  // x1, x2, v1, v2, w
-  const Eigen::VectorXd hb = harmonicBalance(model);
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
   const double t0 = orbits::quietStartTime(model, hb);
   const auto orbit = shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
   ASSERT_TRUE(orbit.converged) << orbit.failure;
@@ -569,7 +559,7 @@ TEST(Shooting, JenkinsOrbitMonodromyAndHarmonicBalanceError) {
     HbModel m = loadScene(test::problem("jenkins-1d.toml"), {"harmonic_balance.harmonics=" + std::to_string(h),
                                                             "harmonic_balance.samples=" + std::to_string(32 * h)})
                     .model;
-    const Eigen::VectorXd full = harmonicBalance(m);
+    const Eigen::VectorXd full = test::harmonicBalance(m);
     double sup = 0.0;
     for (size_t s = 0; s < samples.times.size(); ++s)
       sup = std::max(sup, (orbits::harmonicState(m, full, samples.times[s]).head(2) -
@@ -584,7 +574,7 @@ TEST(Shooting, JenkinsOrbitMonodromyAndHarmonicBalanceError) {
 TEST(Shooting, StiffJenkinsOrbitApproachesTheCoulombOrbit) {
   auto shoot = [](const HbModel& model) {
     const auto flow = orbits::makeFlow(model, 0.0);
-    const Eigen::VectorXd hb = harmonicBalance(model);
+    const Eigen::VectorXd hb = test::harmonicBalance(model);
     const double t0 = orbits::quietStartTime(model, hb);
     return shootPeriodicOrbit(*flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
   };

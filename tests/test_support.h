@@ -2,10 +2,12 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <gtest/gtest.h>
 #include <string>
 
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/solvers/square_system.h"
 #include "eqhb/backends/registry.h"
 
@@ -48,6 +50,17 @@ inline HbModel chainWithFriction(double mu_n, CoulombForm form, int harmonics, d
   model.samples = samples;
   model.omega = omega;
   return model;
+}
+
+// A harmonic-balance solution [x; λ] of `model` (own dogleg, condensed, from
+// zero, |g| <= 1e-10), expected to converge.
+inline Eigen::VectorXd harmonicBalance(const HbModel& model) {
+  auto system = makeHbSystem(model, true);
+  SolverOptions options;
+  options.residual_tolerance = 1e-10;
+  const auto result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), options);
+  EXPECT_TRUE(result.converged());
+  return system->fullCoefficients(result.solution);
 }
 
 inline bool registered(const std::string& name) {
