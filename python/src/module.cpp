@@ -7,7 +7,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
 #include <complex>
 #include <optional>
 
@@ -146,20 +145,16 @@ py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int>
   std::optional<CoarseStart> coarse;
   if (!initial && cold_start == "coarse") {
     coarse.emplace(model, condensedSystem(system), LinearAlgebra::kAuto);
-    if (!coarse->available()) coarse.reset();
   }
   SolverResult result;
   ColdStartReport report;
-  double seconds = 0.0;
   {
     py::gil_scoped_release unlocked;
-    const auto start = std::chrono::steady_clock::now();
     result = coarse ? coarse->solve(*solver, *hb, options, &report) : solver->solve(*hb, z0, options);
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   if (result.termination == Termination::kInvalidOptions) throw InputError("options: " + result.native_message);
   py::dict d = resultDict(result);
-  d["seconds"] = coarse ? seconds : result.seconds;  // the coarse solve included
+  if (report.used) d["seconds"] = report.seconds;  // the coarse solve included
   py::dict cold;
   cold["kind"] = report.used ? "coarse" : initial ? "given" : "zero";
   if (report.used) {

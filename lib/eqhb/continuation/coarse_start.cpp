@@ -23,8 +23,8 @@ HbModel coarseModel(const HbModel& fine) {
 }
 
 CoarseStart::CoarseStart(const HbModel& fine, bool condensed, LinearAlgebra linear_algebra)
-    : fine_(fine), coarse_(eqhb::coarseModel(fine)) {
-  if (coarse_.basis.count() == fine_.basis.count()) return;
+    : coarse_(eqhb::coarseModel(fine)) {
+  if (coarse_.basis.count() == fine.basis.count()) return;
   system_ = makeHbSystem(coarse_, condensed, linear_algebra);
   zero_coarse_ = Eigen::VectorXd::Zero(system_->size());
 }
@@ -41,24 +41,26 @@ SolverResult CoarseStart::solve(Solver& solver, HbSystem& fine_system, const Sol
   r.samples = coarse_.samples;
   // --time-limit bounds the whole cold start: each later solve gets what is left.
   const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   auto remaining = [&]() {
     SolverOptions o = options;
-    if (options.time_limit > 0.0) {
-      const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      o.time_limit = std::max(options.time_limit - spent, 1e-3 * options.time_limit);
-    }
+    if (options.time_limit > 0.0) o.time_limit = std::max(options.time_limit - elapsed(), 1e-3 * options.time_limit);
     return o;
+  };
+  auto finish = [&](SolverResult result) {
+    r.seconds = elapsed();
+    return result;
   };
   r.coarse = solver.solve(*system_, zero_coarse_, options);
   // A coarse solve that did not converge is no better a start than zero.
-  if (!r.coarse.converged()) return solver.solve(fine_system, zero, remaining());
-  fine_start_ = fine_system.fromFullCoefficients(
-      transferCoefficients(coarse_, fine_, system_->fullCoefficients(r.coarse.solution)));
-  SolverResult fine = solver.solve(fine_system, fine_start_, remaining());
-  if (fine.converged() || fine.termination == Termination::kInvalidOptions) return fine;
+  if (!r.coarse.converged()) return finish(solver.solve(fine_system, zero, remaining()));
+  const Eigen::VectorXd fine_start = fine_system.fromFullCoefficients(
+      transferCoefficients(coarse_, fine_system.model(), system_->fullCoefficients(r.coarse.solution)));
+  SolverResult fine = solver.solve(fine_system, fine_start, remaining());
+  if (fine.converged() || fine.termination == Termination::kInvalidOptions) return finish(fine);
   r.retried_from_zero = true;
   r.first_attempt = fine;
-  return solver.solve(fine_system, zero, remaining());
+  return finish(solver.solve(fine_system, zero, remaining()));
 }
 
 }  // namespace eqhb

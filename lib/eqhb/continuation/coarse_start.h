@@ -36,6 +36,7 @@ struct ColdStartReport {
   SolverResult coarse;            // its solve
   bool retried_from_zero = false; // the fine solve from the coarse start failed
   SolverResult first_attempt;     // that failed fine solve (when retried)
+  double seconds = 0.0;           // the whole cold start: coarse and fine solves
 };
 
 class CoarseStart {
@@ -49,15 +50,16 @@ class CoarseStart {
   const HbModel& coarseModel() const { return coarse_; }
 
   // Solves `fine_system` (built on the fine model of the constructor) from
-  // the coarse start, falling back to zero as described above. Returns the
-  // fine result; `report` says what happened.
+  // the coarse start, falling back to zero as described above (from zero
+  // alone when !available()). Returns the fine result; `report` says what
+  // happened.
   SolverResult solve(Solver& solver, HbSystem& fine_system, const SolverOptions& options,
                      ColdStartReport* report);
 
  private:
-  HbModel fine_, coarse_;
+  HbModel coarse_;
   std::unique_ptr<HbSystem> system_;
-  Eigen::VectorXd zero_coarse_, fine_start_;
+  Eigen::VectorXd zero_coarse_;
 };
 
 // The coarse model of `fine` (harmonics and samples as in the header), or
