@@ -271,10 +271,7 @@ constexpr double kShifts[] = {0.0, -0.0137, 0.0291};
 
 bool denseSpectrum(const HillPencil& pencil, double omega, double exponent_limit, DenseEigenproblem& solver,
                    Spectrum* out, std::string* failure) {
-  const Eigen::MatrixXd a = Eigen::MatrixXd(pencil.a);
-  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(pencil.size, pencil.size);
   const Eigen::MatrixXd b_columns = Eigen::MatrixXd(pencil.b_columns);
-  for (size_t c = 0; c < pencil.columns.size(); ++c) b.col(pencil.columns[c]) = b_columns.col(c);
   const int n0 = pencil.jacobian_size, m = static_cast<int>(pencil.columns.size());
   Eigen::MatrixXd reduced(m, m);
   for (double shift : kShifts) {
@@ -284,7 +281,7 @@ bool denseSpectrum(const HillPencil& pencil, double omega, double exponent_limit
       // on the rest, so only J is factorised (n0 of the pencil's unknowns).
       // Singular as diag(J, I) would be judged: rcond(A) from J's with
       // ‖A‖₁ = max(‖J‖₁, 1) and ‖A⁻¹‖₁ = max(‖J⁻¹‖₁, 1).
-      const Eigen::MatrixXd j = a.topLeftCorner(n0, n0);
+      const Eigen::MatrixXd j = Eigen::MatrixXd(pencil.a.topLeftCorner(n0, n0));
       const Eigen::PartialPivLU<Eigen::MatrixXd> lu(j);
       const double norm = j.cwiseAbs().colwise().sum().maxCoeff();
       const double inverse_norm = 1.0 / (lu.rcond() * norm);
@@ -295,7 +292,10 @@ bool denseSpectrum(const HillPencil& pencil, double omega, double exponent_limit
         reduced.row(c) = r < n0 ? solved.row(r) : b_columns.row(r);
       }
     } else {
-      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a - sigma * b);
+      // Only here (J singular) are the whole A and B needed dense.
+      Eigen::MatrixXd a_shifted = Eigen::MatrixXd(pencil.a);
+      for (size_t c = 0; c < pencil.columns.size(); ++c) a_shifted.col(pencil.columns[c]) -= sigma * b_columns.col(c);
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a_shifted);
       if (!(lu.rcond() > 1e-14)) continue;
       const Eigen::MatrixXd solved = lu.solve(b_columns);
       for (int c = 0; c < m; ++c) reduced.row(c) = solved.row(pencil.columns[c]);
