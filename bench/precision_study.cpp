@@ -15,16 +15,11 @@
 #include "eqhb/laws/signorini.h"
 #include "eqhb/orbits/orbit_refinement.h"
 #include "eqhb/scenes/scene.h"
+#include "report_number.h"
 
 namespace eqhb::bench {
 
 namespace {
-
-std::string exactNumber(double x) {
-  std::ostringstream s;
-  s << std::setprecision(17) << x;
-  return s.str();
-}
 
 // Errors below this are rounding of the reference, not discretisation.
 constexpr double kRoundingLevel = 1e-10;
@@ -39,12 +34,12 @@ bool exactForm(const std::string& form) {
 bool takesRho(const HbModel& model) { return lawTakesRho(model.laws[0].law->type()); }
 
 Scene load(const PrecisionScene& scene, const std::string& form, std::optional<double> rho) {
-  std::vector<std::string> overrides = {"harmonic_balance.omega=" + exactNumber(scene.omega)};
+  std::vector<std::string> overrides = {"harmonic_balance.omega=" + reportNumber(scene.omega, 17)};
   const Scene plain = loadScene(scene.file, overrides);
   if (!form.empty())
     for (const auto& o : lawOverrides(plain.model, "form", form)) overrides.push_back(o);
   if (rho)
-    for (const auto& o : lawOverrides(plain.model, "rho", exactNumber(*rho))) overrides.push_back(o);
+    for (const auto& o : lawOverrides(plain.model, "rho", reportNumber(*rho, 17))) overrides.push_back(o);
   return loadScene(scene.file, overrides);
 }
 

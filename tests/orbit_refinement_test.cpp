@@ -16,24 +16,7 @@ namespace {
 using orbits::RefinementOptions;
 using orbits::refineByShooting;
 
-// m ẍ + k x + F sgn(ẋ) = P cos ωt with m = k = P = 1 (no damping).
-HbModel denHartog(double omega, double friction, int harmonics) {
-  HbModel model;
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
-                                    Eigen::MatrixXd::Identity(1, 1));
-  model.structure.loads.push_back({0, 1, 1.0, 0.0});
-  model.laws.push_back({{0}, std::make_shared<Coulomb1D>(friction, CoulombForm::kMinMax)});
-  model.basis = HarmonicSet(HarmonicKind::kOdd, harmonics);
-  model.samples = 16 * harmonics;
-  model.omega = omega;
-  return model;
-}
 
-// Den Hartog (1931): X / x_st = sqrt(V² − β² U²), V = 1/(1 − r²), U = tan(π/(2r))/r.
-double denHartogAmplitude(double r, double beta) {
-  const double v = 1.0 / (1.0 - r * r), u = std::tan(M_PI / (2.0 * r)) / r;
-  return std::sqrt(v * v - beta * beta * u * u);
-}
 
 // Root mean square over one period and every DOF of x_series − x_orbit, on
 // 3001 instants (not the projection's): the L2 distance of a series to the orbit.
@@ -54,11 +37,11 @@ double l2Distance(const HbModel& model, const orbits::ShootingResult& orbit, con
 
 TEST(OrbitRefinement, DenHartogPeakIsExactWherePlainHarmonicBalanceIsNot) {
   const double r = 1.5, beta = 0.3;
-  const HbModel model = denHartog(r, beta, 5);
+  const HbModel model = test::denHartog(r, beta, 5, 80);
   const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto refined = refineByShooting(model, hb, RefinementOptions());
   ASSERT_TRUE(refined.converged) << refined.failure;
-  const double exact = denHartogAmplitude(r, beta);
+  const double exact = test::denHartogAmplitude(r, beta);
   EXPECT_NEAR(refined.max_abs[0] / exact, 1.0, 1e-9);
   // Plain harmonic balance at the same H is off by far more.
   const double hb_error = std::abs(peakDisplacements(model, hb)[0] / exact - 1.0);
@@ -79,7 +62,7 @@ TEST(OrbitRefinement, DenHartogPeakIsExactWherePlainHarmonicBalanceIsNot) {
 TEST(OrbitRefinement, CoarseStartProjectsOnMoreHarmonics) {
   // HB at H = 5 starts shooting; the orbit projected on 40 harmonics is far
   // closer to the orbit, and its first 5 harmonics are the H = 5 projection's.
-  const HbModel model = denHartog(1.5, 0.3, 5);
+  const HbModel model = test::denHartog(1.5, 0.3, 5, 80);
   const Eigen::VectorXd hb = test::harmonicBalance(model);
   const auto coarse = refineByShooting(model, hb, RefinementOptions());
   RefinementOptions wide;
@@ -94,7 +77,7 @@ TEST(OrbitRefinement, CoarseStartProjectsOnMoreHarmonics) {
   EXPECT_LT(l2Distance(fine_model, fine.orbit, fine.full), 0.01 * l2Distance(model, coarse.orbit, coarse.full));
   // (up to the aliasing of the coarse projection's 288 instants, ~288^-3)
   for (int c = 0; c < model.basis.size(); ++c) EXPECT_NEAR(fine.full[c], coarse.full[c], 1e-7) << c;
-  EXPECT_NEAR(fine.max_abs[0] / denHartogAmplitude(1.5, 0.3), 1.0, 1e-9);
+  EXPECT_NEAR(fine.max_abs[0] / test::denHartogAmplitude(1.5, 0.3), 1.0, 1e-9);
 }
 
 TEST(OrbitRefinement, ForcesFollowTheLawsSignConvention) {
@@ -125,7 +108,7 @@ TEST(OrbitRefinement, ForcesFollowTheLawsSignConvention) {
 }
 
 TEST(OrbitRefinement, RefusesWhatItCannotRefine) {
-  const HbModel model = denHartog(1.5, 0.3, 5);
+  const HbModel model = test::denHartog(1.5, 0.3, 5, 80);
   const Eigen::VectorXd hb = test::harmonicBalance(model);
   RefinementOptions few;
   few.samples = 5;  // k_max = 9 needs 19

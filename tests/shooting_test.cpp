@@ -23,36 +23,19 @@ using orbits::PiecewiseLinearFlow;
 using orbits::ShootingOptions;
 using orbits::shootPeriodicOrbit;
 
-// m ẍ + k x + F sgn(ẋ) = P cos ωt with m = k = P = 1 (no damping).
-HbModel denHartog(double omega, double friction) {
-  HbModel model;
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
-                                    Eigen::MatrixXd::Identity(1, 1));
-  model.structure.loads.push_back({0, 1, 1.0, 0.0});
-  model.laws.push_back({{0}, std::make_shared<Coulomb1D>(friction, CoulombForm::kMinMax)});
-  model.basis = HarmonicSet(HarmonicKind::kOdd, 5);
-  model.samples = 64;
-  model.omega = omega;
-  return model;
-}
 
-// Den Hartog (1931): X / x_st = sqrt(V² − β² U²), V = 1/(1 − r²), U = tan(π/(2r))/r.
-double denHartogAmplitude(double r, double beta) {
-  const double v = 1.0 / (1.0 - r * r), u = std::tan(M_PI / (2.0 * r)) / r;
-  return std::sqrt(v * v - beta * beta * u * u);
-}
 
 // r = 0.6, β = 0.3: the Coulomb oscillator scene without its damping
 // (X = 1.5356018; with c = 0.05 the orbit's max|x| is 1.5036029).
 TEST(Shooting, DenHartogNonStopAmplitude) {
   for (const auto& [r, beta] : {std::pair{1.5, 0.3}, std::pair{0.8, 0.3}, std::pair{2.5, 0.5}, std::pair{0.6, 0.3}}) {
-    const HbModel model = denHartog(r, beta);
+    const HbModel model = test::denHartog(r, beta, 5, 64);
     const PiecewiseLinearFlow flow(model, 0.0);
     Eigen::VectorXd start(2);
     start << 1.0 / (1.0 - r * r), 0.0;  // frictionless response at t = 0
     const auto orbit = shootPeriodicOrbit(flow, start, 0.0, ShootingOptions());
     ASSERT_TRUE(orbit.converged) << orbit.failure;
-    const double exact = denHartogAmplitude(r, beta);
+    const double exact = test::denHartogAmplitude(r, beta);
     EXPECT_NEAR(orbit.max_abs[0] / exact, 1.0, 1e-9) << "r = " << r;
     // Non-stop: two reversals per period, no stick.
     EXPECT_EQ(orbit.events.count("stick"), 0u);

@@ -3,6 +3,8 @@
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <cmath>
+#include <memory>
 #include <string>
 
 #include "eqhb/laws/coulomb_1d.h"
@@ -50,6 +52,26 @@ inline HbModel chainWithFriction(double mu_n, CoulombForm form, int harmonics, d
   model.samples = samples;
   model.omega = omega;
   return model;
+}
+
+// Den Hartog's oscillator: m ẍ + k x + F sgn(ẋ) = P cos ωt with m = k = P = 1
+// (no damping), F = `friction`, on odd harmonics.
+inline HbModel denHartog(double omega, double friction, int harmonics, int samples) {
+  HbModel model;
+  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
+                                    Eigen::MatrixXd::Identity(1, 1));
+  model.structure.loads.push_back({0, 1, 1.0, 0.0});
+  model.laws.push_back({{0}, std::make_shared<Coulomb1D>(friction, CoulombForm::kMinMax)});
+  model.basis = HarmonicSet(HarmonicKind::kOdd, harmonics);
+  model.samples = samples;
+  model.omega = omega;
+  return model;
+}
+
+// Den Hartog (1931): X / x_st = sqrt(V² − β² U²), V = 1/(1 − r²), U = tan(π/(2r))/r.
+inline double denHartogAmplitude(double r, double beta) {
+  const double v = 1.0 / (1.0 - r * r), u = std::tan(M_PI / (2.0 * r)) / r;
+  return std::sqrt(v * v - beta * beta * u * u);
 }
 
 // A harmonic-balance solution [x; λ] of `model` (own dogleg, condensed, from
