@@ -78,7 +78,7 @@ struct FourierTransform::HalfWavePlans {
   std::vector<double> inner_cos, inner_sin;           // T_pm at [m * P + p], m < L
   fftw_complex* bins = nullptr;     // synthesis input C_m T_pm at [p * L + m]: zero but at the basis' bins
   fftw_complex* samples = nullptr;  // synthesis output, projection input y_i e^{−iπq/L}, at i
-  fftw_complex* moments = nullptr;  // projection output at [p * L + m]
+  fftw_complex* moments = nullptr;  // projection output at [p * L + m] (projection plans only)
   fftw_plan backward = nullptr;     // bins -> samples (input preserved)
   fftw_plan forward = nullptr;      // samples -> moments (projection plans only)
 
@@ -100,7 +100,7 @@ struct FourierTransform::HalfWavePlans {
       }
     bins = fftw_alloc_complex(m);
     samples = fftw_alloc_complex(m);
-    moments = fftw_alloc_complex(m);
+    if (with_projection) moments = fftw_alloc_complex(m);
     std::memset(bins, 0, sizeof(fftw_complex) * m);
     const std::lock_guard<std::mutex> lock(plannerMutex());
     const int n[] = {length};
