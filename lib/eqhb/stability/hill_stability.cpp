@@ -30,19 +30,29 @@ struct HillPencil {
   int jacobian_size = 0;       // n0: A = diag(J, I) with J n0 x n0
 };
 
+// Work space of addLawRateBlocks, made once per model: samples per law.
+struct LawRateWork {
+  std::vector<LawSamples> samples;
+  Eigen::VectorXd rate;
+  Eigen::MatrixXd block;
+  explicit LawRateWork(const HbModel& model)
+      : samples(model.laws.size()), rate(model.basis.size()), block(model.basis.size(), model.basis.size()) {
+    for (size_t l = 0; l < model.laws.size(); ++l) samples[l].resize(model.samples, model.laws[l].law->dimension());
+  }
+};
+
 // The law rows' s-terms: P diag(Ψ_v) P and P diag(Ψ_λ̇) P per (a, b).
-void addLawRateBlocks(const HbModel& model, FourierTransform& transform, std::vector<Triplet>& b,
-                      const Eigen::VectorXd& full, bool* uses_force_rate) {
+void addLawRateBlocks(const HbModel& model, FourierTransform& transform, LawRateWork& work,
+                      std::vector<Triplet>& b, const Eigen::VectorXd& full, bool* uses_force_rate) {
   const int n = model.structure.dofs(), nb = model.basis.size();
-  Eigen::VectorXd rate(nb);
-  Eigen::MatrixXd block(nb, nb);
+  Eigen::VectorXd& rate = work.rate;
+  Eigen::MatrixXd& block = work.block;
   *uses_force_rate = false;
   for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
     const AttachedLaw& attached = model.laws[l];
     const Law& law = *attached.law;
     const int d = law.dimension();
-    LawSamples samples;
-    samples.resize(model.samples, d);
+    LawSamples& samples = work.samples[l];
     for (int a = 0; a < d; ++a) {
       const double* x = full.data() + attached.dofs[a] * nb;
       const double* lambda = full.data() + (n + model.componentIndex(l, a)) * nb;
@@ -84,13 +94,13 @@ void addLawRateBlocks(const HbModel& model, FourierTransform& transform, std::ve
 // rows, the triplet lists and the dense solver's work space.
 struct HillStability::Work {
   explicit Work(const HbModel& m)
-      : model(m), system(m), jacobian(system.jacobianPattern()), g(system.size()),
-        transform(model.basis, model.samples) {}
-  HbModel model;  // its ω the current point's
-  FullSystem system;
+      : system(m), jacobian(system.jacobianPattern()), g(system.size()), transform(m.basis, m.samples),
+        law_rates(m) {}
+  FullSystem system;  // its model's ω the current point's
   SparseMatrix jacobian;
   Eigen::VectorXd g;
   FourierTransform transform;
+  LawRateWork law_rates;
   std::vector<Triplet> a, b, b_kept;
   HillPencil pencil;
   DenseEigenproblem dense;
@@ -101,14 +111,13 @@ struct HillStability::Work {
 namespace {
 
 void buildPencil(HillStability::Work& work, const Eigen::VectorXd& full) {
-  const HbModel& model = work.model;
   FullSystem& system = work.system;
+  const HbModel& model = system.model();
   const int n = model.structure.dofs(), nb = model.basis.size();
   const int n0 = system.size(), nx = n * nb;
   if (full.size() != n0)
     throwInputError("solution", std::to_string(full.size()) + " coefficients",
                     "must have " + std::to_string(n0) + " ([x; lambda] of the full system)");
-  system.setOmega(model.omega);
   SparseMatrix& jacobian = work.jacobian;
   system.residualAndSparseJacobian(full, work.g, jacobian);
 
@@ -147,7 +156,7 @@ void buildPencil(HillStability::Work& work, const Eigen::VectorXd& full) {
       }
     }
   bool force_rate = false;
-  addLawRateBlocks(model, work.transform, b, full, &force_rate);
+  addLawRateBlocks(model, work.transform, work.law_rates, b, full, &force_rate);
   // Identity rows: w − s p = 0.
   for (int i = 0; i < nx; ++i) b.emplace_back(n0 + i, i, 1.0);
 
@@ -393,11 +402,10 @@ HillResult hillStability(const HbModel& model, const Eigen::VectorXd& full, cons
 }
 
 HillResult HillStability::analyse(double omega, const Eigen::VectorXd& full) {
-  if (!(omega > 0.0) || !std::isfinite(omega)) throwInputError("omega", formatNumber(omega), "must be finite and > 0");
   const auto start = std::chrono::steady_clock::now();
   const HillOptions& options = options_;
-  HbModel& model = work_->model;
-  model.omega = omega;
+  work_->system.setOmega(omega);  // throws InputError naming omega unless finite and > 0
+  const HbModel& model = work_->system.model();
   HillResult result;
   const int n = model.structure.dofs();
   result.state_dimension = 2 * n;
