@@ -8,8 +8,8 @@ namespace eqhb::bench {
 ExactOrbit exactOrbit(const HbModel& model, double restitution, const Eigen::VectorXd& hb) {
   ExactOrbit out;
   const auto flow = orbits::makeFlow(model, restitution);
-  const double t0 = orbits::quietStartTime(model, hb);
-  out.orbit = orbits::shootPeriodicOrbit(*flow, orbits::harmonicState(model, hb, t0), t0, orbits::ShootingOptions());
+  out.orbit = orbits::shootFromHarmonicBalance(*flow, model, hb, orbits::ShootingOptions());
+  const double t0 = out.orbit.start_time;
   if (!out.orbit.converged) return out;
   orbits::FlowSamples samples;
   const int count = 4096;

@@ -55,8 +55,7 @@ Eigen::VectorXd harmonicBalance(HbModel& model, int harmonics, bool* converged) 
 orbits::ShootingResult shoot(const HbModel& model, double restitution, const Eigen::VectorXd& hb) {
   try {
     const auto flow = orbits::makeFlow(model, restitution);
-    const double t0 = orbits::quietStartTime(model, hb);
-    return orbits::shootPeriodicOrbit(*flow, orbits::harmonicState(model, hb, t0), t0, orbits::ShootingOptions());
+    return orbits::shootFromHarmonicBalance(*flow, model, hb, orbits::ShootingOptions());
   } catch (const std::exception& e) {
     orbits::ShootingResult r;
     r.failure = e.what();

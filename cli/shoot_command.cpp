@@ -43,8 +43,8 @@ int runShoot(const ShootArguments& a) {
     std::cerr << "eqhb: warning: the harmonic-balance start did not converge ("
               << terminationName(hb.result.termination) << "); shooting from its last iterate\n";
   const Eigen::VectorXd full = hb.system->fullCoefficients(hb.result.solution);
-  const double t0 = orbits::quietStartTime(model, full);
-  const auto orbit = orbits::shootPeriodicOrbit(flow, orbits::harmonicState(model, full, t0), t0, options);
+  const auto orbit = orbits::shootFromHarmonicBalance(flow, model, full, options);
+  const double t0 = orbit.start_time;
   const int n = model.structure.dofs();
 
   if (a.hb.json) {

@@ -35,9 +35,7 @@ Solved solve(const HbModel& scene_model, int harmonics, Solver& solver, const So
 // max|x_i| of the exact orbit, shot from a harmonic-balance solution.
 Eigen::VectorXd exactMaxAbs(const Solved& hb) {
   const auto flow = orbits::makeFlow(hb.model, 0.0);
-  const double t0 = orbits::quietStartTime(hb.model, hb.full);
-  const auto orbit = orbits::shootPeriodicOrbit(*flow, orbits::harmonicState(hb.model, hb.full, t0), t0,
-                                                orbits::ShootingOptions());
+  const auto orbit = orbits::shootFromHarmonicBalance(*flow, hb.model, hb.full, orbits::ShootingOptions());
   EXPECT_TRUE(orbit.converged) << orbit.failure;
   return orbit.max_abs;
 }

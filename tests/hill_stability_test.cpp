@@ -127,8 +127,7 @@ TEST(HillStability, CubicMultipliersApproachTheShootingOnes) {
   HbModel model = loadScene(test::problem("cubic.toml")).model;  // ω = 0.5
   const auto flow = orbits::makeFlow(model, 0.0);
   const Eigen::VectorXd hb = solveFull(model);
-  const double t0 = orbits::quietStartTime(model, hb);
-  const auto orbit = orbits::shootPeriodicOrbit(*flow, orbits::harmonicState(model, hb, t0), t0, {});
+  const auto orbit = orbits::shootFromHarmonicBalance(*flow, model, hb, {});
   ASSERT_TRUE(orbit.converged);
   std::vector<Complex> exact(orbit.multipliers.data(), orbit.multipliers.data() + orbit.multipliers.size());
   const HillResult r = hillStability(model, hb);
@@ -173,8 +172,7 @@ TEST(HillStability, DuffingCurveAgreesWithShootingAndTheMiddleBranchIsUnstable) 
       ++middle_points;
     }
     const auto flow = orbits::makeFlow(model, 0.0);
-    const double t0 = orbits::quietStartTime(model, curve.points[i].full);
-    const auto orbit = orbits::shootPeriodicOrbit(*flow, orbits::harmonicState(model, curve.points[i].full, t0), t0, {});
+    const auto orbit = orbits::shootFromHarmonicBalance(*flow, model, curve.points[i].full, {});
     ASSERT_TRUE(orbit.converged) << orbit.failure;
     EXPECT_EQ(r.stable, orbit.stable) << "omega " << model.omega;
     EXPECT_NEAR(r.spectral_radius / orbit.spectral_radius, 1.0, 2e-3) << "omega " << model.omega;

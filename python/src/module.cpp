@@ -288,8 +288,8 @@ py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int>
     py::gil_scoped_release unlocked;
     start = solver->solve(*hb, Eigen::VectorXd::Zero(hb->size()), SolverOptions{});
     const Eigen::VectorXd full = hb->fullCoefficients(start.solution);
-    const double t0 = orbits::quietStartTime(model, full);
-    orbit = orbits::shootPeriodicOrbit(flow, orbits::harmonicState(model, full, t0), t0, options);
+    orbit = orbits::shootFromHarmonicBalance(flow, model, full, options);
+    const double t0 = orbit.start_time;
     for (int i = 0; i < model.samples; ++i) sampled.times.push_back(t0 + flow.period() * i / model.samples);
     sampled_ok = flow.integrate(orbit.state, t0, flow.period(), false, &sampled).ok;
   }

@@ -102,8 +102,7 @@ RefinedSolution refineByShooting(const HbModel& model, const Eigen::VectorXd& fu
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<Flow> flow = makeFlow(model, options.restitution);
   RefinedSolution out;
-  const double t0 = quietStartTime(model, full);
-  out.orbit = shootPeriodicOrbit(*flow, harmonicState(model, full, t0), t0, options.shooting);
+  out.orbit = shootFromHarmonicBalance(*flow, model, full, options.shooting);
   HbModel output = model;
   output.basis = options.outputBasis(model);
   output.samples = std::max(output.samples, output.basis.minimumSamples());

@@ -26,6 +26,12 @@ double relativeResidual(const Eigen::VectorXd& y, const Eigen::VectorXd& end) {
 
 }  // namespace
 
+ShootingResult shootFromHarmonicBalance(const Flow& flow, const HbModel& model, const Eigen::VectorXd& full,
+                                        const ShootingOptions& options) {
+  const double t0 = quietStartTime(model, full);
+  return shootPeriodicOrbit(flow, harmonicState(model, full, t0), t0, options);
+}
+
 ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start, double start_time,
                                   const ShootingOptions& options) {
   options.validate();

@@ -45,6 +45,12 @@ struct ShootingResult {
 ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start, double start_time,
                                   const ShootingOptions& options);
 
+// Shooting from the harmonic-balance solution `full` ([x; λ] on the
+// model's basis), started at its quiet instant (quietStartTime, below), which
+// the result carries as start_time.
+ShootingResult shootFromHarmonicBalance(const Flow& flow, const HbModel& model, const Eigen::VectorXd& full,
+                                        const ShootingOptions& options);
+
 // Distance from samples of another solution, displacement row i at
 // t = iT/S (S = rows; a time reference's last period), to the orbit:
 // max over samples and DOFs of |x − x_orbit| / max|x_orbit|. Returns NaN if
