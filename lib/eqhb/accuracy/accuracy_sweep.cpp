@@ -21,25 +21,15 @@ namespace {
 // The point as the ladder left it: the chosen solution's description, the
 // sweep's counts, the ladder's time.
 void takeChoice(const AccuracyChoice& c, double tolerance, CurvePoint* p) {
-  CurvePoint described = describePoint(c.model, c.full);
-  described.converged = true;
-  described.termination = p->termination;
-  described.iterations = p->iterations;
-  described.residual_evaluations = p->residual_evaluations;
-  described.jacobian_evaluations = p->jacobian_evaluations;
-  described.seconds = p->seconds;
-  described.residual_norm = p->residual_norm;
-  described.fold = p->fold;
-  described.tangent_omega = p->tangent_omega;
-  described.omega = p->omega;
-  described.harmonics = c.model.basis.count();
-  described.samples = c.model.samples;
-  described.accuracy_seconds = c.seconds;
+  describeInto(c.model, c.full, p);
+  p->converged = true;
+  p->harmonics = c.model.basis.count();
+  p->samples = c.model.samples;
+  p->accuracy_seconds = c.seconds;
   const bool estimated = c.estimate.refined_harmonics > 0 && c.estimate.available;
-  described.error_estimate = estimated ? c.estimate.max_abs : NAN;
-  described.accuracy_met = c.reached && c.estimate.max_abs <= tolerance ? 1 : 0;
-  described.accuracy_failure = c.failure;
-  *p = described;
+  p->error_estimate = estimated ? c.estimate.max_abs : NAN;
+  p->accuracy_met = c.reached && c.estimate.max_abs <= tolerance ? 1 : 0;
+  p->accuracy_failure = c.failure;
 }
 
 }  // namespace

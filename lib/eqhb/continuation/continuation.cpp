@@ -93,7 +93,15 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
 CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full) {
   CurvePoint p;
   p.omega = model.omega;
+  describeInto(model, full, &p);
+  return p;
+}
+
+void describeInto(const HbModel& model, const Eigen::VectorXd& full, CurvePoint* point) {
+  CurvePoint& p = *point;
   p.full = full;
+  p.max_abs.clear();
+  p.first_harmonic.clear();
   const HbSolution s = summarize(model, full);
   const int n = model.structure.dofs(), nb = model.basis.size();
   for (int i = 0; i < n; ++i) {
@@ -110,7 +118,6 @@ CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full) {
   if (model.basis.harmonics().front() == 0) weight[0] = 1.0;
   const Eigen::MatrixXd kx = x * model.structure.stiffness, mv = v * model.structure.mass;
   p.energy = 0.5 * (weight.asDiagonal() * (x.cwiseProduct(kx) + v.cwiseProduct(mv))).sum();
-  return p;
 }
 
 Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
@@ -159,15 +166,7 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
       z = r.solution;
       last_converged_omega = target;
       m.omega = target;
-      CurvePoint described = describePoint(m, system->fullCoefficients(z));
-      described.converged = true;
-      described.termination = point.termination;
-      described.iterations = point.iterations;
-      described.residual_evaluations = point.residual_evaluations;
-      described.jacobian_evaluations = point.jacobian_evaluations;
-      described.seconds = point.seconds;
-      described.residual_norm = point.residual_norm;
-      point = described;
+      describeInto(m, system->fullCoefficients(z), &point);
     } else {
       ++curve.failed_points;
       if (!why.empty()) point.termination += " (" + why + ")";

@@ -96,6 +96,9 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs);
 
 // Physical summary of a solution (max|x|, first harmonic, energy).
 CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full);
+// The same written into an existing point: its `full`, `max_abs`,
+// `first_harmonic` and `energy`; every other field is left as it is.
+void describeInto(const HbModel& model, const Eigen::VectorXd& full, CurvePoint* point);
 
 // Solves at `start_harmonics` then at each doubling up to the model's H,
 // each seeded with the previous solution. Returns the last result; its
