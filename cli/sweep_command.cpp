@@ -29,6 +29,12 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
                    ->capture_default_str();
   cmd->add_flag("--arclength", w.arclength, "Pseudo-arclength continuation (passes turning points)");
   (void)step;
+  cmd->add_option("--min-step", w.min_step,
+                  "Smallest step: in omega for the sequential sweep's halvings (default min(1e-6, step)), in "
+                  "scaled arclength for --arclength; a sweep that needs less stops and says where");
+  cmd->add_option("--max-step", w.max_step,
+                  "Largest scaled arclength step with --arclength (default max(0.1, step); 0.1 is a tenth of the "
+                  "range in omega or a 10 % change of the response)");
   cmd->add_option("--max-points", w.max_points, "Most points on the curve")->capture_default_str();
   cmd->add_option("--out", w.out, "Write the curve as CSV");
   cmd->add_option("--chart", w.chart, "Write a chart of the curve: PREFIX.png and PREFIX.svg (matplotlib)");
@@ -144,10 +150,26 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   if (!w.to && !scene.sweep_to) throwInputError("--to", "(missing)", "the scene has no [sweep]: give --from and --to");
   options.from = w.from ? *w.from : *scene.sweep_from;
   options.to = w.to ? *w.to : *scene.sweep_to;
-  if (!(w.step > 0.0) || !std::isfinite(w.step)) throwInputError("--step", formatNumber(w.step), "must be finite and > 0");
+  if (!(options.from > 0.0) || !std::isfinite(options.from))
+    throwInputError("--from", formatNumber(options.from), "must be finite and > 0");
+  if (!(options.to > 0.0) || !std::isfinite(options.to))
+    throwInputError("--to", formatNumber(options.to), "must be finite and > 0");
+  if (options.from == options.to)
+    throwInputError("--to", formatNumber(options.to), "must differ from --from: the range has zero width");
+  auto positive = [](const char* name, double value) {
+    if (!(value > 0.0) || !std::isfinite(value)) throwInputError(name, formatNumber(value), "must be finite and > 0");
+  };
+  positive("--step", w.step);
+  if (w.min_step) positive("--min-step", *w.min_step);
+  if (w.max_step) positive("--max-step", *w.max_step);
   options.step = w.step;
-  options.min_step = std::min(1e-6, w.step);
-  options.max_step = std::max(1.0, w.step);
+  options.min_step = w.min_step ? *w.min_step : std::min(1e-6, w.step);
+  options.max_step = w.max_step ? *w.max_step : std::max(0.1, w.step);
+  if (options.min_step > options.max_step)
+    throwInputError(w.min_step ? "--min-step" : "--max-step",
+                    formatNumber(w.min_step ? options.min_step : options.max_step),
+                    "--min-step = " + formatNumber(options.min_step) + " must be <= --max-step = " +
+                        formatNumber(options.max_step));
   options.max_points = w.max_points;
   options.condensed = !s.full;
   // Every option checked before any count is derived from them.

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "eqhb/continuation/arclength_steps.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/backends/registry.h"
@@ -74,7 +75,7 @@ TEST(Continuation, ArclengthPassesTheFoldsOfTheCubicScene) {
   double peak = 0.0;
   for (const auto& p : curve.points) peak = std::max(peak, p.max_abs[0]);
   EXPECT_LT(curve.points.back().max_abs[0], 0.1 * peak);
-  EXPECT_GT(curve.points.back().omega, 2.0 - 1e-9);
+  EXPECT_EQ(curve.points.back().omega, 2.0);  // on the end of the range, not beyond it
   // The turning points are passed, not stepped over: ω goes back between the folds.
   bool went_back = false;
   for (size_t i = 1; i < curve.points.size(); ++i) went_back |= curve.points[i].omega < curve.points[i - 1].omega;
@@ -98,8 +99,11 @@ TEST(Continuation, ArclengthAgreesWithSequentialWhereTheCurveIsSingleValued) {
     single.from = p.omega;
     single.to = p.omega + 1e-3;
     single.step = 1e-3;
+    // A plain solve with ω fixed, started 2 % off the arclength point (from
+    // rest it does not converge by the superharmonic resonance near 0.56).
+    single.start_full = 1.02 * p.full;
     const Curve one = sweepSequential(m, *solver, {}, single);
-    ASSERT_TRUE(one.points[0].converged);
+    ASSERT_TRUE(one.points[0].converged) << "omega " << p.omega << ": " << one.points[0].termination;
     EXPECT_NEAR(one.points[0].max_abs[1], p.max_abs[1], 1e-6 * p.max_abs[1]) << "omega " << p.omega;
   }
 }
@@ -159,6 +163,119 @@ TEST(Continuation, ArclengthStoppedByMaxPointsIsNotComplete) {
   EXPECT_EQ(curve.points.size(), 3u);
   EXPECT_FALSE(curve.complete);
   EXPECT_NE(curve.stop_reason.find("max_points = 3 reached"), std::string::npos) << curve.stop_reason;
+}
+
+// The Duffing oscillator's response grows tenfold from the start of the
+// sweep to its fold. With the unknowns scaled by the first point's
+// magnitude, a step that was small at the start stayed as small at the
+// peak: the condensed system hit 20000 points at omega = 1.12.
+TEST(Continuation, ArclengthTracesTheDuffingCurveInFewPointsOnBothSystems) {
+  const Scene scene = loadScene(test::problem("duffing.toml"));
+  auto solver = makeSolver("dogleg");
+  for (const bool condensed : {true, false}) {
+    ContinuationOptions options;
+    options.from = *scene.sweep_from;
+    options.to = *scene.sweep_to;
+    options.condensed = condensed;
+    options.max_points = 400;
+    const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+    SCOPED_TRACE(condensed ? "condensed" : "full");
+    ASSERT_TRUE(curve.complete) << curve.stop_reason << " after " << curve.points.size() << " points";
+    EXPECT_EQ(curve.points.back().omega, 1.6);
+    // Hardening: the upper fold (jump down) lies right of the lower one (jump up).
+    ASSERT_EQ(curve.fold_omegas.size(), 2u);
+    EXPECT_NEAR(curve.fold_omegas[0], 1.27, 0.01);
+    EXPECT_NEAR(curve.fold_omegas[1], 1.116, 0.01);
+    for (const auto& p : curve.points) EXPECT_TRUE(p.omega >= 0.5 && p.omega <= 1.6) << p.omega;
+  }
+}
+
+// Downwards the curve used to reach the resonance, turn back at a spurious
+// fold and leave the range at its start, reported as complete.
+TEST(Continuation, ArclengthSweepsDownwardsAndEndsOnTheEndOfTheRange) {
+  const Scene scene = loadScene(test::problem("friction-1d.toml"));
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.from = 0.8;
+  options.to = 0.1;
+  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  ASSERT_TRUE(curve.complete) << curve.stop_reason;
+  EXPECT_EQ(curve.points.back().omega, 0.1);
+  EXPECT_TRUE(curve.fold_omegas.empty());  // Coulomb friction on this chain: a single-valued curve
+  for (const auto& p : curve.points) EXPECT_TRUE(p.omega >= 0.1 && p.omega <= 0.8) << p.omega;
+  EXPECT_NEAR(peakOmega(curve, 1), 0.618, 0.01);
+}
+
+// The damper's curve used to turn back at omega = 0.98 on a tangent that
+// jumped (a spurious fold) and leave the range at 0.77, reported as complete.
+TEST(Continuation, ArclengthDoesNotTurnBackAtASpuriousFold) {
+  const Scene scene = loadScene(test::problem("damper.toml"));
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.from = 0.8;
+  options.to = 1.4;
+  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  for (double fold : curve.fold_omegas) EXPECT_GT(std::abs(fold - 0.98), 0.01) << curve.stop_reason;
+  if (curve.complete) {
+    EXPECT_EQ(curve.points.back().omega, 1.4);
+  } else {
+    EXPECT_NE(curve.stop_reason.find("omega = "), std::string::npos) << curve.stop_reason;
+  }
+  for (const auto& p : curve.points) EXPECT_TRUE(p.omega >= 0.8 && p.omega <= 1.4) << p.omega;
+}
+
+TEST(ArclengthSteps, StepFollowsEffortAndTurnWithinItsBounds) {
+  ContinuationOptions options;
+  options.step = 0.01;
+  options.min_step = 0.004;
+  options.max_step = 0.05;
+  ArclengthStep step(options);
+  step.accept(1, 0.0);  // easy and straight: doubles
+  EXPECT_DOUBLE_EQ(step.size(), 0.02);
+  step.accept(options.target_iterations, options.max_turn);  // turned twice the target: halves
+  EXPECT_DOUBLE_EQ(step.size(), 0.01);
+  for (int i = 0; i < 5; ++i) step.accept(1, 0.0);
+  EXPECT_DOUBLE_EQ(step.size(), 0.05);  // capped at max_step
+  EXPECT_TRUE(step.halve());
+  EXPECT_TRUE(step.halve());
+  EXPECT_TRUE(step.halve());  // 0.00625
+  EXPECT_FALSE(step.halve());  // 0.003125 < min_step
+  EXPECT_DOUBLE_EQ(step.size(), 0.00625);
+}
+
+TEST(ArclengthSteps, AKinkIsATurnThatDoesNotShrinkWithTheStep) {
+  KinkTest smooth;
+  EXPECT_FALSE(smooth.isKink(0.08, 0.8));
+  EXPECT_FALSE(smooth.isKink(0.04, 0.4));
+  EXPECT_FALSE(smooth.isKink(0.02, 0.2));
+  KinkTest kink;
+  EXPECT_FALSE(kink.isKink(0.08, 0.8));
+  EXPECT_FALSE(kink.isKink(0.04, 0.7));  // not yet quartered
+  EXPECT_TRUE(kink.isKink(0.02, 0.7));
+}
+
+TEST(ArclengthSteps, AFoldIsAReversalThatHolds) {
+  FoldWatch watch(3);
+  EXPECT_EQ(watch.watch(0.5, 0), -1);
+  EXPECT_EQ(watch.watch(-0.1, 1), -1);  // flicker
+  EXPECT_EQ(watch.watch(0.2, 2), -1);
+  EXPECT_EQ(watch.watch(-0.1, 3), -1);
+  EXPECT_EQ(watch.watch(-0.2, 4), -1);
+  EXPECT_EQ(watch.watch(-0.3, 5), 3);
+  EXPECT_EQ(watch.direction(), -1.0);
+}
+
+TEST(Continuation, StepBoundsAreValidated) {
+  ContinuationOptions options;
+  options.min_step = 0.5;
+  options.max_step = 0.1;
+  EXPECT_THROW(options.validate(), InputError);
+  options = {};
+  options.max_step = NAN;
+  EXPECT_THROW(options.validate(), InputError);
+  options = {};
+  options.min_step = 0.0;
+  EXPECT_THROW(options.validate(), InputError);
 }
 
 }  // namespace

@@ -4,13 +4,19 @@
 //    previous solution as predictor; a failed corrector halves the step
 //    (intermediate points) down to min_step, then the curve stops and says
 //    where and why.
-//  arclength: pseudo-arclength in scaled unknowns ŷ = (z / s_z, ω / s_ω)
-//    (s_z = RMS of the first solution, s_ω = |to − from|): tangent predictor
-//    from the weak Jacobian bordered by the previous tangent, corrector on
-//    the bordered system [g(z, ω); τᵀ(ŷ − ŷ_pred)] = 0 by the chosen
-//    backend, step adapted to the corrector's effort; folds are where the
-//    ω-component of the tangent changes sign (and stays changed for three
-//    points: nonsmooth laws make it flicker at kinks). Passes turning points.
+//  arclength (arclength.cpp): pseudo-arclength in scaled unknowns
+//    ŷ = (z / s_z, ω / s_ω), s_z = ‖z‖ of the current point (floored at 10⁻³
+//    of the largest so far) updated every point, s_ω = |to − from|: tangent
+//    predictor from the weak Jacobian bordered by the previous tangent,
+//    corrector on [g(z, ω); τᵀ(ŷ − ŷ_pred)] = 0 by the chosen backend. A
+//    step whose tangent turns by more than max_turn is halved and retried;
+//    a turn that does not shrink with the step is a kink, crossed along the
+//    secant (and a sweep that turns back at one stops: not a fold). The step
+//    follows the corrector's effort and the turn, within [min_step,
+//    max_step]. The last point lies exactly on `to` (solved there with ω
+//    fixed); a curve that leaves the range at `from` is not complete. Folds
+//    are where the ω-component of the tangent changes sign (and stays
+//    changed for three points). Either direction, from < to or from > to.
 //  harmonics: solve at H₀ and reuse the solution as the start at larger H.
 #pragma once
 
@@ -61,9 +67,10 @@ struct Curve {
 
 struct ContinuationOptions {
   double from = 0.1, to = 0.8;
-  double step = 0.01;           // sequential: grid step; arclength: initial Δs (scaled)
+  double step = 0.01;           // sequential: grid step; arclength: initial Δs (scaled), clamped to the bounds
   double min_step = 1e-6;       // in ω (sequential) or scaled arclength
-  double max_step = 1.0;        // arclength, scaled
+  double max_step = 0.1;        // arclength, scaled (ω's share of a unit step is the whole range)
+  double max_turn = 0.35;       // arclength: largest turn of the tangent per step, radians (20°)
   int max_points = 20000;
   int target_iterations = 12;   // arclength step adaptation aims at this
   bool condensed = true;
@@ -93,6 +100,10 @@ Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& 
 // bifurcation; error_estimate when estimated; harmonics, samples,
 // accuracy_met and accuracy_seconds when an accuracy target was set. Throws InputError if the file cannot be written.
 void writeCurveCsv(const std::string& path, const Curve& curve, int dofs);
+
+// Adds a solve's counts and time to the point's and sets its termination,
+// convergence and residual norm from it.
+void addSolverCounts(const SolverResult& result, CurvePoint* point);
 
 // Physical summary of a solution (max|x|, first harmonic, energy).
 CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full);

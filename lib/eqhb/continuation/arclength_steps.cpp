@@ -1,0 +1,56 @@
+#include "eqhb/continuation/arclength_steps.h"
+
+#include <algorithm>
+
+#include "eqhb/continuation/continuation.h"
+
+namespace eqhb {
+
+ArclengthStep::ArclengthStep(const ContinuationOptions& options)
+    : size_(std::clamp(options.step, options.min_step, options.max_step)),
+      min_(options.min_step),
+      max_(options.max_step),
+      target_turn_(0.5 * options.max_turn),
+      target_iterations_(options.target_iterations) {}
+
+void ArclengthStep::accept(int corrector_iterations, double turn_angle) {
+  const double by_effort = static_cast<double>(target_iterations_) / std::max(1, corrector_iterations);
+  const double by_turn = turn_angle > 0.0 ? target_turn_ / turn_angle : 2.0;
+  size_ = std::clamp(size_ * std::clamp(std::min(by_effort, by_turn), 0.5, 2.0), min_, max_);
+}
+
+bool ArclengthStep::halve() {
+  if (size_ / 2.0 < min_) return false;
+  size_ /= 2.0;
+  return true;
+}
+
+void KinkTest::reset() { first_step_ = first_turn_ = 0.0; }
+
+bool KinkTest::isKink(double step, double turn_angle) {
+  if (first_step_ == 0.0) {
+    first_step_ = step;
+    first_turn_ = turn_angle;
+    return false;
+  }
+  return step <= first_step_ / 4.0 && turn_angle >= first_turn_ / 2.0;
+}
+
+int FoldWatch::watch(double omega_component, int index) {
+  const double sign = omega_component >= 0.0 ? 1.0 : -1.0;
+  if (confirmed_ == 0.0 || sign == confirmed_) {
+    confirmed_ = sign;
+    candidate_ = -1;
+    held_ = 0;
+    return -1;
+  }
+  if (candidate_ < 0) candidate_ = index;
+  if (++held_ < confirmation_) return -1;
+  const int fold = candidate_;
+  confirmed_ = sign;
+  candidate_ = -1;
+  held_ = 0;
+  return fold;
+}
+
+}  // namespace eqhb

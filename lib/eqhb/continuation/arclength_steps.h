@@ -1,0 +1,62 @@
+// Step-length control and fold detection of the arclength sweep, each a
+// small strategy the sweep's loop consults once per attempt or point.
+#pragma once
+
+#include <vector>
+
+namespace eqhb {
+
+struct ContinuationOptions;
+
+// The scaled arclength step Δs, in [min_step, max_step]. After an accepted
+// point it grows or shrinks (at most ×2, at least ×½) by the smaller of two
+// ratios: the corrector's target iterations over the iterations it took,
+// and the target turn (half the largest) over the angle the tangent turned.
+class ArclengthStep {
+ public:
+  explicit ArclengthStep(const ContinuationOptions& options);
+  double size() const { return size_; }
+  void accept(int corrector_iterations, double turn_angle);
+  // Halves the step after a rejected attempt; false (step unchanged) when
+  // half would be below min_step.
+  bool halve();
+
+ private:
+  double size_, min_, max_, target_turn_;
+  int target_iterations_;
+};
+
+// Tells a kink of the curve (the tangent jumps: its turn does not shrink
+// with the step, as on a nonsmooth law's switch) from a smooth bend that a
+// shorter step resolves. Fed each rejected turn at one point.
+class KinkTest {
+ public:
+  void reset();
+  // True once the step has been quartered since the first rejection and the
+  // turn is still at least half of what it was (smooth bends turn ∝ Δs).
+  bool isKink(double step, double turn_angle);
+
+ private:
+  double first_step_ = 0.0, first_turn_ = 0.0;
+};
+
+// Folds: lasting reversals of the ω-direction of the tangent. On nonsmooth
+// laws the tangent's ω-component can flicker near zero, so a reversal counts
+// only once it has held for `confirmation` points; the fold is placed at
+// the point where it began.
+class FoldWatch {
+ public:
+  explicit FoldWatch(int confirmation = 3) : confirmation_(confirmation) {}
+  // The ω-component of the tangent at point `index`; returns the index of
+  // the point just after a newly confirmed fold, or −1.
+  int watch(double omega_component, int index);
+  // The confirmed direction of travel in ω (+1, −1; 0 before the first point).
+  double direction() const { return confirmed_; }
+
+ private:
+  int confirmation_;
+  double confirmed_ = 0.0;
+  int candidate_ = -1, held_ = 0;
+};
+
+}  // namespace eqhb
