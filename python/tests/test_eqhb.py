@@ -118,8 +118,8 @@ def test_arclength_sweep_uses_the_scene_range():
     curve = eqhb.sweep(model, method="arclength", harmonics=3, samples=64)
     start, stop = model.sweep_range
     assert curve["method"] == "arclength" and curve["complete"]
-    # The last arclength step may end just past the range.
-    assert math.isclose(curve["omega"][0], start) and stop <= curve["omega"][-1] < stop * 1.01
+    # The last point lies on the end of the range, not past it.
+    assert curve["omega"][0] == start and curve["omega"][-1] == stop
 
 
 def test_simulate_agrees_with_harmonic_balance():
