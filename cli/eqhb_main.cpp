@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "eqhb/error.h"
+#include "eqhb/io_error.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/version.h"
 #include "generate_command.h"
@@ -60,6 +61,9 @@ int main(int argc, char** argv) {
   } catch (const eqhb::InputError& e) {
     std::cerr << "eqhb: error: " << e.what() << "\n";
     return 2;
+  } catch (const eqhb::IoError& e) {  // a file could not be written: not the input's fault
+    std::cerr << "eqhb: I/O error: " << e.what() << "\n";
+    return 3;
   } catch (const std::exception& e) {
     std::cerr << "eqhb: error: " << e.what() << "\n";
     return 2;

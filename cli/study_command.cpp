@@ -13,7 +13,9 @@
 #include <thread>
 
 #include "eqhb/backends/registry.h"
+#include "eqhb/checked_file.h"
 #include "eqhb/error.h"
+#include "eqhb/io_error.h"
 #include "eqhb/studies/study_journal.h"
 #include "eqhb/studies/study_scheduler.h"
 #ifdef EQHB_WITH_MPI
@@ -83,9 +85,7 @@ void writeStudyJson(const std::string& path, const std::string& scene_name, cons
     if (!r.curve.empty()) s["curve"] = r.curve;
     j["samples"].push_back(s);
   }
-  std::ofstream out(path);
-  out << j.dump(1) << "\n";
-  if (!out) throwInputError("--out", path, "cannot write the JSON result");
+  writeFileChecked(path, j.dump(1) + "\n");
 }
 
 StudySettings studySettings(const SolveArguments& s, const StudyArguments& a, std::string* scene_name) {
@@ -151,7 +151,7 @@ StudySettings studySettings(const SolveArguments& s, const StudyArguments& a, st
 }
 
 // The summary on stdout and the merged files; the exit code.
-int finish(const StudyJournal& journal, const StudySettings& settings, const std::string& scene_name,
+int finish(StudyJournal& journal, const StudySettings& settings, const std::string& scene_name,
            const std::string& out, int computed, double seconds, const std::string& how) {
   journal.writeMerged();
   writeStudyJson(out + "/study.json", scene_name, settings, journal.done());
@@ -178,22 +178,29 @@ int runOnMpi(const MpiEnvironment& mpi, const SolveArguments& s, const StudyArgu
              const StudySettings& settings, const std::string& scene_name) {
   std::unique_ptr<StudyJournal> journal;
   std::string error;
+  int error_code = 2;
   if (mpi.rank() == 0) {
     try {
       journal = std::make_unique<StudyJournal>(a.out, settings, studyPlanText(settings, s.solver));
+    } catch (const IoError& e) {
+      error = std::string("I/O error: ") + e.what();
+      error_code = 3;
     } catch (const std::exception& e) {
-      error = e.what();
+      error = std::string("error: ") + e.what();
     }
   }
   if (!mpi.agree(error.empty())) {
-    if (mpi.rank() == 0) std::fprintf(stderr, "eqhb: error: %s\n", error.c_str());
-    return 2;
+    if (mpi.rank() == 0) std::fprintf(stderr, "eqhb: %s\n", error.c_str());
+    return error_code;  // rank 0's is the one mpirun reports
   }
   const std::vector<int> pending = journal ? journal->pending() : std::vector<int>();
   const auto started = std::chrono::steady_clock::now();
   MpiStudyTraffic traffic;
   try {
-    traffic = runStudyOnMpi(mpi, settings, journal.get(), pending);
+    traffic = runStudyOnMpi(mpi, settings, journal.get(), samplesToCompute(pending, settings));
+  } catch (const IoError& e) {  // the journal or a curve file cannot be written: every rank stops
+    std::fprintf(stderr, "eqhb: I/O error on rank %d: %s\n", mpi.rank(), e.what());
+    mpi.abort(3);
   } catch (const std::exception& e) {  // the coordinator cannot record results
     std::fprintf(stderr, "eqhb: error on rank %d: %s\n", mpi.rank(), e.what());
     mpi.abort(2);
@@ -228,11 +235,12 @@ int runStudy(const SolveArguments& s, const StudyArguments& a) {
   int finished = 0;
   std::mutex print;
   const auto started = std::chrono::steady_clock::now();
-  runStudyOnThreads(settings, pending, threads, [&](const SampleResult& r) {
+  const std::vector<int> to_compute = samplesToCompute(pending, settings);
+  runStudyOnThreads(settings, to_compute, threads, [&](const SampleResult& r) {
     journal.append(r);  // locks
     if (terminal) {
       const std::lock_guard<std::mutex> lock(print);
-      std::fprintf(stderr, "\r  sample %d/%zu done", ++finished, pending.size());
+      std::fprintf(stderr, "\r  sample %d/%zu done", ++finished, to_compute.size());
       std::fflush(stderr);
     }
   });

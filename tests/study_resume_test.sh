@@ -10,15 +10,15 @@ total=40
 
 "$eqhb" "${args[@]}" --out "$work/killed" >/dev/null &
 pid=$!
-# Kill once a few rows are on disk (journal: header + rows).
+# Kill once a few rows are on disk (journal: the plan's fingerprint, the header, rows).
 for _ in $(seq 1 500); do
-  rows=$(($(wc -l <"$work/killed/journal.csv" 2>/dev/null || echo 1) - 1))
+  rows=$(($({ wc -l <"$work/killed/journal.csv"; } 2>/dev/null || echo 2) - 2))
   [ "$rows" -ge 5 ] && break
   sleep 0.01
 done
 kill -9 "$pid"
 wait "$pid" 2>/dev/null || true
-before=$(($(wc -l <"$work/killed/journal.csv") - 1))
+before=$(($(wc -l <"$work/killed/journal.csv") - 2))
 echo "killed with $before of $total samples in the journal"
 [ "$before" -ge 5 ] && [ "$before" -lt "$total" ] || { echo "the kill did not land mid-study"; exit 1; }
 [ ! -e "$work/killed/study.csv" ] || { echo "study.csv written before the end"; exit 1; }

@@ -7,10 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <atomic>
 #include <set>
+
+#include "eqhb/checked_file.h"
 
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
+#include "eqhb/io_error.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/studies/peak_tracking.h"
 #include "eqhb/studies/study_journal.h"
@@ -246,6 +250,130 @@ TEST(StudyJournal, RowsRoundTripAndAKilledRunResumesWithWhatIsMissing) {
   other.peak.to = 1.3;
   EXPECT_THROW(StudyJournal(dir, other, studyPlanText(other, "dogleg")), InputError);
   std::filesystem::remove_all(dir);
+}
+
+// A journal carries its plan's fingerprint: without plan.txt, another
+// study still cannot take its rows for its own answers.
+TEST(StudyJournal, AJournalIsRefusedByAnotherStudyEvenWithoutPlanTxt) {
+  const std::string dir = ::testing::TempDir() + "/eqhb_study_identity";
+  std::filesystem::remove_all(dir);
+  const StudySettings settings = smallStudy(dir);
+  {
+    StudyJournal journal(dir, settings, studyPlanText(settings, "dogleg"));
+    SampleResult failed;
+    failed.id = 1;
+    failed.parameters = {3.0};
+    failed.reason = "not computed";
+    journal.append(failed);
+  }
+  std::filesystem::remove(dir + "/plan.txt");
+  StudySettings other = settings;
+  other.peak.to = 1.3;
+  try {
+    StudyJournal journal(dir, other, studyPlanText(other, "dogleg"));
+    ADD_FAILURE() << "another study took the journal";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--out = " + dir + ": holds another study: journal.csv has plan fingerprint"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/plan.txt"));
+  // The study itself resumes and writes plan.txt again.
+  StudyJournal resumed(dir, settings, studyPlanText(settings, "dogleg"));
+  EXPECT_EQ(resumed.pending(), (std::vector<int>{0, 2}));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/plan.txt"));
+  EXPECT_NE(studyFingerprint(studyPlanText(settings, "dogleg")), studyFingerprint(studyPlanText(other, "dogleg")));
+}
+
+TEST(StudyJournal, OneStudyAtATimeInAFolder) {
+  const std::string dir = ::testing::TempDir() + "/eqhb_study_lock";
+  std::filesystem::remove_all(dir);
+  const StudySettings settings = smallStudy(dir);
+  const std::string plan = studyPlanText(settings, "dogleg");
+  {
+    StudyJournal first(dir, settings, plan);
+    try {
+      StudyJournal second(dir, settings, plan);
+      ADD_FAILURE() << "two studies in one folder";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("is in use by another study (process"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(StudyJournal(dir, settings, plan));  // released with the first
+}
+
+TEST(StudyJournal, RowsKeepTheirNumbersWhole) {
+  SampleResult r;
+  std::string why;
+  // 2^32 + 1 is not sample 1.
+  EXPECT_FALSE(parseStudyCsvRow("4294967297,3,failed,,nan,nan,nan,nan,nan,0,0,0,0,0,,x", 1, 2, &r, &why));
+  EXPECT_EQ(why, "sample = '4294967297': must be an integer in [0, 2147483647]");
+  EXPECT_FALSE(parseStudyCsvRow("1,3,failed,,nan,nan,nan,nan,nan,0,99999999999,0,0,0,,x", 1, 2, &r, &why));
+  EXPECT_EQ(why, "solves = '99999999999': must be an integer in [0, 2147483647]");
+  ASSERT_TRUE(parseStudyCsvRow("1,3,failed,,nan,nan,nan,nan,nan,0,7,0,0,0,,x", 1, 2, &r, &why)) << why;
+  EXPECT_EQ(r.solves, 7);
+}
+
+TEST(StudyJournal, AnOkResultThatIsNotFiniteIsWrittenAsFailed) {
+  const std::string dir = ::testing::TempDir() + "/eqhb_study_nan";
+  std::filesystem::remove_all(dir);
+  const StudySettings settings = smallStudy(dir);
+  const std::string plan = studyPlanText(settings, "dogleg");
+  {
+    StudyJournal journal(dir, settings, plan);
+    SampleResult r;
+    r.id = 0;
+    r.parameters = {1.0};
+    r.ok = true;
+    r.omega = 0.6;
+    r.first_harmonic = {1.0, NAN};
+    r.max_abs = {1.0, 2.0};
+    journal.append(r);
+    EXPECT_FALSE(journal.done().at(0).ok);
+  }
+  StudyJournal resumed(dir, settings, plan);  // the journal reads back
+  EXPECT_FALSE(resumed.done().at(0).ok);
+  EXPECT_NE(resumed.done().at(0).reason.find("not finite"), std::string::npos);
+}
+
+TEST(CheckedFile, AFailedWriteThrowsNamingTheFile) {
+  AppendOnlyFile full("/dev/full");
+  try {
+    full.append("a row\n");
+    ADD_FAILURE() << "a write to /dev/full passed";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/full: cannot write (0 of 6 bytes written)"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(writeFileChecked(::testing::TempDir() + "/no/such/folder/study.csv", "x"), IoError);
+}
+
+// A journal that cannot be written stops the study: every thread ends
+// after the sample it is computing, instead of computing the rest.
+TEST(StudyScheduler, AFailureStopsEveryThread) {
+  StudySettings settings = smallStudy("");
+  settings.plan = makeGridPlan({parseVariedParameter("law.muN=1:5:64", true)});
+  std::vector<int> all(64);
+  std::iota(all.begin(), all.end(), 0);
+  std::atomic<int> finished{0};
+  EXPECT_THROW(runStudyOnThreads(settings, all, 3,
+                                 [&](const SampleResult&) {
+                                   ++finished;
+                                   throw IoError("journal.csv: cannot write");
+                                 }),
+               IoError);
+  EXPECT_LE(finished.load(), 3);
+}
+
+// Resumed --peak samples start as in an uninterrupted study: a block cut
+// by a kill is computed again from its first sample.
+TEST(StudyScheduler, ACutBlockIsComputedAgainFromItsStart) {
+  StudySettings settings = smallStudy("");
+  settings.plan = makeGridPlan({parseVariedParameter("law.muN=1:5:50", true)});
+  const std::vector<int> pending = {3, 4, 5, 16, 17, 40, 49};
+  EXPECT_EQ(samplesToCompute(pending, settings),
+            (std::vector<int>{0, 1, 2, 3, 4, 5, 16, 17, 32, 33, 34, 35, 36, 37, 38, 39, 40, 48, 49}));
+  settings.mode = StudyMode::kSweep;  // no warm starts
+  EXPECT_EQ(samplesToCompute(pending, settings), pending);
 }
 
 TEST(StudyScheduler, ThreadsComputeEverySampleOnceWithTheSerialResults) {

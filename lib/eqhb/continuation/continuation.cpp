@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "eqhb/error.h"
+#include "eqhb/io_error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
@@ -69,7 +70,7 @@ bool trySetOmega(HbSystem& system, double omega, std::string* why) {
 
 void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
   std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot write the curve file");
+  if (!out) throwIoError(path, "cannot create the curve file");
   out << "omega,converged,termination,iterations,residual_evaluations,jacobian_evaluations,seconds";
   for (int i = 1; i <= dofs; ++i) out << ",max_abs_x" << i;
   for (int i = 1; i <= dofs; ++i) out << ",first_harmonic_x" << i;
@@ -95,6 +96,8 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
           << (p.accuracy_met >= 0 ? std::to_string(p.accuracy_met) : "") << "," << p.accuracy_seconds;
     out << "\n";
   }
+  out.close();
+  if (!out) throwIoError(path, "cannot write the curve file");
 }
 
 CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full) {

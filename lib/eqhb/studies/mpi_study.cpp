@@ -1,8 +1,10 @@
 #include "eqhb/studies/mpi_study.h"
 
 #include <mpi.h>
+#include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <thread>
@@ -31,6 +33,7 @@ void coordinate(const MpiEnvironment& mpi, StudyJournal& journal,
     while (true) {
       MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
       if (arrived) break;
+      mpi.exitIfOrphaned();
       std::this_thread::sleep_for(kPollInterval);
     }
     const auto started = std::chrono::steady_clock::now();
@@ -41,6 +44,7 @@ void coordinate(const MpiEnvironment& mpi, StudyJournal& journal,
     ++traffic->messages;
     traffic->bytes += length;
     if (status.MPI_TAG == kRowTag) {
+      mpi.exitIfOrphaned();
       journal.appendRow(text);
     } else {
       const std::vector<int> run = scheduler.next();
@@ -65,6 +69,7 @@ void work(const MpiEnvironment& mpi, const StudySettings& settings) {
     MPI_Recv(run.data(), count, MPI_INT, 0, kRunTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     if (run.empty()) return;
     for (int id : run) {
+      mpi.exitIfOrphaned();  // before a --sweep sample writes its curve
       const std::string row = studyCsvRow(worker.run(id), settings.dofs);
       MPI_Send(row.data(), static_cast<int>(row.size()), MPI_CHAR, 0, kRowTag, MPI_COMM_WORLD);
     }
@@ -83,7 +88,7 @@ bool launchedByMpi() {
 // stand-ins named MPI_Init, MPI_Comm_rank, MPI_Finalize and MPI_Wtime, which
 // can win symbol resolution over Open MPI's; the profiling names (PMPI_*),
 // which every MPI library provides, reach the real ones.
-MpiEnvironment::MpiEnvironment() {
+MpiEnvironment::MpiEnvironment() : launcher_(static_cast<int>(getppid())) {
   PMPI_Init(nullptr, nullptr);
   PMPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
@@ -95,6 +100,15 @@ bool MpiEnvironment::agree(bool ok_on_rank_0) const {
   int ok = ok_on_rank_0 ? 1 : 0;
   MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
   return ok != 0;
+}
+
+// A process whose parent dies is adopted by init or a subreaper: its
+// parent id changes. (Cheap enough to ask before every row.)
+void MpiEnvironment::exitIfOrphaned() const {
+  if (static_cast<int>(getppid()) == launcher_) return;
+  std::fprintf(stderr, "eqhb: rank %d: the MPI launcher (process %d) is gone: stopping without writing more\n", rank_,
+               launcher_);
+  std::_Exit(3);
 }
 
 void MpiEnvironment::abort(int code) const {

@@ -5,6 +5,7 @@
 
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
+#include "eqhb/io_error.h"
 #include "eqhb/scenes/scene.h"
 
 namespace eqhb {
@@ -26,6 +27,8 @@ SampleResult SampleWorker::run(int id) {
   SampleResult r;
   try {
     r = compute(id);
+  } catch (const IoError&) {  // the study folder, not the sample: the study stops
+    throw;
   } catch (const std::exception& e) {
     r = SampleResult();
     r.reason = e.what();

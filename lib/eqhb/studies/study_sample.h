@@ -50,7 +50,8 @@ struct SampleResult {
 class SampleWorker {
  public:
   SampleWorker(const StudySettings& settings, int worker);
-  // Never throws: a sample that cannot be computed is a failed row.
+  // A sample that cannot be computed is a failed row; throws only IoError
+  // (its curve file cannot be written).
   SampleResult run(int id);
 
  private:

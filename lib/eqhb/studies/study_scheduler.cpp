@@ -1,10 +1,23 @@
 #include "eqhb/studies/study_scheduler.h"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <thread>
 
 namespace eqhb {
+
+std::vector<int> samplesToCompute(const std::vector<int>& pending, const StudySettings& settings) {
+  if (settings.mode != StudyMode::kPeak) return pending;
+  std::vector<int> sorted = pending, ids;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const int block_start = sorted[i] / kWarmChain * kWarmChain;
+    const bool first_of_block = i == 0 || sorted[i - 1] < block_start;
+    for (int id = first_of_block ? block_start : sorted[i - 1] + 1; id <= sorted[i]; ++id) ids.push_back(id);
+  }
+  return ids;
+}
 
 GuidedScheduler::GuidedScheduler(std::vector<int> pending, int workers) : workers_(std::max(1, workers)) {
   std::sort(pending.begin(), pending.end());
@@ -30,12 +43,14 @@ void runStudyOnThreads(const StudySettings& settings, const std::vector<int>& pe
   GuidedScheduler scheduler(pending, threads);
   std::exception_ptr failure;
   std::mutex failure_mutex;
+  std::atomic<bool> stop{false};
   auto work = [&](int worker) {
     try {
       SampleWorker sampler(settings, worker);
-      for (auto ids = scheduler.next(); !ids.empty(); ids = scheduler.next())
-        for (int id : ids) finished(sampler.run(id));
-    } catch (...) {  // e.g. the journal cannot be written: stop and report
+      for (auto ids = scheduler.next(); !ids.empty() && !stop; ids = scheduler.next())
+        for (std::size_t i = 0; i < ids.size() && !stop; ++i) finished(sampler.run(ids[i]));
+    } catch (...) {  // e.g. the journal cannot be written: every thread stops after its sample
+      stop = true;
       const std::lock_guard<std::mutex> lock(failure_mutex);
       if (!failure) failure = std::current_exception();
     }

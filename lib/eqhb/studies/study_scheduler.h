@@ -15,6 +15,14 @@
 
 namespace eqhb {
 
+// The samples to compute so that every pending one starts from the state it
+// has in an uninterrupted study. --peak: a block cut by a kill is computed
+// again from its first sample up to its last pending one (the samples
+// already in the journal are computed only to rebuild the warm starts; the
+// caller does not write them twice), since a cold start in mid-block can
+// follow other resonances. --sweep samples never start warm: `pending`.
+std::vector<int> samplesToCompute(const std::vector<int>& pending, const StudySettings& settings);
+
 class GuidedScheduler {
  public:
   GuidedScheduler(std::vector<int> pending, int workers);
@@ -31,6 +39,8 @@ class GuidedScheduler {
 // Computes `pending` on `threads` threads (>= 1), each with its own solver
 // and warm-start state; `finished` is called for each sample as it
 // completes, from the thread that computed it (it must be thread-safe).
+// The first exception (from `finished` or a sample) stops every thread once
+// its current sample is done, and is rethrown here.
 void runStudyOnThreads(const StudySettings& settings, const std::vector<int>& pending, int threads,
                        const std::function<void(const SampleResult&)>& finished);
 
