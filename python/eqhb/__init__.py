@@ -15,6 +15,7 @@ Results are plain dicts of numpy arrays and numbers. Bad input raises
 """
 import math
 import numbers
+import os
 
 from ._eqhb import InputError, Model, __version__, solvers
 from ._eqhb import _shoot, _simulate, _solve, _stability, _sweep
@@ -26,7 +27,10 @@ __all__ = ["InputError", "Model", "__version__", "load_scene", "model", "shoot",
 def load_scene(path, overrides=None):
     """The model of a scene file (problems/*.toml). `overrides` maps a dotted
     path to a value, as `eqhb --set`: {"law[0].muN": 5, "harmonic_balance.omega": 0.3}."""
-    return Model.from_scene(str(path), [f"{k}={_toml_value(v, k)}" for k, v in (overrides or {}).items()])
+    if not isinstance(path, (str, os.PathLike)):
+        raise InputError(f"path = {path!r}: must be a file path (str or pathlib.Path)")
+    overrides = _dict(overrides, "overrides")
+    return Model.from_scene(os.fspath(path), [f"{_text(k, 'overrides')}={_toml_value(v, k)}" for k, v in overrides.items()])
 
 
 def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, harmonic_set="odd",
@@ -50,9 +54,9 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
         samples = max(64, 1 << math.ceil(math.log2(4 * (2 * max(k_max, 0) + 1))))
     lines = [f"name = {_toml_value(name, 'name')}", "", "[structure]", 'type = "chain"', f"dofs = {dofs}",
              "m = 1.0", "k = 1.0", "d = 0.0"]
-    for i, load in enumerate(forcing):
+    for i, load in enumerate(_sequence(forcing, "forcing")):
         lines += ["", "[[forcing]]"] + _toml_table(load, f"forcing[{i}]")
-    for i, law in enumerate(laws):
+    for i, law in enumerate(_sequence(laws, "laws")):
         lines += ["", "[[law]]"] + _toml_table(law, f"law[{i}]")
     settings = {"harmonics": harmonics, "set": harmonic_set, "samples": samples, "omega": omega}
     lines += ["", "[harmonic_balance]"] + _toml_table(settings, "harmonic_balance")
@@ -76,8 +80,11 @@ def solve(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", s
     `initial`, the solve starts from a coarse harmonic balance (about H/3
     harmonics on few samples, as `eqhb solve`; "cold_start" in the result
     says what it did) or, with cold_start="zero", from zero."""
-    return _solve(model, omega, harmonics, samples, solver, system, tolerance, max_iterations, max_evaluations,
-                  time_limit, _options(options), _vector(initial, "initial"), cold_start)
+    return _solve(_model(model), _real(omega, "omega", True), _integer(harmonics, "harmonics", True),
+                  _integer(samples, "samples", True), _text(solver, "solver"), _text(system, "system"),
+                  _real(tolerance, "tolerance"), _integer(max_iterations, "max_iterations"),
+                  _integer(max_evaluations, "max_evaluations"), _real(time_limit, "time_limit"), _options(options),
+                  _vector(initial, "initial"), _text(cold_start, "cold_start"))
 
 
 def stability(model, solution, *, omega=None, harmonics=None, samples=None):
@@ -88,11 +95,14 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
     spectral_radius, multipliers and exponents (complex, largest |multiplier|
     first), pencil_size, seconds, failure (empty when computed)."""
     if isinstance(solution, dict) and "solution" in solution:
-        omega = solution["omega"] if omega is None else omega
+        omega = solution.get("omega") if omega is None else omega
         solution = solution["solution"]
     if isinstance(solution, dict):
+        if "full" not in solution:
+            raise InputError("solution: a dict must be what solve returned or its \"solution\" (it has no \"full\")")
         solution = solution["full"]
-    return _stability(model, _vector(solution, "full"), omega, harmonics, samples)
+    return _stability(_model(model), _vector(solution, "full"), _real(omega, "omega", True),
+                      _integer(harmonics, "harmonics", True), _integer(samples, "samples", True))
 
 
 def sweep(model, start=None, stop=None, *, step=0.01, method="sequential", harmonics=None, samples=None,
@@ -103,8 +113,11 @@ def sweep(model, start=None, stop=None, *, step=0.01, method="sequential", harmo
     dict of arrays over the points: omega, converged, max_abs (points x dofs),
     first_harmonic, energy, fold, x_cos/x_sin (points x dofs x harmonics), and
     folds, stop_reason, complete, failed_points, seconds."""
-    return _sweep(model, start, stop, step, method, harmonics, samples, solver, system, tolerance, max_iterations,
-                  max_evaluations, time_limit, _options(options), max_points)
+    return _sweep(_model(model), _real(start, "start", True), _real(stop, "stop", True), _real(step, "step"),
+                  _text(method, "method"), _integer(harmonics, "harmonics", True), _integer(samples, "samples", True),
+                  _text(solver, "solver"), _text(system, "system"), _real(tolerance, "tolerance"),
+                  _integer(max_iterations, "max_iterations"), _integer(max_evaluations, "max_evaluations"),
+                  _real(time_limit, "time_limit"), _options(options), _integer(max_points, "max_points"))
 
 
 def simulate(model, omega=None, *, step=1e-4, periods=5000, theta=0.5, periodic_tolerance=1e-9, restitution=0.0,
@@ -113,8 +126,9 @@ def simulate(model, omega=None, *, step=1e-4, periods=5000, theta=0.5, periodic_
     steady state. Returns periodic, periods, step, steps_per_period,
     periodicity_error, seconds, the last period (t, x, v, lambda: one row per
     DOF or law component), max_abs_x and its Fourier "coefficients"."""
-    return _simulate(model, omega, step, periods, theta, periodic_tolerance, restitution,
-                     _vector(initial, "initial"))
+    return _simulate(_model(model), _real(omega, "omega", True), _real(step, "step"), _integer(periods, "periods"),
+                     _real(theta, "theta"), _real(periodic_tolerance, "periodic_tolerance"),
+                     _real(restitution, "restitution"), _vector(initial, "initial"))
 
 
 def shoot(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", restitution=0.0, tolerance=1e-11,
@@ -127,7 +141,9 @@ def shoot(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", r
     state (y(t0) = [x; v]), monodromy, multipliers (complex, largest modulus
     first), spectral_radius, stable, events per period, max_abs_x, and one
     period sampled (t, x, v, lambda: one row per DOF or law component)."""
-    return _shoot(model, omega, harmonics, samples, solver, restitution, tolerance, max_iterations)
+    return _shoot(_model(model), _real(omega, "omega", True), _integer(harmonics, "harmonics", True),
+                  _integer(samples, "samples", True), _text(solver, "solver"), _real(restitution, "restitution"),
+                  _real(tolerance, "tolerance"), _integer(max_iterations, "max_iterations"))
 
 
 def _square_size(matrix, field):
@@ -139,6 +155,56 @@ def _square_size(matrix, field):
     return int(shape[0])
 
 
+# The arguments' types are checked here so that a wrong one raises
+# InputError naming it, not the binding's TypeError listing signatures.
+
+def _model(value):
+    if not isinstance(value, Model):
+        raise InputError(f"model: must be an eqhb.Model (from load_scene or model), not {type(value).__name__}")
+    return value
+
+
+def _real(value, field, optional=False):
+    if value is None and optional:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise InputError(f"{field} = {value!r}: must be a real number")
+    return float(value)
+
+
+_INT_RANGE = (-2**31, 2**31 - 1)  # the C++ int the bindings take
+
+
+def _integer(value, field, optional=False):
+    if value is None and optional:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise InputError(f"{field} = {value!r}: must be an integer")
+    if not _INT_RANGE[0] <= int(value) <= _INT_RANGE[1]:
+        raise InputError(f"{field} = {value!r}: out of range of a 32-bit integer")
+    return int(value)
+
+
+def _text(value, field):
+    if not isinstance(value, str):
+        raise InputError(f"{field} = {value!r}: must be a string")
+    return value
+
+
+def _dict(value, field):
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise InputError(f"{field} = {value!r}: must be a dict")
+    return value
+
+
+def _sequence(value, field):
+    if not isinstance(value, (list, tuple)):
+        raise InputError(f"{field} = {value!r}: must be a list of dicts")
+    return value
+
+
 def _options(options):
     if options is None:
         return {}
@@ -148,14 +214,22 @@ def _options(options):
 
 
 def _vector(values, field):
+    """A 1-D float array; complex, boolean, string and object arrays are
+    refused rather than cast (a cast would drop the imaginary part or parse
+    text)."""
     if values is None:
         return None
     import numpy
 
-    array = numpy.asarray(values, dtype=float)
+    try:
+        array = numpy.asarray(values)
+    except ValueError:
+        raise InputError(f"{field}: must be a 1-D array of real numbers (got a ragged sequence)") from None
+    if array.dtype.kind not in "fiu":
+        raise InputError(f"{field}: must be real numbers, not dtype {array.dtype}")
     if array.ndim != 1:
         raise InputError(f"{field}: must be a 1-D array (got {array.ndim}-D)")
-    return array
+    return array.astype(float)
 
 
 def _toml_table(entries, field):

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "conversions.h"
+#include "matrix_argument.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/coarse_start.h"
 #include "eqhb/continuation/continuation.h"
@@ -27,6 +28,7 @@
 namespace py = pybind11;
 using namespace eqhb;
 using python::curveDict;
+using python::matrixArgument;
 using python::referenceDict;
 using python::resultDict;
 using python::solutionDict;
@@ -37,35 +39,6 @@ namespace {
 struct PyModel {
   Scene scene;
 };
-
-// Matrix from a numpy array (any real dtype) or a scipy.sparse matrix;
-// `field` names it in errors.
-Eigen::SparseMatrix<double> matrixArgument(const py::handle& value, const std::string& field) {
-  const py::module_ sparse = py::module_::import("scipy.sparse");
-  if (sparse.attr("issparse")(value).cast<bool>()) {
-    try {
-      return sparse.attr("csc_matrix")(value, py::arg("dtype") = "float64")
-          .cast<Eigen::SparseMatrix<double>>();
-    } catch (const py::cast_error&) {
-      throw InputError(field + ": not convertible to a real sparse matrix");
-    }
-  }
-  py::array_t<double, py::array::forcecast> array;
-  try {
-    array = py::array_t<double, py::array::forcecast>::ensure(value);
-  } catch (const py::error_already_set&) {
-    throw InputError(field + ": must be a real 2-D numpy array or a scipy.sparse matrix");
-  }
-  if (!array || array.ndim() != 2)
-    throw InputError(field + ": must be a real 2-D numpy array or a scipy.sparse matrix (got " +
-                     std::string(py::str(py::type::of(value).attr("__name__"))) +
-                     (array ? ", " + std::to_string(array.ndim()) + "-D" : "") + ")");
-  auto view = array.unchecked<2>();
-  Eigen::MatrixXd dense(view.shape(0), view.shape(1));
-  for (py::ssize_t i = 0; i < view.shape(0); ++i)
-    for (py::ssize_t j = 0; j < view.shape(1); ++j) dense(i, j) = view(i, j);
-  return dense.sparseView();
-}
 
 // The model of `text` (a scene document whose structure only fixes the DOF
 // count) with M, C, K from arrays; the loads and laws come from the text.
