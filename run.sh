@@ -4,8 +4,8 @@
 #   ./run.sh test              install, build, run the test suite (ctest)
 #   ./run.sh perf-check        short benchmark compared with bench/baseline.json (CI)
 #   ./run.sh baseline          re-record bench/baseline.json (on purpose only)
-#   ./run.sh sanitize          the test suite under ASan + UBSan (clang), then the scene
-#                              fuzzer for FUZZ_SECONDS (60) from tests/fuzz/corpus (CI)
+#   ./run.sh sanitize          the test suite under ASan + UBSan (clang), then every
+#                              fuzzer, FUZZ_SECONDS (60) shared between them (CI)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -100,20 +100,31 @@ case "${1:-}" in
     sanitize_build
     export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
     ctest --test-dir build-sanitize --output-on-failure -j2
-    # New inputs go to a scratch copy; a finding is written to build-sanitize/fuzz-findings/.
+    # Each fuzzer with its seed corpus; FUZZ_SECONDS is shared between them.
+    # New inputs go to a scratch copy; a finding is written to build-sanitize/fuzz-findings/NAME/.
+    fuzzers=("scene:tests/fuzz/corpus" "sparse:tests/fuzz/corpus-sparse")
+    seconds=$(( ${FUZZ_SECONDS:-60} / ${#fuzzers[@]} ))
+    [ "$seconds" -ge 1 ] || seconds=1
     rm -rf build-sanitize/fuzz-corpus build-sanitize/fuzz-findings
-    mkdir -p build-sanitize/fuzz-corpus build-sanitize/fuzz-findings
-    status=0
-    ./build-sanitize/eqhb-scene-fuzzer -max_total_time="${FUZZ_SECONDS:-60}" -timeout=10 -rss_limit_mb=3072 \
-      -print_final_stats=1 -artifact_prefix=build-sanitize/fuzz-findings/ \
-      build-sanitize/fuzz-corpus tests/fuzz/corpus >build-sanitize/fuzz.log 2>&1 || status=$?
-    grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb|Done )" build-sanitize/fuzz.log || true
-    if [ "$status" -ne 0 ] || [ -n "$(ls -A build-sanitize/fuzz-findings)" ]; then
-      tail -n 60 build-sanitize/fuzz.log
-      echo "scene fuzzer: finding in build-sanitize/fuzz-findings/" >&2
-      exit 1
-    fi
-    echo "scene fuzzer: no crash"
+    failed=0
+    for entry in "${fuzzers[@]}"; do
+      name=${entry%%:*} seeds=${entry#*:}
+      mkdir -p "build-sanitize/fuzz-corpus/$name" "build-sanitize/fuzz-findings/$name"
+      status=0
+      "./build-sanitize/eqhb-$name-fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=3072 \
+        -print_final_stats=1 -artifact_prefix="build-sanitize/fuzz-findings/$name/" \
+        "build-sanitize/fuzz-corpus/$name" "$seeds" >"build-sanitize/fuzz-$name.log" 2>&1 || status=$?
+      grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb|Done )" \
+        "build-sanitize/fuzz-$name.log" || true
+      if [ "$status" -ne 0 ] || [ -n "$(ls -A "build-sanitize/fuzz-findings/$name")" ]; then
+        tail -n 60 "build-sanitize/fuzz-$name.log"
+        echo "$name fuzzer: finding in build-sanitize/fuzz-findings/$name/" >&2
+        failed=1
+      else
+        echo "$name fuzzer: no crash (${seconds} s)"
+      fi
+    done
+    exit "$failed"
     ;;
   baseline)
     install_packages
