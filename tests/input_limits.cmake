@@ -31,3 +31,30 @@ eqhb_cli_expect(negative_stiffness_matrix 2 "negative-stiffness.toml: structure.
                 solve ${BAD}/negative-stiffness.toml)
 eqhb_cli_expect(negative_damping_matrix 2 "negative-damping.toml: structure.damping: must be positive semidefinite"
                 solve ${BAD}/negative-damping.toml)
+# Matrix Market files judged by their size lines before any entry is read:
+# each swaps one file of a valid 2-DOF scene and is refused in milliseconds
+# (before: up to minutes and gigabytes, an overflow, or std::bad_alloc).
+set(MM ${BAD}/matrix-market.toml)
+eqhb_cli_expect(matrix_market_valid 0 "dogleg: converged" solve ${MM})
+eqhb_cli_expect(matrix_market_array_overflow 2
+                "structure.mass: .*mm-array-overflow.mtx:2: a 3037000500 x 3037000500 matrix of dense array storage needs about"
+                solve ${MM} --set structure.mass="mm-array-overflow.mtx" --set structure.stiffness="mm-array-overflow.mtx")
+eqhb_cli_expect(matrix_market_long_load_vector 2
+                "forcing\\[0\\]\\.file = .*mm-long-vector.mtx\": has 1073741823 entries, the structure has 2 DOFs"
+                solve ${MM} --set forcing[0].file="mm-long-vector.mtx")
+eqhb_cli_expect(matrix_market_empty_but_wide 2
+                "structure.mass: .*mm-wide-empty.mtx:2: a 536870912 x 536870912 matrix of 0 entries needs about 12 GiB to read"
+                solve ${MM} --set structure.mass="mm-wide-empty.mtx" --set structure.stiffness="mm-wide-empty.mtx")
+eqhb_cli_expect(matrix_market_sizes_disagree 2
+                "structure.stiffness = .*mm-huge-stiffness.mtx\": is 268435456 x 268435456, the mass matrix is 2 x 2 \\(sizes must agree"
+                solve ${MM} --set structure.stiffness="mm-huge-stiffness.mtx")
+# A line longer than the bound, written here rather than committed.
+string(REPEAT "0" 5000 zeros)
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/mm-long-line.mtx
+     "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n1 1 2\n2 1 -1\n2 2 ${zeros}1\n")
+eqhb_cli_expect(matrix_market_long_line 2 "structure.stiffness: .*mm-long-line.mtx:5: line longer than 4096 characters"
+                solve ${MM} --set structure.stiffness="${CMAKE_CURRENT_BINARY_DIR}/mm-long-line.mtx")
+# 2^24 chain DOFs: the model's vectors need 11.5 GiB; refused from the sizes
+# before the chain is built (before: 36 s and 5.5 GB).
+eqhb_cli_expect(chain_model_by_memory 2 "structure.dofs = 16777216: the model \\(16777216 DOFs.* needs about 11.5 GiB"
+                solve ${SCENE} --set structure.dofs=16777216)

@@ -123,6 +123,48 @@ TEST_F(MatrixMarketFiles, DeclaredSizesAreBoundedBeforeAnythingIsAllocated) {
   }, {"array.mtx:2: a 100000 x 100000 matrix of dense array storage needs about"});
 }
 
+TEST_F(MatrixMarketFiles, DeclaredSizesAreJudgedWithoutOverflowAndWithTheReadersTemporaries) {
+  // 3037000500^2 overflows a long: judged by memory, not "must be positive".
+  expectError([&] {
+    readMatrixMarket(write("big.mtx", "%%MatrixMarket matrix array real general\n3037000500 3037000500\n1\n"));
+  }, {"big.mtx:2: a 3037000500 x 3037000500 matrix of dense array storage needs about", "to read"});
+  // No entries, but the transposed copy and index vectors setFromTriplets
+  // builds per row and column (12 bytes each way) exceed the limit.
+  expectError([&] {
+    readMatrixMarket(write("wide.mtx", "%%MatrixMarket matrix coordinate real general\n200000000 200000000 0\n"));
+  }, {"wide.mtx:2: a 200000000 x 200000000 matrix of 0 entries needs about 4.47 GiB to read"});
+  // A load vector also counts the dense vector it becomes (8 bytes an entry).
+  expectError([&] {
+    readMatrixMarketVector(write("v.mtx", "%%MatrixMarket matrix coordinate real general\n300000000 1 0\n"));
+  }, {"v.mtx:2: a 300000000 x 1 matrix of 0 entries needs about 5.59 GiB to read"});
+  expectError([&] {
+    readMatrixMarketVector(write("m.mtx", "%%MatrixMarket matrix coordinate real general\n1000000 2 0\n"));
+  }, {"a load vector must be n x 1 or 1 x n, not 1000000 x 2"});
+  const MatrixMarketSize size = readMatrixMarketSize(write("s.mtx", kStiffness));
+  EXPECT_EQ(size.rows, 3);
+  EXPECT_EQ(size.entries, 5);
+  EXPECT_EQ(size.size_line, 3);
+  EXPECT_DOUBLE_EQ(size.storedEntries(), 10.0);  // symmetric: up to both triangles
+}
+
+TEST_F(MatrixMarketFiles, LinesAreBoundedAndTextOnly) {
+  // One line a character longer than the bound is refused as it is read; a
+  // line of exactly the bound is read.
+  const std::string zeros(kMaxMatrixMarketLine - 5, '0');  // "1 1 " + zeros + "1": the bound
+  const auto at_bound = write("b.mtx", "%%MatrixMarket matrix coordinate real general\n1 1 1\n1 1 " + zeros + "1\n");
+  EXPECT_DOUBLE_EQ(readMatrixMarket(at_bound).coeff(0, 0), 1.0);
+  const auto long_value = write("l.mtx", "%%MatrixMarket matrix coordinate real general\n1 1 1\n1 1 0" + zeros + "1\n");
+  expectError([&] { readMatrixMarket(long_value); }, {"l.mtx:3: line longer than 4096 characters"});
+  const auto long_comment =
+      write("c.mtx", "%%MatrixMarket matrix coordinate real general\n%" + std::string(5000, 'x') + "\n1 1 0\n");
+  expectError([&] { readMatrixMarket(long_comment); }, {"c.mtx:2: line longer than 4096 characters"});
+  const auto long_last = write("e.mtx", "%%MatrixMarket matrix coordinate real general\n1 1 1\n1 1 0" + zeros + "1");
+  expectError([&] { readMatrixMarket(long_last); }, {"e.mtx:3: line longer than 4096 characters"});
+  // Text after a NUL byte would be ignored silently.
+  const auto nul = write("n.mtx", std::string("%%MatrixMarket matrix coordinate real general\n1 1 1\n1 1 1") + '\0' + " junk\n");
+  expectError([&] { readMatrixMarket(nul); }, {"n.mtx:3: a NUL byte"});
+}
+
 TEST_F(MatrixMarketFiles, OnlyRegularFilesAreRead) {
   // A directory, or a device that would be read without end.
   expectError([&] { readMatrixMarket(dir_.string()); }, {dir_.string() + ": not a regular file"});
@@ -139,6 +181,37 @@ TEST_F(MatrixMarketFiles, SceneReadsPathsRelativeToTheSceneFileAndBuildsRayleigh
   EXPECT_DOUBLE_EQ(s.model.structure.mass.coeff(2, 2), 3.0);
   EXPECT_DOUBLE_EQ(s.model.structure.damping.coeff(1, 1), 0.1 * 2 + 0.02 * 2);
   EXPECT_DOUBLE_EQ(s.model.structure.damping.coeff(0, 1), 0.02 * -1);
+}
+
+TEST_F(MatrixMarketFiles, SceneComparesTheSizeLinesBeforeReadingAnyEntry) {
+  write("m.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 2\n3 3 3\n");
+  write("k.mtx", kStiffness);
+  // 2^28 DOFs beside a 3 x 3 mass: refused by the size line, not built.
+  write("big.mtx", "%%MatrixMarket matrix coordinate real symmetric\n268435456 268435456 1\n1 1 1\n");
+  expectError([&] { loadScene(write("a.toml", scene("mass = \"m.mtx\"\nstiffness = \"big.mtx\""))); },
+              {"a.toml: structure.stiffness = \"", "big.mtx\": is 268435456 x 268435456, the mass matrix is 3 x 3",
+               "by the size lines"});
+  write("rect.mtx", "%%MatrixMarket matrix coordinate real general\n3 4 0\n");
+  expectError([&] { loadScene(write("b.toml", scene("mass = \"rect.mtx\"\nstiffness = \"k.mtx\""))); },
+              {"structure.mass = \"", "must be square, its size line says 3 x 4"});
+  // Of one size but too large to read: named by the field and the file.
+  write("wide-m.mtx", "%%MatrixMarket matrix coordinate real general\n536870912 536870912 0\n");
+  write("wide-k.mtx", "%%MatrixMarket matrix coordinate real general\n536870912 536870912 0\n");
+  expectError([&] { loadScene(write("c.toml", scene("mass = \"wide-m.mtx\"\nstiffness = \"wide-k.mtx\""))); },
+              {"c.toml: structure.mass: ", "wide-m.mtx:2: a 536870912 x 536870912 matrix of 0 entries needs about"});
+  // A load vector of 2^30 - 1 entries for 3 DOFs: refused by its size line.
+  std::string text = scene("mass = \"m.mtx\"\nstiffness = \"k.mtx\"");
+  text.replace(text.find("dof = 1\ncos = 2.0"), 17, "file = \"f.mtx\"\ncos = 3.0");
+  write("f.mtx", "%%MatrixMarket matrix coordinate real general\n1073741823 1 0\n");
+  expectError([&] { loadScene(write("d.toml", text)); },
+              {"forcing[0].file = \"", "has 1073741823 entries, the structure has 3 DOFs"});
+  write("f.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 0\n");
+  expectError([&] { loadScene(write("e.toml", text)); }, {"forcing[0].file", "its size line says 3 x 3"});
+  // Modal damping on more DOFs than it allows: before the files are read.
+  write("m5.mtx", "%%MatrixMarket matrix coordinate real general\n5000 5000 1\n1 1 1\n");
+  write("k5.mtx", "%%MatrixMarket matrix coordinate real general\n5000 5000 1\n1 1 1\n");
+  expectError([&] { loadScene(write("f.toml", scene("mass = \"m5.mtx\"\nstiffness = \"k5.mtx\"\nmodal_damping = 0.01"))); },
+              {"structure.modal_damping = 0.01: modal damping forms a dense C; with 5000 DOFs"});
 }
 
 TEST_F(MatrixMarketFiles, ModalDampingGivesEveryModeTheRatio) {

@@ -10,7 +10,6 @@
 namespace eqhb {
 
 void HbModel::validate() const {
-  structure.validate();
   if (!(omega > 0.0) || !std::isfinite(omega))
     throwInputError("omega", formatNumber(omega), "must be finite and > 0");
   if (samples > kMaxSamples)
@@ -19,6 +18,10 @@ void HbModel::validate() const {
     throwInputError("samples", std::to_string(samples),
                     "must be >= 2 k_max + 1 = " + std::to_string(basis.minimumSamples()) +
                         " for the highest harmonic k_max = " + std::to_string(basis.highest()));
+  // Bounded by the memory every system of the model needs, from the sizes
+  // alone: before the structure's checks, which factorise M.
+  checkBytes("harmonics", std::to_string(basis.count()), "the model " + describeSizes(*this), modelBytes(*this));
+  structure.validate();
   for (size_t i = 0; i < structure.loads.size(); ++i) {
     const auto& load = structure.loads[i];
     const std::string field = "forcing[" + std::to_string(i) + "].harmonic";
@@ -55,8 +58,6 @@ void HbModel::validate() const {
         throwInputError(field + ".dofs", std::to_string(dof + 1), "listed twice");
     }
   }
-  // Bounded by the memory every system of the model needs, before any is built.
-  checkBytes("harmonics", std::to_string(basis.count()), "the model " + describeSizes(*this), modelBytes(*this));
 }
 
 int HbModel::lawComponents() const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "eqhb/error.h"
 #include "eqhb/size_limits.h"
 
 namespace eqhb {
@@ -32,19 +33,29 @@ double patternEntries(const LinearStructure& s) {
 }
 }  // namespace
 
-double modelBytes(const HbModel& model) {
-  const LinearStructure& s = model.structure;
-  const double n = s.dofs(), nb = model.basis.size(), samples = model.samples;
-  double bytes = sparseBytes(3.0 * n, structureEntries(s));
-  const double q = model.lawComponents();
+ModelSizes modelSizes(const HbModel& model) {
+  ModelSizes sizes;
+  sizes.dofs = model.structure.dofs();
+  sizes.structure_entries = structureEntries(model.structure);
+  sizes.coefficients = model.basis.size();
+  sizes.samples = model.samples;
+  for (const auto& attached : model.laws) sizes.law_dimensions.push_back(attached.law ? attached.law->dimension() : 0);
+  return sizes;
+}
+
+double modelBytes(const ModelSizes& sizes) {
+  const double n = sizes.dofs, nb = sizes.coefficients, samples = sizes.samples;
+  double bytes = sparseBytes(3.0 * n, sizes.structure_entries);
+  double q = 0.0;
+  for (int d : sizes.law_dimensions) q += d;
   bytes += 8.0 * 4.0 * (n + q) * nb;  // coefficients, residual, forcing, step
-  for (const auto& attached : model.laws) {
-    const double d = attached.law ? attached.law->dimension() : 0.0;
+  for (const double d : sizes.law_dimensions)
     bytes += 8.0 * (2.0 * d * d * nb * nb + 4.0 * d * nb + 2.0 * d * samples);
-  }
   bytes += 8.0 * (2.0 * nb * nb + 2.0 * samples);  // Gram and velocity scratch, FFT buffers
   return bytes;
 }
+
+double modelBytes(const HbModel& model) { return modelBytes(modelSizes(model)); }
 
 double condensedBytes(const HbModel& model, bool sparse_factors) {
   const double n = model.structure.dofs(), nb = model.basis.size(), q = model.lawComponents();
@@ -77,9 +88,12 @@ double fullBytes(const HbModel& model) {
 }
 
 std::string describeSizes(const HbModel& model) {
-  return "(" + std::to_string(model.structure.dofs()) + " DOFs, " + std::to_string(model.lawComponents()) +
-         " law components, " + std::to_string(model.basis.size()) + " coefficients and " +
-         std::to_string(model.samples) + " samples per channel)";
+  const ModelSizes sizes = modelSizes(model);  // a law not given yet counts 0
+  int q = 0;
+  for (int d : sizes.law_dimensions) q += d;
+  return "(" + formatNumber(sizes.dofs) + " DOFs, " + std::to_string(q) + " law components, " +
+         formatNumber(sizes.coefficients) + " coefficients and " + formatNumber(sizes.samples) +
+         " samples per channel)";
 }
 
 }  // namespace eqhb

@@ -20,7 +20,9 @@
 #include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
+#include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/structures/beam.h"
+#include "eqhb/structures/market_structure_sizes.h"
 #include "eqhb/structures/matrix_market.h"
 #include "eqhb/structures/structure_matrices.h"
 #include "eqhb/scenes/toml_guard.h"
@@ -206,7 +208,27 @@ void bounded(const std::string& source, Check check) {
   }
 }
 
-ReadStructure readStructure(TableReader& top, const std::string& source) {
+// Refuses a model too large for memory before its structure of `dofs` DOFs
+// and `entries` stored entries of M, C and K is built or read (`extra`:
+// what building it needs besides). The laws are not known yet; they are
+// counted again, with everything else, when the model is validated.
+void checkModelBeforeBuilding(const std::string& source, ModelSizes settings, const std::string& field,
+                              const std::string& value, double dofs, double entries, double extra = 0.0) {
+  // Without a structure too large already: the harmonics are to blame, and
+  // HbModel::validate names them (with the laws) before M is factorised.
+  if (modelBytes(settings) > kMaxModelBytes) return;
+  settings.dofs = dofs;
+  settings.structure_entries = entries;
+  bounded(source, [&] {
+    checkBytes(field, value,
+               "the model (" + formatNumber(dofs) + " DOFs, " + formatNumber(settings.coefficients) +
+                   " coefficients and " + formatNumber(settings.samples) + " samples per channel, before its laws)",
+               modelBytes(settings) + extra);
+  });
+}
+
+// `settings`: the coefficients and samples of the model the structure is for.
+ReadStructure readStructure(TableReader& top, const std::string& source, const ModelSizes& settings) {
   TableReader s(top.raw("structure"), "structure", source);
   ReadStructure read;
   LinearStructure& structure = read.structure;
@@ -220,6 +242,7 @@ ReadStructure readStructure(TableReader& top, const std::string& source) {
       checkBytes("structure.dofs", std::to_string(n), "a chain's sparse M, C and K",
                  sparseBytes(n, n) + 2.0 * sparseBytes(n, 3.0 * n));
     });
+    checkModelBeforeBuilding(source, settings, "structure.dofs", std::to_string(n), n, 7.0 * n);
     const double m = s.number("m"), k = s.number("k"), d = s.number("d");
     if (!(m > 0.0)) s.fail("structure.m", formatNumber(m), "mass must be > 0");
     if (k < 0.0) s.fail("structure.k", formatNumber(k), "stiffness must be >= 0");
@@ -241,18 +264,33 @@ ReadStructure readStructure(TableReader& top, const std::string& source) {
     MatrixNames names;
     names.mass = relativeToScene(source, s.text("mass"));
     names.stiffness = relativeToScene(source, s.text("stiffness"));
+    const bool damping_file = s.has("damping");
+    if (damping_file && (s.has("rayleigh") || s.has("modal_damping")))
+      s.fail("structure.damping", describe(s.raw("damping")),
+             "give one damping model: a damping file, rayleigh or modal_damping");
+    if (damping_file) names.damping = relativeToScene(source, s.text("damping"));
+    // The size lines first: M, K (and C) square and of one size, and the
+    // model within memory, before any entry is read.
+    MarketStructureSizes declared;
+    bounded(source, [&] {
+      declared = checkMarketStructureSizes({"structure.mass", names.mass}, {"structure.stiffness", names.stiffness},
+                                           {"structure.damping", damping_file ? names.damping : std::string()});
+    });
+    const double n = static_cast<double>(declared.dofs);
+    if (s.has("modal_damping"))
+      checkModalDampingSize(static_cast<int>(declared.dofs), s.number("modal_damping"), "structure.modal_damping");
+    // C from a model: rayleigh has at most the entries of M and K, modal is dense.
+    const double modelled_damping =
+        damping_file ? 0.0 : s.has("modal_damping") ? n * n : s.has("rayleigh") ? declared.stored_entries : 0.0;
+    checkModelBeforeBuilding(source, settings, "structure.mass", "\"" + names.mass + "\"", n,
+                             declared.stored_entries + modelled_damping, declared.reading_bytes);
     StructureMatrices matrices;
-    matrices.mass = readMatrixMarket(names.mass);
-    matrices.stiffness = readMatrixMarket(names.stiffness);
-    if (s.has("damping")) {
-      if (s.has("rayleigh") || s.has("modal_damping"))
-        s.fail("structure.damping", describe(s.raw("damping")),
-               "give one damping model: a damping file, rayleigh or modal_damping");
-      names.damping = relativeToScene(source, s.text("damping"));
-      matrices.damping = readMatrixMarket(names.damping);
-    }
+    bounded(source + ": structure.mass", [&] { matrices.mass = readMatrixMarket(names.mass); });
+    bounded(source + ": structure.stiffness", [&] { matrices.stiffness = readMatrixMarket(names.stiffness); });
+    if (damping_file)
+      bounded(source + ": structure.damping", [&] { matrices.damping = readMatrixMarket(names.damping); });
     // Sizes and symmetry of M and K first: the damping models build on them.
-    names.damping = s.has("damping") ? names.damping : "structure.damping (from M and K)";
+    if (!damping_file) names.damping = "structure.damping (from M and K)";
     {
       StructureMatrices mk = matrices;
       mk.damping = matrices.mass;
@@ -266,11 +304,13 @@ ReadStructure readStructure(TableReader& top, const std::string& source) {
     beam.elements = s.integer("elements");
     // Two DOFs per node, 16 entries per element in M and K (and C), and the
     // assembly's triplets: bounded before they are built.
+    const double e = std::max(beam.elements, 0);
     bounded(source, [&] {
-      const double e = std::max(beam.elements, 0);
       checkBytes("structure.elements", std::to_string(beam.elements), "a beam's sparse M, C and K",
                  3.0 * sparseBytes(2.0 * e, 16.0 * e) + 2.0 * 16.0 * 16.0 * e);
     });
+    checkModelBeforeBuilding(source, settings, "structure.elements", std::to_string(beam.elements), 2.0 * e,
+                             3.0 * 16.0 * e);
     beam.youngs_modulus = s.number("E");
     beam.second_moment = s.number("I");
     beam.mass_per_length = s.number("rhoA");
@@ -508,7 +548,32 @@ Scene buildScene(toml::value root, const std::string& source,
   scene.source = source;
   scene.name = top.text("name");
   scene.description = top.text("description", std::string());
-  const ReadStructure structure = readStructure(top, source);
+  // The harmonic-balance settings first: with them the model's size is known
+  // from the structure's sizes alone, before the structure is built.
+  TableReader hb(top.raw("harmonic_balance"), "harmonic_balance", source);
+  const int harmonics = hb.integer("harmonics", std::nullopt, kMaxHarmonics);
+  const std::string set = hb.text("set", std::string("odd"));
+  if (set != "odd" && set != "all")
+    hb.fail("harmonic_balance.set", "\"" + set + "\"", "must be \"odd\" or \"all\"");
+  if (set == "odd" && harmonics < 1)
+    hb.fail("harmonic_balance.harmonics", std::to_string(harmonics),
+            "must be >= 1 for set = \"odd\"");
+  if (harmonics < 0) hb.fail("harmonic_balance.harmonics", std::to_string(harmonics), "must be >= 0");
+  scene.model.basis = HarmonicSet(HarmonicSet::parseKind(set), harmonics);
+  scene.model.samples = hb.integer("samples", std::nullopt, kMaxSamples);
+  if (scene.model.samples < scene.model.basis.minimumSamples())
+    hb.fail("harmonic_balance.samples", std::to_string(scene.model.samples),
+            "must be >= 2 k_max + 1 = " + std::to_string(scene.model.basis.minimumSamples()) +
+                " (highest harmonic k_max = " + std::to_string(scene.model.basis.highest()) + ")");
+  scene.model.omega = hb.number("omega");
+  if (!(scene.model.omega > 0.0))
+    hb.fail("harmonic_balance.omega", formatNumber(scene.model.omega), "must be > 0");
+  hb.requireKnownKeys();
+
+  ModelSizes settings;
+  settings.coefficients = scene.model.basis.size();
+  settings.samples = scene.model.samples;
+  const ReadStructure structure = readStructure(top, source, settings);
   scene.model.structure = structure.structure;
   const int dofs = scene.model.structure.dofs();
 
@@ -525,10 +590,19 @@ Scene buildScene(toml::value root, const std::string& source,
       if (f.has("file")) {
         // A load vector (Matrix Market, n x 1) scaled by cos and sin.
         const std::string path = relativeToScene(source, f.text("file"));
-        const Eigen::VectorXd shape = readMatrixMarketVector(path);
-        if (shape.size() != dofs)
+        // Its length by the size line, before its entries are read.
+        MatrixMarketSize declared;
+        bounded(source + ": " + field + ".file", [&] { declared = readMatrixMarketSize(path); });
+        const long length = declared.rows == 1 ? declared.cols : declared.rows;
+        if (declared.rows != 1 && declared.cols != 1)
           f.fail(field + ".file", "\"" + path + "\"",
-                 "has " + std::to_string(shape.size()) + " entries, the structure has " + std::to_string(dofs) + " DOFs");
+                 "a load vector must be n x 1 or 1 x n, its size line says " + std::to_string(declared.rows) +
+                     " x " + std::to_string(declared.cols));
+        if (length != dofs)
+          f.fail(field + ".file", "\"" + path + "\"",
+                 "has " + std::to_string(length) + " entries, the structure has " + std::to_string(dofs) + " DOFs");
+        Eigen::VectorXd shape;
+        bounded(source + ": " + field + ".file", [&] { shape = readMatrixMarketVector(path); });
         const double c = f.number("cos", 1.0), s_ = f.number("sin", 0.0);
         f.requireKnownKeys();
         for (int i = 0; i < dofs; ++i) {
@@ -562,26 +636,6 @@ Scene buildScene(toml::value root, const std::string& source,
     for (size_t i = 0; i < laws.size(); ++i)
       scene.model.laws.push_back(readLaw(laws[i], "law[" + std::to_string(i) + "]", source, dofs, structure.nodes));
   }
-
-  TableReader hb(top.raw("harmonic_balance"), "harmonic_balance", source);
-  const int harmonics = hb.integer("harmonics", std::nullopt, kMaxHarmonics);
-  const std::string set = hb.text("set", std::string("odd"));
-  if (set != "odd" && set != "all")
-    hb.fail("harmonic_balance.set", "\"" + set + "\"", "must be \"odd\" or \"all\"");
-  if (set == "odd" && harmonics < 1)
-    hb.fail("harmonic_balance.harmonics", std::to_string(harmonics),
-            "must be >= 1 for set = \"odd\"");
-  if (harmonics < 0) hb.fail("harmonic_balance.harmonics", std::to_string(harmonics), "must be >= 0");
-  scene.model.basis = HarmonicSet(HarmonicSet::parseKind(set), harmonics);
-  scene.model.samples = hb.integer("samples", std::nullopt, kMaxSamples);
-  if (scene.model.samples < scene.model.basis.minimumSamples())
-    hb.fail("harmonic_balance.samples", std::to_string(scene.model.samples),
-            "must be >= 2 k_max + 1 = " + std::to_string(scene.model.basis.minimumSamples()) +
-                " (highest harmonic k_max = " + std::to_string(scene.model.basis.highest()) + ")");
-  scene.model.omega = hb.number("omega");
-  if (!(scene.model.omega > 0.0))
-    hb.fail("harmonic_balance.omega", formatNumber(scene.model.omega), "must be > 0");
-  hb.requireKnownKeys();
 
   if (top.has("sweep")) {
     TableReader sweep(top.raw("sweep"), "sweep", source);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -42,8 +43,7 @@ class MarketReader {
 
   // Next line that is neither a comment nor blank; false at the end of the file.
   bool nextDataLine(std::string& line) {
-    while (std::getline(in_, line)) {
-      ++line_number_;
+    while (readLine(line)) {
       const auto first = line.find_first_not_of(" \t\r");
       if (first == std::string::npos || line[first] == '%') continue;
       return true;
@@ -51,11 +51,7 @@ class MarketReader {
     return false;
   }
 
-  bool firstLine(std::string& line) {
-    if (!std::getline(in_, line)) return false;
-    ++line_number_;
-    return true;
-  }
+  bool firstLine(std::string& line) { return readLine(line); }
 
   // Parses one integer / one real token, failing with the line number.
   long integer(const char*& p, const char* what) {
@@ -82,19 +78,40 @@ class MarketReader {
   }
 
   const std::string& path() const { return path_; }
+  long lineNumber() const { return line_number_; }
 
  private:
+  // One line of at most kMaxMatrixMarketLine characters: a longer one is
+  // refused after reading that many, not stored whole (std::getline would
+  // grow the string to the file's size).
+  bool readLine(std::string& line) {
+    buffer_.resize(kMaxMatrixMarketLine + 2);
+    in_.getline(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    const std::streamsize read = in_.gcount();
+    if (read == 0 && in_.eof()) return false;
+    ++line_number_;
+    if (in_.bad()) fail("read error");
+    // failbit without the end of the file: no newline within the buffer.
+    if (in_.fail() && !in_.eof())
+      fail("line longer than " + std::to_string(kMaxMatrixMarketLine) + " characters (not a Matrix Market file)");
+    const size_t length = std::strlen(buffer_.data());
+    // gcount counts the newline getline consumed; a shorter strlen means a NUL.
+    if (static_cast<std::streamsize>(length) + (in_.eof() ? 0 : 1) != read)
+      fail("a NUL byte in the line (not a text file)");
+    if (length > static_cast<size_t>(kMaxMatrixMarketLine))
+      fail("line longer than " + std::to_string(kMaxMatrixMarketLine) + " characters (not a Matrix Market file)");
+    line.assign(buffer_.data(), length);
+    return true;
+  }
+
   std::string path_;
   std::ifstream in_;
+  std::vector<char> buffer_;
   long line_number_ = 0;
 };
 
-struct Header {
-  bool coordinate = true;
-  bool symmetric = false;
-};
-
-Header readHeader(MarketReader& reader) {
+// The banner's format and symmetry, in a MatrixMarketSize still without sizes.
+MatrixMarketSize readHeader(MarketReader& reader) {
   std::string line;
   if (!reader.firstLine(line)) reader.fail("empty file (expected a %%MatrixMarket header)");
   std::istringstream words(line);
@@ -104,7 +121,7 @@ Header readHeader(MarketReader& reader) {
     reader.fail("the first line must be the header \"%%MatrixMarket matrix coordinate real "
                 "general|symmetric\", found \"" + line + "\"");
   if (lower(object) != "matrix") reader.fail("object \"" + object + "\" is not supported (only \"matrix\")");
-  Header header;
+  MatrixMarketSize header;
   format = lower(format);
   if (format == "array") header.coordinate = false;
   else if (format != "coordinate")
@@ -119,49 +136,92 @@ Header readHeader(MarketReader& reader) {
   return header;
 }
 
-}  // namespace
-
-Eigen::SparseMatrix<double> readMatrixMarket(const std::string& path) {
-  MarketReader reader(path);
-  const Header header = readHeader(reader);
+// The header and the size line, checked for sign and shape (the memory they
+// imply is judged in doubles by checkMatrixMarketMemory: a product of two
+// declared longs may overflow).
+MatrixMarketSize readSizes(MarketReader& reader) {
+  MatrixMarketSize size = readHeader(reader);
   std::string line;
   if (!reader.nextDataLine(line)) reader.fail("no size line after the header");
   const char* p = line.c_str();
-  const long rows = reader.integer(p, "(rows on the size line)");
-  const long cols = reader.integer(p, "(columns on the size line)");
-  const long entries = header.coordinate ? reader.integer(p, "(entry count on the size line)") : rows * cols;
+  size.rows = reader.integer(p, "(rows on the size line)");
+  size.cols = reader.integer(p, "(columns on the size line)");
+  if (size.coordinate) size.entries = reader.integer(p, "(entry count on the size line)");
   reader.expectEnd(p);
-  if (rows < 1 || cols < 1 || entries < 0)
-    reader.fail("sizes " + std::to_string(rows) + " x " + std::to_string(cols) + " must be positive");
-  if (header.symmetric && rows != cols)
-    reader.fail("a symmetric matrix must be square, not " + std::to_string(rows) + " x " + std::to_string(cols));
-  if (rows > (1L << 30) || cols > (1L << 30)) reader.fail("sizes too large");
-  // Bounded by the memory the declared sizes imply (the triplets read and the
-  // compressed matrix), before anything of that size is allocated.
-  const double stored = (header.coordinate ? static_cast<double>(entries) : static_cast<double>(rows) * cols) *
-                        (header.symmetric ? 2.0 : 1.0);
-  const double bytes = 16.0 * stored + sparseBytes(static_cast<double>(cols), stored);
-  if (bytes > kMaxModelBytes) {
-    char size[64];
-    std::snprintf(size, sizeof size, "%.3g GiB", bytes / (1024.0 * 1024 * 1024));
-    reader.fail("a " + std::to_string(rows) + " x " + std::to_string(cols) + " matrix of " +
-                (header.coordinate ? std::to_string(entries) + " entries" : std::string("dense array storage")) +
-                " needs about " + size + ", more than the " +
-                formatNumber(kMaxModelBytes / (1024.0 * 1024 * 1024)) + " GiB limit");
-  }
+  if (size.rows < 1 || size.cols < 1 || size.entries < 0)
+    reader.fail("sizes " + std::to_string(size.rows) + " x " + std::to_string(size.cols) +
+                (size.coordinate ? " with " + std::to_string(size.entries) + " entries" : std::string()) +
+                ": rows and columns must be >= 1, the entry count >= 0");
+  if (size.symmetric && size.rows != size.cols)
+    reader.fail("a symmetric matrix must be square, not " + std::to_string(size.rows) + " x " +
+                std::to_string(size.cols));
+  size.size_line = reader.lineNumber();
+  return size;
+}
 
-  const long expected = !header.coordinate && header.symmetric ? rows * (rows + 1) / 2 : entries;
+}  // namespace
+
+double MatrixMarketSize::storedEntries() const {
+  const double r = static_cast<double>(rows), c = static_cast<double>(cols);
+  if (!coordinate) return r * c;  // symmetric arrays expand to the full square
+  return static_cast<double>(entries) * (symmetric ? 2.0 : 1.0);
+}
+
+double MatrixMarketSize::matrixBytes() const {
+  return sparseBytes(static_cast<double>(cols), storedEntries());
+}
+
+double MatrixMarketSize::readBytes() const {
+  // Per stored entry: a 16-byte triplet, the row-major copy setFromTriplets
+  // sorts through (12 bytes) and the result (12 bytes). Per row: that copy's
+  // offsets, its per-row counts and the counting vector (4 bytes each); per
+  // column: the result's offsets twice (the assignment builds a new matrix
+  // before freeing the old one) and its position vector.
+  const double r = static_cast<double>(rows), c = static_cast<double>(cols);
+  return 40.0 * storedEntries() + 12.0 * (r + 1.0) + 12.0 * (c + 1.0);
+}
+
+MatrixMarketSize readMatrixMarketSize(const std::string& path) {
+  MarketReader reader(path);
+  return readSizes(reader);
+}
+
+void checkMatrixMarketMemory(const std::string& path, const MatrixMarketSize& size, double extra_bytes) {
+  const double bytes = size.readBytes() + extra_bytes;
+  if (bytes <= kMaxModelBytes) return;
+  char amount[64];
+  std::snprintf(amount, sizeof amount, "%.3g GiB", bytes / (1024.0 * 1024 * 1024));
+  throw InputError(path + ":" + std::to_string(size.size_line) + ": a " + std::to_string(size.rows) + " x " +
+                   std::to_string(size.cols) + " matrix of " +
+                   (size.coordinate ? std::to_string(size.entries) + " entries" : std::string("dense array storage")) +
+                   " needs about " + amount + " to read, more than the " +
+                   formatNumber(kMaxModelBytes / (1024.0 * 1024 * 1024)) + " GiB limit");
+}
+// Within the limit rows + cols < 4 GiB / 12 bytes: inside int, Eigen's index.
+static_assert(kMaxModelBytes / 12.0 < 2147483647.0, "the memory limit keeps matrix sizes inside int");
+
+Eigen::SparseMatrix<double> readMatrixMarket(const std::string& path) {
+  MarketReader reader(path);
+  const MatrixMarketSize size = readSizes(reader);
+  checkMatrixMarketMemory(path, size);
+  // Bounded now: rows * cols cannot overflow.
+  const long rows = size.rows, cols = size.cols;
+  const long expected = size.coordinate ? size.entries : size.symmetric ? rows * (rows + 1) / 2 : rows * cols;
+  // Reserved once at the declared count (bounded by readSizes): no growth
+  // that would hold two copies, and pages are touched only as entries are
+  // read, so a file declaring more than it holds costs address space only.
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(std::min<long>(expected, 1L << 24)) * (header.symmetric ? 2 : 1));
+  triplets.reserve(static_cast<size_t>(size.storedEntries()));
   long count = 0;
   long array_row = 0, array_col = 0;  // next position of an array-format file
+  std::string line;
   while (reader.nextDataLine(line)) {
     if (count == expected)
       reader.fail("more entries than the " + std::to_string(expected) + " announced by the size line");
-    p = line.c_str();
+    const char* p = line.c_str();
     long i, j;
     double value;
-    if (header.coordinate) {
+    if (size.coordinate) {
       i = reader.integer(p, "(row index)");
       j = reader.integer(p, "(column index)");
       value = reader.real(p, "value");
@@ -173,16 +233,16 @@ Eigen::SparseMatrix<double> readMatrixMarket(const std::string& path) {
       value = reader.real(p, "value");
       i = array_row + 1;
       j = array_col + 1;
-      if (++array_row == rows) array_row = header.symmetric ? ++array_col : (++array_col, 0);
+      if (++array_row == rows) array_row = size.symmetric ? ++array_col : (++array_col, 0);
     }
     reader.expectEnd(p);
-    if (header.symmetric && j > i)
+    if (size.symmetric && j > i)
       reader.fail("entry (" + std::to_string(i) + ", " + std::to_string(j) +
                   ") above the diagonal in a symmetric file (only the lower triangle is stored)");
     ++count;
     if (value == 0.0) continue;
     triplets.emplace_back(static_cast<int>(i - 1), static_cast<int>(j - 1), value);
-    if (header.symmetric && i != j) triplets.emplace_back(static_cast<int>(j - 1), static_cast<int>(i - 1), value);
+    if (size.symmetric && i != j) triplets.emplace_back(static_cast<int>(j - 1), static_cast<int>(i - 1), value);
   }
   if (count != expected)
     throw InputError(path + ": the size line announces " + std::to_string(expected) + " entries, the file has " +
@@ -193,12 +253,19 @@ Eigen::SparseMatrix<double> readMatrixMarket(const std::string& path) {
 }
 
 Eigen::VectorXd readMatrixMarketVector(const std::string& path) {
+  const MatrixMarketSize size = readMatrixMarketSize(path);
+  if (size.cols != 1 && size.rows != 1)
+    throw InputError(path + ": a load vector must be n x 1 or 1 x n, not " + std::to_string(size.rows) + " x " +
+                     std::to_string(size.cols));
+  // The vector beside the matrix it is read as (8 bytes an entry).
+  const long length = std::max(size.rows, size.cols);
+  checkMatrixMarketMemory(path, size, 8.0 * static_cast<double>(length));
   const Eigen::SparseMatrix<double> m = readMatrixMarket(path);
-  if (m.cols() != 1 && m.rows() != 1)
-    throw InputError(path + ": a load vector must be n x 1 or 1 x n, not " + std::to_string(m.rows()) + " x " +
-                     std::to_string(m.cols()));
-  Eigen::MatrixXd dense(m);
-  return m.cols() == 1 ? Eigen::VectorXd(dense.col(0)) : Eigen::VectorXd(dense.row(0).transpose());
+  Eigen::VectorXd vector = Eigen::VectorXd::Zero(length);
+  for (int c = 0; c < m.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(m, c); it; ++it)
+      vector[size.cols == 1 ? it.row() : it.col()] = it.value();
+  return vector;
 }
 
 void writeMatrixMarket(const std::string& path, const Eigen::SparseMatrix<double>& matrix, bool symmetric) {

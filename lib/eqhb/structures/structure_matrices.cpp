@@ -58,12 +58,16 @@ Eigen::SparseMatrix<double> rayleighDamping(const StructureMatrices& s, double a
   return c;
 }
 
+void checkModalDampingSize(int dofs, double ratio, const std::string& field, int max_dofs) {
+  if (dofs > max_dofs)
+    throwInputError(field, formatNumber(ratio),
+                    "modal damping forms a dense C; with " + std::to_string(dofs) + " DOFs (more than " +
+                        std::to_string(max_dofs) + ") use rayleigh = [alpha, beta]");
+}
+
 Eigen::SparseMatrix<double> modalDamping(const StructureMatrices& s, double ratio, const std::string& field,
                                          int max_dofs) {
-  if (s.dofs() > max_dofs)
-    throwInputError(field, formatNumber(ratio),
-                    "modal damping forms a dense C; with " + std::to_string(s.dofs()) + " DOFs (more than " +
-                        std::to_string(max_dofs) + ") use rayleigh = [alpha, beta]");
+  checkModalDampingSize(s.dofs(), ratio, field, max_dofs);
   const Eigen::MatrixXd m(s.mass), k(s.stiffness);
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eigen(k, m);
   if (eigen.info() != Eigen::Success)

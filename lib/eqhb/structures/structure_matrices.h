@@ -24,6 +24,8 @@ Eigen::SparseMatrix<double> rayleighDamping(const StructureMatrices& s, double a
 // naming `field` otherwise or above `max_dofs`.
 Eigen::SparseMatrix<double> modalDamping(const StructureMatrices& s, double ratio, const std::string& field,
                                          int max_dofs = 3000);
+// The size rule of modalDamping alone, for a structure not read yet.
+void checkModalDampingSize(int dofs, double ratio, const std::string& field, int max_dofs = 3000);
 
 // Throws InputError naming the matrix (by `names`, e.g. the file paths) if
 // the three are not square and of one size, not finite, asymmetric beyond
