@@ -102,7 +102,8 @@ case "${1:-}" in
     ctest --test-dir build-sanitize --output-on-failure -j2
     # Each fuzzer with its seed corpus; FUZZ_SECONDS is shared between them.
     # New inputs go to a scratch copy; a finding is written to build-sanitize/fuzz-findings/NAME/.
-    fuzzers=("scene:tests/fuzz/corpus" "sparse:tests/fuzz/corpus-sparse")
+    fuzzers=("scene:tests/fuzz/corpus" "sparse:tests/fuzz/corpus-sparse"
+             "matrix-market:tests/fuzz/corpus-matrix-market")
     seconds=$(( ${FUZZ_SECONDS:-60} / ${#fuzzers[@]} ))
     [ "$seconds" -ge 1 ] || seconds=1
     rm -rf build-sanitize/fuzz-corpus build-sanitize/fuzz-findings
