@@ -16,8 +16,10 @@
 #include "eqhb/laws/invariants.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
+#include "eqhb/solvers/deadline.h"
 #include "eqhb/stability/hill_stability.h"
 #include "eqhb/backends/registry.h"
+#include "representable_number.h"
 
 namespace eqhb::cli {
 
@@ -88,10 +90,15 @@ void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
   auto* condensed = cmd->add_flag("--condensed", "Solve the condensed system (unknowns: law forces; default)");
   cmd->add_flag("--full", a.full, "Solve the full system (displacements and forces)")->excludes(condensed);
   cmd->add_option("--option", a.backend_options, "Backend-specific option NAME=VALUE");
-  cmd->add_option("--tolerance", a.tolerance, "Residual tolerance on ‖g‖₂")->capture_default_str();
+  cmd->add_option("--tolerance", a.tolerance, "Residual tolerance on ‖g‖₂")
+      ->check(representableNumber())
+      ->capture_default_str();
   cmd->add_option("--max-iterations", a.max_iterations, "Iteration limit")->capture_default_str();
   cmd->add_option("--max-evaluations", a.max_evaluations, "Residual evaluation limit")->capture_default_str();
-  cmd->add_option("--time-limit", a.time_limit, "Seconds per solve, 0 = none")->capture_default_str();
+  cmd->add_option("--time-limit", a.time_limit,
+                  "Seconds per solve, set-up (assembly, factorisations) included; 0 = none")
+      ->check(representableNumber())
+      ->capture_default_str();
   cmd->add_option("--linear-algebra", a.linear_algebra,
                   "dense or sparse Jacobians and factorisations (auto: sparse for large systems)")
       ->check(CLI::IsMember({"auto", "dense", "sparse"}))
@@ -159,11 +166,21 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
   run.scene = loadSceneWith(a.scene);
   const HbModel& model = run.scene.model;
   const SolverOptions options = solverOptions(a);
+  // --time-limit bounds the set-up too: assembly and factorisations check it
+  // between harmonics and laws, and each solve gets what the set-up left.
+  const Deadline deadline(options.time_limit);
   const auto setup_start = std::chrono::steady_clock::now();
-  run.system = makeHbSystem(model, !a.full, options.linear_algebra);
+  run.system = makeHbSystem(model, !a.full, options.linear_algebra, deadline);
   run.setup_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   HbSystem* system = run.system.get();
+  // The options of one solve: the time limit less the set-up so far.
+  auto withinLimit = [&](const char* before) {
+    deadline.check(before);
+    SolverOptions o = options;
+    if (deadline.limited()) o.time_limit = deadline.remaining();
+    return o;
+  };
 
   auto solver = makeSolver(a.solver);
 
@@ -179,7 +196,8 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
     HbModel seed_model = model;
     seed_model.basis = HarmonicSet(model.basis.kind(), seed_harmonics);
     Eigen::VectorXd seed;
-    const SolverResult r = solveByHarmonicContinuation(seed_model, *solver, options, *a.from_harmonics, !a.full, &seed);
+    const SolverResult r = solveByHarmonicContinuation(seed_model, *solver, withinLimit("set-up, before the seed"),
+                                                       *a.from_harmonics, !a.full, &seed);
     if (!r.converged())
       std::cerr << "eqhb: warning: the seed at H = " << seed_harmonics << " did not converge ("
                 << terminationName(r.termination) << "); starting from its last iterate\n";
@@ -190,11 +208,14 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
   std::unique_ptr<CoarseStart> coarse;
   if (a.cold_start == "coarse" && !a.from_harmonics && !a.start_full.size()) {
     const auto coarse_setup = std::chrono::steady_clock::now();
-    coarse = std::make_unique<CoarseStart>(model, !a.full, options.linear_algebra);
+    coarse = std::make_unique<CoarseStart>(model, !a.full, options.linear_algebra, deadline);
     run.setup_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - coarse_setup).count();
   }
+  // Every repeat gets the same time: the limit less the set-up.
+  const SolverOptions solve_options = withinLimit("set-up, before the solve");
   for (int i = 0; i < a.repeat; ++i) {
-    run.result = coarse ? coarse->solve(*solver, *system, options, &run.cold_start) : solver->solve(*system, z0, options);
+    run.result = coarse ? coarse->solve(*solver, *system, solve_options, &run.cold_start)
+                        : solver->solve(*system, z0, solve_options);
     if (run.result.termination == Termination::kInvalidOptions)
       throw InputError("--option: " + run.result.native_message);
     // The time of a solve includes its coarse start.

@@ -19,6 +19,14 @@ add_test(NAME cli.unknown_option COMMAND ${EXPECT_EXIT} 2 "not expected: --nope"
          ${EQHB_CLI} solve ${SCENE} --nope)
 add_test(NAME cli.unconvertible_value COMMAND ${EXPECT_EXIT} 2 "Could not convert: --omega = abc"
          ${EQHB_CLI} solve ${SCENE} --omega abc)
+# Numbers beyond the double range are refused, not rounded to 0 or the largest double.
+add_test(NAME cli.omega_underflows COMMAND ${EXPECT_EXIT} 2 "--omega: 1e-400 underflows to 0; not representable"
+         ${EQHB_CLI} solve ${SCENE} --omega 1e-400)
+add_test(NAME cli.set_underflows
+         COMMAND ${EXPECT_EXIT} 2 "law\\[0\\]\\.muN = 1e-400: underflows to 0; not representable"
+                 ${EQHB_CLI} solve ${SCENE} --set law[0].muN=1e-400)
+add_test(NAME cli.tolerance_overflows COMMAND ${EXPECT_EXIT} 2 "--tolerance: 1e999 overflows; not representable"
+         ${EQHB_CLI} solve ${SCENE} --tolerance 1e999)
 add_test(NAME cli.no_subcommand COMMAND ${EXPECT_EXIT} 2 "subcommand is required" ${EQHB_CLI})
 add_test(NAME cli.help_exits_0 COMMAND ${EXPECT_EXIT} 0 "solve" ${EQHB_CLI} --help)
 
@@ -43,6 +51,28 @@ add_test(NAME cli.simulate_negative_max_seconds
                  --max-seconds -1)
 add_test(NAME cli.simulate_wall_clock_limit_json
          COMMAND ${EXPECT_EXIT} 1 "\"timed_out\": true" ${EQHB_CLI} simulate ${STRIBECK} --step 1e-4 --max-seconds 0.5 --json)
+
+# --time-limit bounds the set-up too: the full system of a 2000-DOF beam on 200
+# harmonics takes minutes to assemble and factor; it stops in its assembly.
+add_test(NAME cli.solve_time_limit_covers_setup
+         COMMAND ${EXPECT_EXIT} 1 "time limit of 0.5 s reached during set-up of the full system"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/beam-joint-large.toml --harmonics 200
+                 --samples 1024 --full --time-limit 0.5)
+set_tests_properties(cli.solve_time_limit_covers_setup PROPERTIES TIMEOUT 30)
+# shoot on cubic at omega = 0.8 (the start does not converge) runs for minutes:
+# --time-limit stops it, with progress, and no multipliers for an orbit not found.
+set(CUBIC ${PROJECT_SOURCE_DIR}/problems/cubic.toml)
+add_test(NAME cli.shoot_time_limit
+         COMMAND ${EXPECT_EXIT} 1 "NOT converged: time limit reached after [0-9]+ Newton steps"
+                 ${EQHB_CLI} shoot ${CUBIC} --omega 0.8 --time-limit 1)
+add_test(NAME cli.shoot_unconverged_has_no_multipliers
+         COMMAND ${EXPECT_EXIT} 1 "\"multipliers\": null"
+                 ${EQHB_CLI} shoot ${CUBIC} --omega 0.8 --time-limit 1 --json)
+add_test(NAME cli.shoot_progress
+         COMMAND ${EXPECT_EXIT} 1 "cubic shoot  Newton step [0-9]+/40  elapsed .* period maps"
+                 ${EQHB_CLI} --progress shoot ${CUBIC} --omega 0.8 --time-limit 1)
+set_tests_properties(cli.shoot_time_limit cli.shoot_unconverged_has_no_multipliers cli.shoot_progress
+                     PROPERTIES TIMEOUT 30)
 
 # Bad input to the joint laws: exit 2, naming the field (parse-time checks,
 # so each runs in milliseconds).

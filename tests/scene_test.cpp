@@ -146,8 +146,43 @@ TEST(Scene, TimeReferenceDefaultsAreReadAndValidated) {
   expectError(section + "periods = 0\n", "time_reference.periods = 0: must be >= 1");
   expectError(section + "periods = 4294967306\n", "time_reference.periods = 4294967306: must be <=");
   expectError(section + "periodic_tolerance = -1\n", "time_reference.periodic_tolerance = -1: must be > 0");
-  expectError(section + "h = 1e-3\n", "time_reference.h = 0.001: unknown key (known here: periodic_tolerance, "
+  expectError(section + "h = 1e-3\n", "time_reference.h = 0.001: unknown key (allowed here: periodic_tolerance, "
                                        "periods, step, theta)");
+}
+
+TEST(Scene, NumbersOutOfTheDoubleRangeAreRefusedNotRounded) {
+  // toml11 reads 1e-400 as 0 and 1e400 as the largest double, silently.
+  expectError(replaced("muN = 7.2", "muN = 1e-400"),
+              "scene.toml: law[0].muN = 1e-400: underflows to 0; not representable");
+  expectError(replaced("muN = 7.2", "muN = 1e400"), "law[0].muN = 1e400: overflows; not representable");
+  expectError(replaced("omega = 0.4", "omega = -1_0e-4_00"), "harmonic_balance.omega = -1_0e-4_00: underflows to 0");
+  expectError(kValid, "law[0].muN = 1e-400: underflows to 0", {"law[0].muN=1e-400"});
+  expectError(replaced("type = \"chain\"\nm = 1.0\nk = 1.0\nd = 0.02",
+                       "type = \"matrices\"\nmass = [[1, 0], [0, 1]]\ndamping = [[0, 0], [0, 0]]\n"
+                       "stiffness = [[2, -1], [-1, 2e-999]]"),
+              "structure.stiffness[1][1] = 2e-999: underflows to 0");
+  // Small but representable values (subnormal included) and an exact 0 stay.
+  EXPECT_EQ(parseScene(replaced("muN = 7.2", "muN = 5e-320"), "s").model.laws.size(), 1u);
+  EXPECT_EQ(parseScene(replaced("muN = 7.2", "muN = 0.0e-999"), "s").model.laws.size(), 1u);
+}
+
+TEST(Scene, ANulInsideAStringIsRefused) {
+  // Opened as a file name, "m.mtx\0.txt" would be "m.mtx".
+  expectError(replaced("type = \"chain\"\nm = 1.0\nk = 1.0\nd = 0.02",
+                       "type = \"matrix-market\"\nmass = \"m.mtx\\u0000.txt\"\nstiffness = \"k.mtx\""),
+              "scene.toml: structure.mass = \"m.mtx");
+  expectError(replaced("type = \"chain\"\nm = 1.0\nk = 1.0\nd = 0.02",
+                       "type = \"matrix-market\"\nmass = \"m.mtx\\u0000.txt\"\nstiffness = \"k.mtx\""),
+              "must not contain a NUL character");
+}
+
+TEST(Scene, AnUnknownLawKeyListsTheKeysThatLawAllows) {
+  // A typo of an optional key: the list holds the keys allowed, not only those present.
+  expectError(replaced("muN = 7.2", "muN = 7.2\nrh0 = 2"),
+              "law[0].rh0 = 2: unknown key (allowed here: beta, dofs, form, muN, nodes, rho, type)");
+  expectError(replaced("type = \"coulomb-1d\"\ndofs = [2]\nmuN = 7.2",
+                       "type = \"cubic\"\ndofs = [2]\nepsilon = 1\nrho = 1"),
+              "law[0].rho = 1: unknown key (allowed here: dofs, epsilon, nodes, type)");
 }
 
 TEST(Scene, EveryShippedSceneLoads) {

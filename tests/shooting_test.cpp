@@ -50,6 +50,46 @@ HbModel linearChain(bool with_zero_friction) {
   return model;
 }
 
+TEST(Shooting, AnUnconvergedOrbitHasNoMultipliers) {
+  // One Newton step from far away: not an orbit, so Φ's eigenvalues mean nothing.
+  const HbModel model = test::denHartog(1.5, 0.3, 5, 64);
+  const PiecewiseLinearFlow flow(model, 0.0);
+  Eigen::VectorXd start(2);
+  start << 40.0, 3.0;
+  ShootingOptions options;
+  options.max_iterations = 1;
+  const auto orbit = shootPeriodicOrbit(flow, start, 0.0, options);
+  ASSERT_FALSE(orbit.converged);
+  EXPECT_EQ(orbit.multipliers.size(), 0);
+  EXPECT_FALSE(orbit.stable);
+  EXPECT_EQ(orbit.monodromy.rows(), 2);  // the last iterate's Φ is still there
+}
+
+TEST(Shooting, ATimeLimitStopsNewtonAndSaysSo) {
+  const HbModel model = test::denHartog(1.5, 0.3, 5, 64);
+  const PiecewiseLinearFlow flow(model, 0.0);
+  Eigen::VectorXd start(2);
+  start << 40.0, 3.0;
+  ShootingOptions options;
+  options.time_limit = 1e-9;  // passed after the first period map
+  int reports = 0;
+  options.progress = [&](int iterations, int evaluations, double) {
+    EXPECT_EQ(evaluations, reports + 1);
+    EXPECT_EQ(iterations, 0);
+    ++reports;
+  };
+  const auto orbit = shootPeriodicOrbit(flow, start, 0.0, options);
+  EXPECT_FALSE(orbit.converged);
+  EXPECT_EQ(orbit.iterations, 0);
+  EXPECT_EQ(orbit.flow_evaluations, 1);
+  EXPECT_EQ(reports, 1);
+  EXPECT_NE(orbit.failure.find("time limit reached after 0 Newton steps and 1 period-map evaluations"), std::string::npos)
+      << orbit.failure;
+  EXPECT_EQ(orbit.multipliers.size(), 0);
+  options.time_limit = -1.0;
+  EXPECT_THROW(shootPeriodicOrbit(flow, start, 0.0, options), InputError);
+}
+
 TEST(Shooting, LinearOrbitIsTheExactResponseAndMultipliersAreExpLambdaT) {
   for (bool zero_friction : {false, true}) {
     const HbModel model = linearChain(zero_friction);

@@ -132,18 +132,22 @@ def simulate(model, omega=None, *, step=1e-4, periods=5000, theta=0.5, periodic_
 
 
 def shoot(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", restitution=0.0, tolerance=1e-11,
-          max_iterations=40):
+          max_iterations=40, time_limit=0.0):
     """The exact periodic orbit by shooting (Coulomb 1D, Jenkins on one DOF
     and Signorini laws in closed form, cubic, planar Coulomb with stick-slip and Stribeck by
     Gauss-Legendre phases with located events;
     Newton on the period map with saltation matrices), started from the
-    harmonic-balance solution. Returns converged, period_residual, iterations,
+    harmonic-balance solution. Returns converged, failure, period_residual, iterations,
     state (y(t0) = [x; v]), monodromy, multipliers (complex, largest modulus
-    first), spectral_radius, stable, events per period, max_abs_x, and one
-    period sampled (t, x, v, lambda: one row per DOF or law component)."""
+    first), spectral_radius, stable (these three None when no orbit was found),
+    events per period, max_abs_x, and one
+    period sampled (t, x, v, lambda: one row per DOF or law component).
+    time_limit: seconds for the whole call (0: none); shooting that runs out of
+    it returns converged False, a harmonic-balance start that does raises."""
     return _shoot(_model(model), _real(omega, "omega", True), _integer(harmonics, "harmonics", True),
                   _integer(samples, "samples", True), _text(solver, "solver"), _real(restitution, "restitution"),
-                  _real(tolerance, "tolerance"), _integer(max_iterations, "max_iterations"))
+                  _real(tolerance, "tolerance"), _integer(max_iterations, "max_iterations"),
+                  _real(time_limit, "time_limit"))
 
 
 def _square_size(matrix, field):

@@ -19,6 +19,7 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
 #include "eqhb/orbits/shooting.h"
+#include "eqhb/solvers/deadline.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/stability/hill_stability.h"
@@ -242,16 +243,19 @@ py::dict simulate(const PyModel& m, std::optional<double> omega, double step, in
 // multipliers and one period sampled on N instants.
 py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
                std::optional<int> samples, const std::string& solver_name, double restitution, double tolerance,
-               int max_iterations) {
+               int max_iterations, double time_limit) {
   const HbModel model = withSettings(m.scene.model, omega, harmonics, samples);
   orbits::ShootingOptions options;
   options.tolerance = tolerance;
   options.max_iterations = max_iterations;
+  options.time_limit = time_limit;
   options.validate();
+  // time_limit bounds the whole call: the harmonic-balance start, then shooting with what is left.
+  const Deadline deadline(time_limit);
   const std::unique_ptr<orbits::Flow> flow_owner = orbits::makeFlow(model, restitution);  // rejects other laws first
   const orbits::Flow& flow = *flow_owner;
   auto solver = makeSolver(solver_name);
-  auto hb = makeHbSystem(model, true);
+  auto hb = makeHbSystem(model, true, LinearAlgebra::kAuto, deadline);
   py::dict d;
   orbits::ShootingResult orbit;
   orbits::FlowSamples sampled;
@@ -259,8 +263,14 @@ py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int>
   SolverResult start;
   {
     py::gil_scoped_release unlocked;
-    start = solver->solve(*hb, Eigen::VectorXd::Zero(hb->size()), SolverOptions{});
+    SolverOptions start_options;
+    if (deadline.limited()) start_options.time_limit = std::max(deadline.remaining(), 1e-3);
+    start = solver->solve(*hb, Eigen::VectorXd::Zero(hb->size()), start_options);
+    if (start.termination == Termination::kTimeLimit)
+      throw TimeLimitReached("time limit of " + formatNumber(time_limit) +
+                             " s reached during the harmonic-balance start of shooting");
     const Eigen::VectorXd full = hb->fullCoefficients(start.solution);
+    if (deadline.limited()) options.time_limit = std::max(deadline.remaining(), 1e-3);
     orbit = orbits::shootFromHarmonicBalance(flow, model, full, options);
     const double t0 = orbit.start_time;
     for (int i = 0; i < model.samples; ++i) sampled.times.push_back(t0 + flow.period() * i / model.samples);
@@ -281,9 +291,10 @@ py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int>
   py::array_t<std::complex<double>> multipliers(orbit.multipliers.size());
   std::copy(orbit.multipliers.data(), orbit.multipliers.data() + orbit.multipliers.size(),
             multipliers.mutable_data());
-  d["multipliers"] = multipliers;
-  d["spectral_radius"] = orbit.spectral_radius;
-  d["stable"] = orbit.stable;
+  // Floquet multipliers belong to an orbit: None when none was found.
+  d["multipliers"] = orbit.converged ? py::object(multipliers) : py::none();
+  d["spectral_radius"] = orbit.converged ? py::object(py::float_(orbit.spectral_radius)) : py::none();
+  d["stable"] = orbit.converged ? py::object(py::bool_(orbit.stable)) : py::none();
   d["events"] = orbit.events;
   d["max_abs_x"] = python::toArray(orbit.max_abs);
   d["seconds"] = orbit.seconds;
@@ -375,7 +386,8 @@ PYBIND11_MODULE(_eqhb, m) {
   m.def("_stability", &stability, py::arg("model"), py::arg("full"), py::arg("omega"), py::arg("harmonics"),
         py::arg("samples"));
   m.def("_shoot", &shoot, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),
-        py::arg("solver"), py::arg("restitution"), py::arg("tolerance"), py::arg("max_iterations"));
+        py::arg("solver"), py::arg("restitution"), py::arg("tolerance"), py::arg("max_iterations"),
+        py::arg("time_limit"));
   m.def("_simulate", &simulate, py::arg("model"), py::arg("omega"), py::arg("step"), py::arg("periods"),
         py::arg("theta"), py::arg("periodic_tolerance"), py::arg("restitution"), py::arg("initial"));
 }

@@ -142,6 +142,13 @@ def test_shoot_finds_the_exact_orbit_near_harmonic_balance():
     np.testing.assert_allclose(orbit["max_abs_x"], hb["max_abs_x"], rtol=0.05)
 
 
+def test_shoot_stops_at_its_time_limit_without_multipliers():
+    # At omega = 0.8 the start does not converge and Newton on the period map runs for minutes.
+    orbit = eqhb.shoot(eqhb.load_scene(PROBLEMS / "cubic.toml"), omega=0.8, time_limit=1.0)
+    assert not orbit["converged"] and "time limit reached" in orbit["failure"]
+    assert orbit["multipliers"] is None and orbit["spectral_radius"] is None and orbit["stable"] is None
+
+
 def test_stability_by_hill_matches_the_shooting_multipliers_on_cubic():
     model = eqhb.load_scene(PROBLEMS / "cubic.toml")
     result = eqhb.solve(model, omega=0.5, system="full")

@@ -22,10 +22,11 @@ HbModel coarseModel(const HbModel& fine) {
   return coarse;
 }
 
-CoarseStart::CoarseStart(const HbModel& fine, bool condensed, LinearAlgebra linear_algebra)
+CoarseStart::CoarseStart(const HbModel& fine, bool condensed, LinearAlgebra linear_algebra,
+                         const Deadline& deadline)
     : coarse_(eqhb::coarseModel(fine)) {
   if (coarse_.basis.count() == fine.basis.count()) return;
-  system_ = makeHbSystem(coarse_, condensed, linear_algebra);
+  system_ = makeHbSystem(coarse_, condensed, linear_algebra, deadline);
   zero_coarse_ = Eigen::VectorXd::Zero(system_->size());
 }
 

@@ -43,7 +43,9 @@ class CoarseStart {
  public:
   // Builds the coarse system once (patterns, plans, factorisations) for
   // solves of `fine`, at its ω, on the same system kind and linear algebra.
-  CoarseStart(const HbModel& fine, bool condensed, LinearAlgebra linear_algebra);
+  // `deadline` bounds that set-up (TimeLimitReached).
+  CoarseStart(const HbModel& fine, bool condensed, LinearAlgebra linear_algebra,
+              const Deadline& deadline = Deadline());
 
   // Whether the fine problem has a coarser rung (H >= 4).
   bool available() const { return system_ != nullptr; }

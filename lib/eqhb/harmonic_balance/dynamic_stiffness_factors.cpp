@@ -29,6 +29,12 @@ std::runtime_error singular(int k, double omega, double rcond) {
                             std::to_string(k) + " is singular at omega = " + formatNumber(omega) +
                             " (rcond " + formatNumber(rcond) + "); use the full system");
 }
+
+// Where a factorisation is, for a time limit's message.
+std::string factorisationStep(const std::vector<int>& harmonics, int h) {
+  return "numeric factorisation of A_k, harmonic " + std::to_string(harmonics[h]) + " (" + std::to_string(h) +
+         " of " + std::to_string(harmonics.size()) + " done)";
+}
 }  // namespace
 
 struct DynamicStiffnessFactors::Sparse {
@@ -37,12 +43,16 @@ struct DynamicStiffnessFactors::Sparse {
 };
 
 DynamicStiffnessFactors::DynamicStiffnessFactors(const LinearStructure& structure,
-                                                 const HarmonicSet& basis, bool sparse)
+                                                 const HarmonicSet& basis, bool sparse,
+                                                 const Deadline& deadline)
     : harmonics_(basis.harmonics()), sparse_(sparse) {
   if (!sparse_) return;
   const auto start = Clock::now();
   sparse_factors_ = std::make_unique<Sparse>();
   for (int k : harmonics_) {
+    deadline.check("set-up: symbolic factorisation of A_k, harmonic " + std::to_string(k) + " (" +
+                   std::to_string(sparse_factors_->lu.size()) + " of " + std::to_string(harmonics_.size()) +
+                   " done)");
     // Any ω gives the pattern; the values are replaced by factorize().
     sparse_factors_->operators.push_back(structure.harmonicOperatorSparse(k, 1.0));
     sparse_factors_->operators.back().makeCompressed();
@@ -59,13 +69,14 @@ DynamicStiffnessFactors::DynamicStiffnessFactors(DynamicStiffnessFactors&&) noex
 DynamicStiffnessFactors& DynamicStiffnessFactors::operator=(DynamicStiffnessFactors&&) noexcept =
     default;
 
-void DynamicStiffnessFactors::factorize(const LinearStructure& structure, double omega) {
+void DynamicStiffnessFactors::factorize(const LinearStructure& structure, double omega, const Deadline& deadline) {
   const auto start = Clock::now();
   const int harmonics = static_cast<int>(harmonics_.size());
   double bytes = 0.0;
   if (!sparse_) {
     std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> factors;
     for (int h = 0; h < harmonics; ++h) {
+      deadline.check(factorisationStep(harmonics_, h));
       factors.emplace_back(structure.harmonicOperator(harmonics_[h], omega));
       if (!(factors.back().rcond() > kSingularRcond))
         throw singular(harmonics_[h], omega, factors.back().rcond());
@@ -75,6 +86,7 @@ void DynamicStiffnessFactors::factorize(const LinearStructure& structure, double
   } else {
     Sparse& s = *sparse_factors_;
     for (int h = 0; h < harmonics; ++h) {
+      deadline.check(factorisationStep(harmonics_, h));
       // New values on the fixed pattern; the symbolic analysis stays.
       const SparseMatrix values = structure.harmonicOperatorSparse(harmonics_[h], omega);
       SparseMatrix& a = s.operators[h];

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "eqhb/harmonic_balance/harmonic_set.h"
+#include "eqhb/solvers/deadline.h"
 #include "eqhb/sparse_matrix.h"
 #include "eqhb/structures/linear_structure.h"
 
@@ -17,7 +18,10 @@ namespace eqhb {
 
 class DynamicStiffnessFactors {
  public:
-  DynamicStiffnessFactors(const LinearStructure& structure, const HarmonicSet& basis, bool sparse);
+  // `deadline` is checked between the harmonics' symbolic analyses
+  // (TimeLimitReached).
+  DynamicStiffnessFactors(const LinearStructure& structure, const HarmonicSet& basis, bool sparse,
+                          const Deadline& deadline = Deadline());
   ~DynamicStiffnessFactors();
   DynamicStiffnessFactors(DynamicStiffnessFactors&&) noexcept;
   DynamicStiffnessFactors& operator=(DynamicStiffnessFactors&&) noexcept;
@@ -26,7 +30,8 @@ class DynamicStiffnessFactors {
   // harmonic when some A_k is singular; the factors are then unusable until
   // a factorize() succeeds.
   // `structure` is the one given at construction (or an equal copy).
-  void factorize(const LinearStructure& structure, double omega);
+  // `deadline` is checked between harmonics (TimeLimitReached).
+  void factorize(const LinearStructure& structure, double omega, const Deadline& deadline = Deadline());
   // A_k⁻¹ rhs for the harmonic at index h of the basis (rhs: w n rows).
   Eigen::MatrixXd solve(int h, const Eigen::MatrixXd& rhs) const;
 

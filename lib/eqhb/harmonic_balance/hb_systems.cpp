@@ -77,7 +77,7 @@ Eigen::VectorXd valuesOnPattern(const SparseMatrix& m, const SparseMatrix& p) {
 }
 }  // namespace
 
-FullSystem::FullSystem(HbModel model)
+FullSystem::FullSystem(HbModel model, const Deadline& deadline)
     : HbSystem(std::move(model), [](const HbModel& m) {
         checkBytes("harmonics", std::to_string(m.basis.count()), "the full system " + describeSizes(m), fullBytes(m));
       }) {
@@ -85,11 +85,15 @@ FullSystem::FullSystem(HbModel model)
   dynamic_rows_ = n * nb_;
   size_ = (n + model_.lawComponents()) * nb_;
   forcing_ = forcingCoefficients(model_);
-  buildPattern();
+  buildPattern(deadline);
   setOmega(model_.omega);
 }
 
-void FullSystem::buildPattern() {
+void FullSystem::buildPattern(const Deadline& deadline) {
+  const std::string step = "set-up of the full system: ";
+  const int harmonics = static_cast<int>(model_.basis.harmonics().size()), laws = laws_.lawCount();
+  auto harmonic = [&](int h) { return std::to_string(h) + " of " + std::to_string(harmonics) + " harmonics"; };
+  auto law = [&](int l) { return std::to_string(l) + " of " + std::to_string(laws) + " laws"; };
   const LinearStructure& structure = model_.structure;
   SparseMatrix p = structure.pattern();
   p.makeCompressed();
@@ -101,7 +105,13 @@ void FullSystem::buildPattern() {
   using Entry = Eigen::Triplet<double>;
   std::vector<Entry> dynamics;
   const auto& ks = model_.basis.harmonics();
+  // Reserved: regrowing a vector of tens of millions of entries takes
+  // seconds, between two checks of the time limit.
+  std::size_t dynamic_entries = 0;
+  for (int k : ks) dynamic_entries += static_cast<std::size_t>(harmonicWidth(k) * harmonicWidth(k)) * p.nonZeros();
+  dynamics.reserve(dynamic_entries);
   for (size_t h = 0; h < ks.size(); ++h) {
+    deadline.check(step + "dynamics pattern, " + harmonic(static_cast<int>(h)) + " done");
     const int w = harmonicWidth(ks[h]), o = model_.basis.offset(static_cast<int>(h));
     for (int j = 0; j < p.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(p, j); it; ++it)
@@ -109,12 +119,19 @@ void FullSystem::buildPattern() {
           for (int cj = 0; cj < w; ++cj)
             dynamics.emplace_back(static_cast<int>(it.row()) * nb_ + o + ri, j * nb_ + o + cj, 0.0);
   }
+  deadline.check(step + "sorting the dynamics pattern");
   linear_operator_.resize(dynamic_rows_, dynamic_rows_);
   linear_operator_.setFromTriplets(dynamics.begin(), dynamics.end());
   linear_operator_.makeCompressed();
 
-  std::vector<Entry> all = dynamics;
+  std::vector<Entry> all;
+  std::size_t law_entries = 0;
+  for (int l = 0; l < laws_.lawCount(); ++l)
+    law_entries += static_cast<std::size_t>(laws_.dimension(l)) * (nb_ + 2 * laws_.dimension(l) * nb_ * nb_);
+  all.reserve(dynamics.size() + law_entries);
+  all.insert(all.end(), dynamics.begin(), dynamics.end());
   for (int l = 0; l < laws_.lawCount(); ++l) {
+    deadline.check(step + "law pattern, " + law(l) + " done");
     const AttachedLaw& attached = laws_.law(l);
     const int d = laws_.dimension(l);
     for (int a = 0; a < d; ++a) {
@@ -131,13 +148,18 @@ void FullSystem::buildPattern() {
       }
     }
   }
+  deadline.check(step + "sorting the Jacobian pattern");
   pattern_.resize(size_, size_);
   pattern_.setFromTriplets(all.begin(), all.end());
   pattern_.makeCompressed();
 
+  deadline.check(step + "locating the dynamics entries");
   operator_slot_.resize(dynamics.size());
   jacobian_slot_.resize(dynamics.size());
   for (size_t e = 0; e < dynamics.size(); ++e) {
+    if (e % (1u << 20) == 0)  // millions of entries: checked every 2^20
+      deadline.check(step + "locating the dynamics entries, " + std::to_string(e) + " of " +
+                     std::to_string(dynamics.size()) + " done");
     operator_slot_[e] = slotOf(linear_operator_, dynamics[e].row(), dynamics[e].col());
     jacobian_slot_[e] = slotOf(pattern_, dynamics[e].row(), dynamics[e].col());
   }
@@ -146,6 +168,7 @@ void FullSystem::buildPattern() {
   displacement_slots_.assign(laws_.lawCount(), {});
   force_slots_.assign(laws_.lawCount(), {});
   for (int l = 0; l < laws_.lawCount(); ++l) {
+    deadline.check(step + "locating the law entries, " + law(l) + " done");
     const AttachedLaw& attached = laws_.law(l);
     const int d = laws_.dimension(l);
     const double sign = attached.law->forceSign();
@@ -278,9 +301,9 @@ void checkCondensedFits(const HbModel& model, LinearAlgebra algebra) {
 }
 }  // namespace
 
-CondensedSystem::CondensedSystem(HbModel model, LinearAlgebra algebra)
+CondensedSystem::CondensedSystem(HbModel model, LinearAlgebra algebra, const Deadline& deadline)
     : HbSystem(std::move(model), [algebra](const HbModel& m) { checkCondensedFits(m, algebra); }),
-      factors_(model_.structure, model_.basis, sparseCondensation(model_, algebra)) {
+      factors_(model_.structure, model_.basis, sparseCondensation(model_, algebra), deadline) {
   components_ = model_.lawComponents();
   size_ = components_ * nb_;
   for (const auto& attached : model_.laws)
@@ -291,14 +314,18 @@ CondensedSystem::CondensedSystem(HbModel model, LinearAlgebra algebra)
   coupling_.assign(components_,
                    std::vector<Eigen::MatrixXd>(components_, Eigen::MatrixXd::Zero(nb_, 2)));
   offset_.assign(components_, Eigen::VectorXd::Zero(nb_));
-  setOmega(model_.omega);
+  condenseAt(model_.omega, deadline);
 }
 
-void CondensedSystem::setOmega(double omega) {
+void CondensedSystem::setOmega(double omega) { condenseAt(omega, Deadline()); }
+
+void CondensedSystem::condenseAt(double omega, const Deadline& deadline) {
   if (!(omega > 0.0) || !std::isfinite(omega))
     throwInputError("omega", formatNumber(omega), "must be finite and > 0");
   try {
-    factors_.factorize(model_.structure, omega);
+    factors_.factorize(model_.structure, omega, deadline);
+  } catch (const TimeLimitReached&) {
+    throw;  // only in the constructor: there is no previous ω to return to
   } catch (...) {
     // Keep the system usable at the previous ω.
     if (factored_) factors_.factorize(model_.structure, model_.omega);
@@ -310,6 +337,8 @@ void CondensedSystem::setOmega(double omega) {
   const Eigen::VectorXd f = forcingCoefficients(model_);
   const auto& ks = model_.basis.harmonics();
   for (size_t h = 0; h < ks.size(); ++h) {
+    deadline.check("set-up of the condensed system: receptance at the laws, " + std::to_string(h) + " of " +
+                   std::to_string(ks.size()) + " harmonics done");
     const int k = ks[h], w = harmonicWidth(k), o = model_.basis.offset(static_cast<int>(h));
     // A_k⁻¹ [f_k | W_k]; only its rows at the law DOFs are kept.
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(w * n, 1 + components_ * w);
@@ -422,10 +451,10 @@ Eigen::VectorXd CondensedSystem::fromFullCoefficients(const Eigen::VectorXd& ful
   return full.tail(components_ * nb_);
 }
 
-std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed,
-                                       LinearAlgebra algebra) {
-  if (condensed) return std::make_unique<CondensedSystem>(model, algebra);
-  return std::make_unique<FullSystem>(model);
+std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed, LinearAlgebra algebra,
+                                       const Deadline& deadline) {
+  if (condensed) return std::make_unique<CondensedSystem>(model, algebra, deadline);
+  return std::make_unique<FullSystem>(model, deadline);
 }
 
 }  // namespace eqhb

@@ -19,6 +19,7 @@
 #include "eqhb/harmonic_balance/dynamic_stiffness_factors.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/harmonic_balance/law_assembly.h"
+#include "eqhb/solvers/deadline.h"
 #include "eqhb/solvers/square_system.h"
 
 namespace eqhb {
@@ -58,8 +59,9 @@ class HbSystem : public SquareSystem {
 
 class FullSystem : public HbSystem {
  public:
-  // Throws InputError if the model is invalid.
-  explicit FullSystem(HbModel model);
+  // Throws InputError if the model is invalid, TimeLimitReached once
+  // `deadline` has passed during the set-up.
+  explicit FullSystem(HbModel model, const Deadline& deadline = Deadline());
   int size() const override { return size_; }
   bool residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                 Eigen::Ref<Eigen::VectorXd> g) override;
@@ -88,7 +90,7 @@ class FullSystem : public HbSystem {
   // pattern_'s storage.
   bool evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,
                 double* values);
-  void buildPattern();
+  void buildPattern(const Deadline& deadline);
   int size_;
   int dynamic_rows_;
   SparseMatrix linear_operator_;  // A, (n nb) x (n nb): blocks of A_k per DOF pair
@@ -114,7 +116,9 @@ class CondensedSystem : public HbSystem {
   // A_k is singular at the model's ω.
   // algebra: how A_k is factored (kAuto: sparse from
   // kSparseCondensationFromDofs DOFs up).
-  explicit CondensedSystem(HbModel model, LinearAlgebra algebra = LinearAlgebra::kAuto);
+  // TimeLimitReached once `deadline` has passed during the set-up.
+  explicit CondensedSystem(HbModel model, LinearAlgebra algebra = LinearAlgebra::kAuto,
+                           const Deadline& deadline = Deadline());
   int size() const override { return size_; }
   bool residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                 Eigen::Ref<Eigen::VectorXd> g) override;
@@ -134,6 +138,8 @@ class CondensedSystem : public HbSystem {
  private:
   bool evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,
                 Eigen::Ref<Eigen::MatrixXd>* jacobian);
+  // setOmega, with the set-up's deadline checked between harmonics.
+  void condenseAt(double omega, const Deadline& deadline);
   int size_;
   int components_;
   std::vector<int> component_dof_;  // DOF of each law component
@@ -149,7 +155,10 @@ class CondensedSystem : public HbSystem {
 // The condensed or the full system of a model (throws as their constructors).
 // algebra: the condensed system's factorisation (the full system always
 // offers both Jacobians).
+// deadline: checked during the set-up (assembly, factorisations), which
+// then throws TimeLimitReached saying where it was.
 std::unique_ptr<HbSystem> makeHbSystem(const HbModel& model, bool condensed,
-                                       LinearAlgebra algebra = LinearAlgebra::kAuto);
+                                       LinearAlgebra algebra = LinearAlgebra::kAuto,
+                                       const Deadline& deadline = Deadline());
 
 }  // namespace eqhb

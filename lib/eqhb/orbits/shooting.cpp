@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include "eqhb/error.h"
 #include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/laws/signorini.h"
+#include "eqhb/solvers/deadline.h"
 
 namespace eqhb::orbits {
 
@@ -14,6 +17,8 @@ void ShootingOptions::validate() const {
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     throwInputError("shooting tolerance", formatNumber(tolerance), "must be finite and > 0");
   if (max_iterations < 1) throwInputError("shooting iterations", std::to_string(max_iterations), "must be >= 1");
+  if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
+    throwInputError("shooting time limit", formatNumber(time_limit), "must be finite and >= 0 (0: none)");
 }
 
 namespace {
@@ -44,6 +49,7 @@ ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start
   Eigen::VectorXd y = start;
   double jacobian_seconds = 0.0;
   int jacobian_runs = 0;
+  double residual = std::numeric_limits<double>::infinity();
   auto evaluate = [&](const Eigen::VectorXd& state, bool with_jacobian) {
     const auto t = clock();
     FlowResult r = flow.integrate(state, start_time, period, with_jacobian);
@@ -52,7 +58,18 @@ ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start
       jacobian_seconds += std::chrono::duration<double>(clock() - t).count();
       ++jacobian_runs;
     }
+    if (options.progress) options.progress(out.iterations, out.flow_evaluations, residual);
     return r;
+  };
+  const Deadline deadline(options.time_limit);
+  // Once the time limit has passed: the failure, saying where shooting was.
+  auto out_of_time = [&]() {
+    if (!deadline.passed()) return false;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2f", deadline.elapsed());
+    out.failure = "time limit reached after " + std::to_string(out.iterations) + " Newton steps and " +
+                  std::to_string(out.flow_evaluations) + " period-map evaluations (" + seconds + " s of shooting)";
+    return true;
   };
   FlowResult current = evaluate(y, true);
   if (!current.ok) {
@@ -60,8 +77,8 @@ ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start
     out.state = y;
     return out;
   }
-  double residual = relativeResidual(y, current.end);
-  while (residual > options.tolerance && out.iterations < options.max_iterations) {
+  residual = relativeResidual(y, current.end);
+  while (residual > options.tolerance && out.iterations < options.max_iterations && !out_of_time()) {
     const Eigen::MatrixXd newton = current.jacobian - Eigen::MatrixXd::Identity(size, size);
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(newton);
     if (lu.rank() < size) {
@@ -73,7 +90,7 @@ ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start
     // Backtracking: the period map is only piecewise smooth, a full step may
     // cross into another event sequence.
     bool accepted = false;
-    for (double fraction = 1.0; fraction > 1e-6; fraction *= 0.5) {
+    for (double fraction = 1.0; fraction > 1e-6 && !out_of_time(); fraction *= 0.5) {
       const Eigen::VectorXd trial = y + fraction * step;
       FlowResult r = evaluate(trial, true);
       if (!r.ok) continue;
@@ -87,7 +104,8 @@ ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start
       }
     }
     if (!accepted) {
-      out.failure = "not progressing: no step along the Newton direction lowers the period residual";
+      if (out.failure.empty())
+        out.failure = "not progressing: no step along the Newton direction lowers the period residual";
       break;
     }
   }
@@ -97,12 +115,14 @@ ShootingResult shootPeriodicOrbit(const Flow& flow, const Eigen::VectorXd& start
   if (!out.converged && out.failure.empty())
     out.failure = "iteration limit (" + std::to_string(options.max_iterations) + ") reached";
   out.monodromy = current.jacobian;
-  const Eigen::EigenSolver<Eigen::MatrixXd> eig(current.jacobian, false);
-  out.multipliers = eig.eigenvalues();
-  std::sort(out.multipliers.data(), out.multipliers.data() + out.multipliers.size(),
-            [](const std::complex<double>& a, const std::complex<double>& b) { return std::abs(a) > std::abs(b); });
-  out.spectral_radius = out.multipliers.size() ? std::abs(out.multipliers[0]) : 0.0;
-  out.stable = out.spectral_radius < 1.0;
+  if (out.converged) {
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(current.jacobian, false);
+    out.multipliers = eig.eigenvalues();
+    std::sort(out.multipliers.data(), out.multipliers.data() + out.multipliers.size(),
+              [](const std::complex<double>& a, const std::complex<double>& b) { return std::abs(a) > std::abs(b); });
+    out.spectral_radius = out.multipliers.size() ? std::abs(out.multipliers[0]) : 0.0;
+    out.stable = out.spectral_radius < 1.0;
+  }
   out.events = current.events;
   out.max_abs = current.max_abs;
   out.seconds = std::chrono::duration<double>(clock() - begin).count();

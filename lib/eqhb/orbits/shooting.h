@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -16,10 +17,18 @@
 
 namespace eqhb::orbits {
 
+// After every period-map evaluation: the Newton steps taken, the period-map
+// evaluations so far and the best relative period residual.
+using ShootingProgress = std::function<void(int iterations, int flow_evaluations, double residual)>;
+
 struct ShootingOptions {
   // Relative period residual ‖P(y) − y‖∞ / ‖y‖∞ counted as periodic, > 0.
   double tolerance = 1e-11;
   int max_iterations = 40;  // Newton steps, >= 1
+  // Wall-clock limit in seconds, checked after every period-map evaluation
+  // (one evaluation is not interrupted); 0: none, else finite and > 0.
+  double time_limit = 0.0;
+  ShootingProgress progress;  // optional
   // Throws InputError naming the field.
   void validate() const;
 };
@@ -33,7 +42,10 @@ struct ShootingResult {
   Eigen::VectorXd state;           // y(t0) = [x; v] on the orbit
   double period_residual = 0.0;    // ‖P(y) − y‖∞ / ‖y‖∞ at the returned state
   Eigen::MatrixXd monodromy;       // Φ at the returned state
-  Eigen::VectorXcd multipliers;    // eigenvalues of Φ, largest modulus first
+  // Floquet multipliers: the eigenvalues of Φ, largest modulus first. Only
+  // for a converged orbit (empty otherwise: Φ at a point that is not on a
+  // periodic orbit has no such meaning), as are the two below.
+  Eigen::VectorXcd multipliers;
   double spectral_radius = 0.0;
   bool stable = false;             // spectral radius < 1
   std::map<std::string, int> events;  // per period, by kind

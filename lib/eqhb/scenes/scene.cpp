@@ -26,6 +26,7 @@
 #include "eqhb/structures/matrix_market.h"
 #include "eqhb/structures/structure_matrices.h"
 #include "eqhb/scenes/toml_guard.h"
+#include "eqhb/scenes/toml_number.h"
 #include "eqhb/size_limits.h"
 
 namespace eqhb {
@@ -50,7 +51,12 @@ class TableReader {
     table_ = &value.as_table();
   }
 
-  bool has(const std::string& key) const { return table_->count(key) > 0; }
+  // Every key asked about is one this table allows, present or not: the
+  // list shown for an unknown key (a typo) is then the keys allowed here.
+  bool has(const std::string& key) const {
+    asked_.insert(key);
+    return table_->count(key) > 0;
+  }
 
   const toml::value& raw(const std::string& key) {
     used_.insert(key);
@@ -61,12 +67,18 @@ class TableReader {
 
   double number(const std::string& key, std::optional<double> fallback = std::nullopt) {
     if (!has(key) && fallback) return *fallback;
-    const toml::value& v = raw(key);
-    double x;
+    return numberIn(raw(key), path(key), "must be a number");
+  }
+
+  // The number `v` holds; `not_number` is the rule when it holds none.
+  double numberIn(const toml::value& v, const std::string& field, const std::string& not_number) const {
+    double x = 0.0;
     if (v.is_integer()) x = static_cast<double>(v.as_integer());
     else if (v.is_floating()) x = v.as_floating();
-    else fail(path(key), describe(v), "must be a number");
-    if (!std::isfinite(x)) fail(path(key), describe(v), "must be finite (no NaN or Inf)");
+    else fail(field, describe(v), not_number);
+    const std::string range = floatRangeProblem(v);
+    if (!range.empty()) fail(field, tomlLiteral(v), range);
+    if (!std::isfinite(x)) fail(field, describe(v), "must be finite (no NaN or Inf)");
     return x;
   }
 
@@ -87,6 +99,9 @@ class TableReader {
     if (!has(key) && fallback) return *fallback;
     const toml::value& v = raw(key);
     if (!v.is_string()) fail(path(key), describe(v), "must be a string");
+    // A file name would end at the NUL when opened: another file than written.
+    if (v.as_string().str.find('\0') != std::string::npos)
+      fail(path(key), describe(v), "must not contain a NUL character (\\u0000)");
     return v.as_string().str;
   }
 
@@ -101,13 +116,9 @@ class TableReader {
         fail(path(key) + "[" + std::to_string(i) + "]", describe(rows[i]),
              "must be a row of " + std::to_string(rows.size()) + " numbers (square matrix)");
       for (size_t j = 0; j < rows.size(); ++j) {
-        const toml::value& e = rows[i].as_array()[j];
-        double x;
-        if (e.is_integer()) x = static_cast<double>(e.as_integer());
-        else if (e.is_floating()) x = e.as_floating();
-        else fail(path(key), describe(e), "entries must be numbers");
-        if (!std::isfinite(x)) fail(path(key), describe(e), "entries must be finite");
-        m(i, j) = x;
+        m(i, j) = numberIn(rows[i].as_array()[j],
+                           path(key) + "[" + std::to_string(i) + "][" + std::to_string(j) + "]",
+                           "entries must be numbers");
       }
     }
     return m;
@@ -116,9 +127,11 @@ class TableReader {
   void requireKnownKeys() const {
     for (const auto& [key, value] : *table_)
       if (!used_.count(key)) {
+        std::set<std::string> allowed = asked_;
+        allowed.insert(used_.begin(), used_.end());
         std::string known;
-        for (const auto& k : used_) known += (known.empty() ? "" : ", ") + k;
-        fail(path(key), describe(value), "unknown key (known here: " + known + ")");
+        for (const auto& k : allowed) known += (known.empty() ? "" : ", ") + k;
+        fail(path(key), describe(value), "unknown key (allowed here: " + known + ")");
       }
   }
   // Marks keys as known without reading them (optional keys of another variant).
@@ -137,7 +150,8 @@ class TableReader {
  private:
   const toml::table* table_ = nullptr;
   std::string field_, source_;
-  std::set<std::string> used_;
+  std::set<std::string> used_;           // keys read: the others present are unknown
+  mutable std::set<std::string> asked_;  // keys asked about with has()
 };
 
 // T = tridiag(−1, 2, −1) with the last diagonal entry 1: a chain fixed at
@@ -182,10 +196,8 @@ void readDampingModel(TableReader& s, StructureMatrices& matrices) {
       s.fail("structure.rayleigh", describe(v), "must be [alpha, beta] (C = alpha M + beta K)");
     double ab[2];
     for (int i = 0; i < 2; ++i) {
-      const toml::value& e = v.as_array()[i];
-      if (!e.is_floating() && !e.is_integer()) s.fail("structure.rayleigh", describe(v), "entries must be numbers");
-      ab[i] = e.is_integer() ? static_cast<double>(e.as_integer()) : e.as_floating();
-      if (!std::isfinite(ab[i]) || ab[i] < 0.0)
+      ab[i] = s.numberIn(v.as_array()[i], "structure.rayleigh[" + std::to_string(i) + "]", "entries must be numbers");
+      if (ab[i] < 0.0)
         s.fail("structure.rayleigh", describe(v), "alpha and beta must be finite and >= 0");
     }
     matrices.damping = rayleighDamping(matrices, ab[0], ab[1]);

@@ -117,9 +117,11 @@ MatrixMarketSize readHeader(MarketReader& reader) {
   std::istringstream words(line);
   std::string banner, object, format, field, symmetry;
   words >> banner >> object >> format >> field >> symmetry;
+  // The line itself is not shown: a scene can name any readable file, whose
+  // first line (a password hash, a key) has no business in an error message.
   if (banner != "%%MatrixMarket")
-    reader.fail("the first line must be the header \"%%MatrixMarket matrix coordinate real "
-                "general|symmetric\", found \"" + line + "\"");
+    reader.fail("expected a Matrix Market header \"%%MatrixMarket matrix coordinate|array real|integer "
+                "general|symmetric\" on the first line; this file does not start with \"%%MatrixMarket\"");
   if (lower(object) != "matrix") reader.fail("object \"" + object + "\" is not supported (only \"matrix\")");
   MatrixMarketSize header;
   format = lower(format);

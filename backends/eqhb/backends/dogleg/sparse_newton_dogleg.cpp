@@ -42,10 +42,22 @@ void runSparseNewtonDogleg(MonitoredSystem& system, const Eigen::VectorXd& z0,
   int slow_steps = 0, slow_jacobians = 0, singular = 0;
   bool no_success_yet = true;
 
+  // The Jacobian's evaluation and each factorisation can take long on a
+  // large system: the time limit is checked after each, saying where.
+  auto out_of_time = [&](const char* after) {
+    if (!system.timeLimitReached()) return false;
+    finish(Termination::kTimeLimit, 7,
+           std::string("time limit reached after the ") + after + " of iteration " +
+               std::to_string(result.iterations + 1));
+    return true;
+  };
+  if (out_of_time("initial residual")) return;
+
   while (true) {
     // ---- Jacobian, scaling, and the two directions of this model
     if (!system.residualAndSparseJacobian(z, g, jacobian))
       return finish(Termination::kEvaluationFailed, -1, "Jacobian evaluation failed");
+    if (out_of_time("Jacobian evaluation")) return;
     g_norm = g.norm();
     if (settings.scale_columns) {
       for (Eigen::Index j = 0; j < n; ++j) {
@@ -62,8 +74,10 @@ void runSparseNewtonDogleg(MonitoredSystem& system, const Eigen::VectorXd& z0,
     if (!analyzed) {
       lu.analyzePattern(jacobian);
       analyzed = true;
+      if (out_of_time("symbolic factorisation")) return;
     }
     lu.factorize(jacobian);
+    if (out_of_time("numeric factorisation")) return;
     bool have_newton = lu.info() == Eigen::Success;
     if (have_newton) {
       newton = lu.solve(g);
