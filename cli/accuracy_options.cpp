@@ -55,11 +55,10 @@ nlohmann::json accuracyJson(const AccuracyChoice& c, double tolerance, const std
   return out;
 }
 
-std::vector<std::string> scaledRhoOverrides(const std::vector<double>& scene_rho, double factor) {
+std::vector<std::string> scaledRhoOverrides(const std::vector<std::optional<RhoSetting>>& scene_rho, double factor) {
   std::vector<std::string> out;
   for (size_t l = 0; l < scene_rho.size(); ++l)
-    if (!std::isnan(scene_rho[l]))
-      out.push_back("law[" + std::to_string(l) + "].rho=" + formatNumber(scene_rho[l] * factor));
+    if (scene_rho[l]) out.push_back(scaledRhoOverride(static_cast<int>(l), *scene_rho[l], factor));
   return out;
 }
 
@@ -71,12 +70,12 @@ RhoCandidates rhoCandidates(const SceneArguments& a) {
   out.scene_rho = lawRhos(a.scene, a.overrides);
   if (a.rho) {
     // --rho fixes every law's ρ: nothing to choose.
-    for (double& r : out.scene_rho)
-      if (!std::isnan(r)) r = *a.rho;
+    for (auto& r : out.scene_rho)
+      if (r) r = RhoSetting(*a.rho);
     return out;
   }
   bool any = false;
-  for (double r : out.scene_rho) any = any || !std::isnan(r);
+  for (const auto& r : out.scene_rho) any = any || r.has_value();
   if (!any) return out;
   for (double factor : kRhoFactors) {
     if (factor == 1.0) continue;
@@ -89,23 +88,24 @@ RhoCandidates rhoCandidates(const SceneArguments& a) {
   return out;
 }
 
-nlohmann::json rhoJson(const std::vector<double>& scene_rho, double factor) {
+nlohmann::json rhoJson(const std::vector<std::optional<RhoSetting>>& scene_rho, double factor) {
   nlohmann::json per_law = nlohmann::json::array();
-  double common = NAN;
+  nlohmann::json common;
   bool same = true, any = false;
-  for (double r : scene_rho) {
-    if (std::isnan(r)) {
+  for (const auto& r : scene_rho) {
+    if (!r) {
       per_law.push_back(nullptr);
       continue;
     }
-    const double chosen = r * factor;
+    const double value = r->value * factor;
+    const nlohmann::json chosen = r->scale_free ? nlohmann::json{{"rho_factor", value}} : nlohmann::json(value);
     per_law.push_back(chosen);
     if (any && chosen != common) same = false;
     common = chosen;
     any = true;
   }
   if (!any) return "scene";
-  return same ? nlohmann::json(common) : per_law;
+  return same ? common : per_law;
 }
 
 }  // namespace eqhb::cli

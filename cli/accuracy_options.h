@@ -9,6 +9,7 @@
 
 #include "eqhb/accuracy/accuracy_target.h"
 #include "eqhb/accuracy/error_estimate.h"
+#include "eqhb/scenes/law_rho.h"
 #include "scene_arguments.h"
 
 namespace eqhb::cli {
@@ -27,14 +28,15 @@ constexpr double kRhoFactors[] = {1.0, 0.1, 0.01};
 struct RhoCandidates {
   std::vector<HbModel> models;   // the scene with every override, ρ scaled
   std::vector<double> factors;   // one per model
-  std::vector<double> scene_rho; // per law, NaN for a law without ρ
+  std::vector<std::optional<RhoSetting>> scene_rho;  // per law, nullopt for a law without ρ
 };
 RhoCandidates rhoCandidates(const SceneArguments& scene);
 // The overrides that give every law with ρ its ρ times `factor`.
-std::vector<std::string> scaledRhoOverrides(const std::vector<double>& scene_rho, double factor);
+std::vector<std::string> scaledRhoOverrides(const std::vector<std::optional<RhoSetting>>& scene_rho, double factor);
 // The chosen ρ: one number when every law with ρ has the same, else one
-// per law (null for a law without); "scene" when no law has ρ.
-nlohmann::json rhoJson(const std::vector<double>& scene_rho, double factor);
+// per law (null for a law without); "scene" when no law has ρ. A scale-free
+// ρ reads {"rho_factor": f}.
+nlohmann::json rhoJson(const std::vector<std::optional<RhoSetting>>& scene_rho, double factor);
 
 // {"max_abs", "coefficients", "max_abs_difference", "factor", "method",
 //  "refined_harmonics", "refined_samples", "refined_converged"}

@@ -13,6 +13,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/harmonic_balance/problem_scales.h"
 #include "eqhb/laws/invariants.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
@@ -425,6 +426,8 @@ int runSolve(const SolveArguments& given) {
     std::cerr << "eqhb: the solve did not converge: " << terminationName(result.termination)
               << ", |g| = " << result.final_norm << " > tolerance " << options.residual_tolerance
               << (result.native_message.empty() ? "" : " (" + result.native_message + ")") << "\n";
+  if (!result.converged())
+    for (const std::string& advice : rhoScaleAdvice(model)) std::cerr << "eqhb: " << advice << "\n";
   if (choice && !choice->reached) {
     std::cerr << "eqhb: --accuracy " << *a.accuracy.tolerance << " not reached: " << choice->failure << "\n";
     return 1;

@@ -9,6 +9,7 @@
 
 #include "eqhb/accuracy/accuracy_sweep.h"
 #include "eqhb/continuation/continuation.h"
+#include "eqhb/harmonic_balance/problem_scales.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/backends/registry.h"
@@ -256,6 +257,8 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
           << " -> " << options.to << " with " << solver->name() << ", H = " << curve_model.basis.count() << ": "
           << curve.points.size() << " points, " << curve.failed_points << " failed, " << curve.seconds << " s\n"
           << "  stop: " << curve.stop_reason << "\n";
+  if (!curve.complete)
+    for (const std::string& advice : rhoScaleAdvice(curve_model)) summary << "  " << advice << "\n";
   if (peak)
     summary << "  peak: omega = " << peak->omega << ", max|x" << dofs << "| = " << peak->max_abs[dofs - 1] << "\n";
   if (!curve.fold_omegas.empty()) {

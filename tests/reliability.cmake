@@ -95,3 +95,16 @@ foreach(case
   list(SUBLIST fields 3 -1 sets)
   add_test(NAME cli.joint_bad_input.${name} COMMAND ${EXPECT_EXIT} 2 "${pattern}" ${EQHB_CLI} solve ${scene} --set ${sets})
 endforeach()
+
+# "Converged" means the law holds at any ρ and in any time unit: extreme ρ and
+# a time unit 1e12 times shorter either solve to the scene's answer or exit 1.
+add_test(NAME cli.no_false_success_at_any_rho
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli/no_false_success.sh ${EQHB_CLI} ${PROJECT_SOURCE_DIR}/problems)
+# NLvib's cantilever in SI units sweeps its whole range on the scale-free ρ.
+add_test(NAME cli.cantilever_si_sweeps_on_defaults
+         COMMAND ${EXPECT_EXIT} 0 "53 points, 0 failed"
+                 ${EQHB_CLI} sweep ${PROJECT_SOURCE_DIR}/problems/cantilever-friction-si.toml --step 5 --quiet)
+# A given ρ far from the scale-free one is named when the solve fails.
+add_test(NAME cli.badly_scaled_rho_is_named
+         COMMAND ${EXPECT_EXIT} 1 "law\\[0\\] \\(coulomb-1d\\): rho = 1e-20 is .* times the scale-free rho"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/friction-1d.toml --set law[0].rho=1e-20)

@@ -308,18 +308,25 @@ namespace {
 TEST(Scene, LawRhosFollowTheFileAndItsOverrides) {
   const auto large = lawRhos(test::problem("beam-joint-large.toml"));
   ASSERT_GE(large.size(), 3u);
-  EXPECT_DOUBLE_EQ(large[0], 1.13e-09);
-  EXPECT_DOUBLE_EQ(large[1], 9.07e-09);
-  EXPECT_DOUBLE_EQ(large[2], 3.06e-08);
+  EXPECT_DOUBLE_EQ(large[0]->value, 1.13e-09);
+  EXPECT_DOUBLE_EQ(large[1]->value, 9.07e-09);
+  EXPECT_DOUBLE_EQ(large[2]->value, 3.06e-08);
+  EXPECT_FALSE(large[0]->scale_free);
   const auto friction = lawRhos(test::problem("friction-1d.toml"), {"law[0].rho=0.25"});
   ASSERT_EQ(friction.size(), 1u);
-  EXPECT_DOUBLE_EQ(friction[0], 0.25);
+  EXPECT_DOUBLE_EQ(friction[0]->value, 0.25);
   const auto cubic = lawRhos(test::problem("cubic.toml"));
   ASSERT_EQ(cubic.size(), 1u);
-  EXPECT_TRUE(std::isnan(cubic[0])) << "a cubic spring has no rho";
-  const auto damper = lawRhos(test::problem("damper.toml"));  // contact-friction, rho not given
+  EXPECT_FALSE(cubic[0].has_value()) << "a cubic spring has no rho";
+  const auto damper = lawRhos(test::problem("damper.toml"));  // contact-friction, rho not given: scale-free
   ASSERT_FALSE(damper.empty());
-  for (double r : damper) EXPECT_EQ(r, 1.0);
+  for (const auto& r : damper) {
+    EXPECT_TRUE(r->scale_free);
+    EXPECT_EQ(r->factor, 1.0);
+  }
+  const auto scaled = lawRhos(test::problem("damper.toml"), {"law[0].rho_factor=0.1"});
+  EXPECT_EQ(scaled[0]->factor, 0.1);
+  EXPECT_EQ(scaledRhoOverride(0, *scaled[0], 0.1), "law[0].rho_factor=0.01");
   EXPECT_THROW(lawRhos(test::problem("friction-1d.toml"), {"law[0].rho=-1"}), InputError);
 }
 

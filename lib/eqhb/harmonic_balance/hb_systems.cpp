@@ -32,7 +32,7 @@ Eigen::VectorXd forcingCoefficients(const HbModel& model) {
 }
 
 HbSystem::HbSystem(HbModel model, const std::function<void(const HbModel&)>& fits)
-    : model_((model.validate(), fits(model), std::move(model))), laws_(model_), nb_(model_.basis.size()) {}
+    : model_((model.validate(), fits(model), withScaleFreeRhos(std::move(model)))), laws_(model_), nb_(model_.basis.size()) {}
 
 void HbSystem::residualScales(Eigen::Ref<Eigen::VectorXd> scales) const {
   const PhysicalScales physical = physicalScales(model_, responseAtLaws());
@@ -42,6 +42,14 @@ void HbSystem::residualScales(Eigen::Ref<Eigen::VectorXd> scales) const {
     for (int a = 0; a < model_.laws[l].law->dimension(); ++a)
       scales.segment(first_law_row + model_.componentIndex(l, a) * nb_, nb_)
           .setConstant(model_.laws[l].law->residualScale(physical, a));
+}
+
+void HbSystem::setScaleFreeRhos() {
+  bool any = false;
+  for (const auto& attached : model_.laws) any = any || attached.law->withScaleFreeRho(LawScales{}) != nullptr;
+  if (!any) return;
+  model_ = withScaleFreeRhos(std::move(model_));
+  laws_.replaceLaws(model_.laws);
 }
 
 // ---------------------------------------------------------------- full system
@@ -196,6 +204,7 @@ void FullSystem::setOmega(double omega) {
   if (!(omega > 0.0) || !std::isfinite(omega))
     throwInputError("omega", formatNumber(omega), "must be finite and > 0");
   model_.omega = omega;
+  setScaleFreeRhos();
   // A_k = [K − (kω)²M, kωC; −kωC, K − (kω)²M] per DOF pair (see LinearStructure).
   double* a = linear_operator_.valuePtr();
   size_t e = 0;
@@ -333,6 +342,7 @@ void CondensedSystem::condenseAt(double omega, const Deadline& deadline) {
   }
   factored_ = true;
   model_.omega = omega;
+  setScaleFreeRhos();
   const int n = model_.structure.dofs();
   const Eigen::VectorXd f = forcingCoefficients(model_);
   const auto& ks = model_.basis.harmonics();

@@ -52,6 +52,9 @@ class HbSystem : public SquareSystem {
  protected:
   // The largest amplitude of the linear response at the laws' DOFs.
   virtual double responseAtLaws() const = 0;
+  // After ω changed: every scale-free ρ set again for the new ω, so that a
+  // point of a sweep gets the ρ a solve at its ω would (withScaleFreeRhos).
+  void setScaleFreeRhos();
   HbModel model_;
   LawAssembly laws_;
   int nb_;

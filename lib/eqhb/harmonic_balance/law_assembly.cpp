@@ -38,6 +38,10 @@ LawAssembly::LawAssembly(const HbModel& model)
   channels_.resize(most_channels);
 }
 
+void LawAssembly::replaceLaws(const std::vector<AttachedLaw>& laws) {
+  for (size_t l = 0; l < laws_.size(); ++l) laws_[l].law = laws[l].law;
+}
+
 bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
   Slot& s = slots_[l];
   const Law& law = *laws_[l].law;

@@ -27,6 +27,9 @@ class LawAssembly {
   int lawCount() const { return static_cast<int>(laws_.size()); }
   int dimension(int l) const { return laws_[l].law->dimension(); }
   const AttachedLaw& law(int l) const { return laws_[l]; }
+  // The same laws on the same DOFs with other parameters (a scale-free ρ set
+  // for a new ω): the buffers stay as they are.
+  void replaceLaws(const std::vector<AttachedLaw>& laws);
   FourierTransform& transform() { return transform_; }
 
   Eigen::MatrixXd& displacement(int l) { return slots_[l].displacement_coefficients; }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "eqhb/harmonic_balance/dynamic_stiffness_factors.h"
+#include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 
 namespace eqhb {
@@ -55,6 +57,116 @@ double linearResponseAtLaws(const HbModel& model, bool sparse) {
         most = std::max(most, w == 1 ? std::abs(x(i, 0)) : std::hypot(x(i, 0), x(n + i, 0)));
   }
   return most;
+}
+
+namespace {
+// |(A_k⁻¹)_ii| for each DOF in `dofs`, for every harmonic k of `basis` at
+// ω: one row per harmonic. Throws where some A_k is singular.
+std::vector<std::vector<double>> compliances(const HbModel& model, const HarmonicSet& basis,
+                                             const std::vector<int>& dofs) {
+  const LinearStructure& s = model.structure;
+  const int n = s.dofs();
+  DynamicStiffnessFactors factors(s, basis, n >= kSparseCondensationFromDofs);
+  factors.factorize(s, model.omega);
+  std::vector<std::vector<double>> out;
+  for (size_t h = 0; h < basis.harmonics().size(); ++h) {
+    const int width = basis.harmonics()[h] == 0 ? 1 : 2;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(width * n, 1);
+    std::vector<double> row;
+    for (int i : dofs) {
+      rhs(i, 0) = 1.0;
+      const Eigen::MatrixXd x = factors.solve(static_cast<int>(h), rhs);
+      rhs(i, 0) = 0.0;
+      row.push_back(width == 1 ? std::abs(x(i, 0)) : std::hypot(x(i, 0), x(n + i, 0)));
+    }
+    out.push_back(row);
+  }
+  return out;
+}
+
+// The compliance a law sees at each DOF in `dofs`: the smaller of the static
+// |(K⁻¹)_ii| and the dynamic |G_ii(ω)| at the fundamental (A₁ = K − ω²M + iωC).
+// Near a resonance of the free structure |G| grows without bound while the
+// contact itself stiffens the structure there (damper at ω = 1: ρ from |G|
+// alone stalled the solver); above the resonances the mass makes |G| the
+// smaller. Without K (a free body) the dynamic value alone; where A₁ is
+// singular too (an undamped resonance), 1/max(K_ii, ωC_ii, ω²M_ii).
+std::vector<double> drivingPointCompliances(const HbModel& model, const std::vector<int>& dofs) {
+  try {
+    const auto both = compliances(model, HarmonicSet(HarmonicKind::kAll, 1), dofs);  // k = 0 and 1
+    std::vector<double> out;
+    for (size_t a = 0; a < dofs.size(); ++a) out.push_back(std::min(both[0][a], both[1][a]));
+    return out;
+  } catch (const std::exception&) {
+  }
+  try {
+    return compliances(model, HarmonicSet(HarmonicKind::kOdd, 1), dofs).front();
+  } catch (const std::exception&) {
+  }
+  const LinearStructure& s = model.structure;
+  const double w = model.omega;
+  std::vector<double> out;
+  for (int i : dofs)
+    out.push_back(1.0 / std::max({std::abs(s.stiffness.coeff(i, i)), w * std::abs(s.damping.coeff(i, i)),
+                                  w * w * std::abs(s.mass.coeff(i, i))}));
+  return out;
+}
+
+// LawScales of each law in `laws` (indices into model.laws), the largest
+// compliance over its DOFs; nullopt where nothing gives one (no stiffness,
+// mass or damping at the DOF).
+std::vector<std::optional<LawScales>> lawScales(const HbModel& model, const std::vector<int>& laws) {
+  std::vector<int> dofs;
+  for (int l : laws) dofs.insert(dofs.end(), model.laws[l].dofs.begin(), model.laws[l].dofs.end());
+  const std::vector<double> compliance = drivingPointCompliances(model, dofs);
+  std::vector<std::optional<LawScales>> out;
+  size_t next = 0;
+  for (int l : laws) {
+    double largest = 0.0;
+    for (size_t a = 0; a < model.laws[l].dofs.size(); ++a) largest = std::max(largest, compliance[next++]);
+    if (largest > 0.0 && std::isfinite(largest)) out.push_back(LawScales{model.omega, largest});
+    else out.push_back(std::nullopt);
+  }
+  return out;
+}
+}  // namespace
+
+HbModel withScaleFreeRhos(HbModel model) {
+  // Only laws that ask for it cost a factorisation (probed with unit scales).
+  std::vector<int> wanted;
+  for (int l = 0; l < static_cast<int>(model.laws.size()); ++l)
+    if (model.laws[l].law->withScaleFreeRho(LawScales{})) wanted.push_back(l);
+  if (wanted.empty()) return model;
+  const auto scales = lawScales(model, wanted);
+  for (size_t k = 0; k < wanted.size(); ++k)
+    if (scales[k]) {  // else ρ stays its factor
+      AttachedLaw& attached = model.laws[wanted[k]];
+      attached.law = attached.law->withScaleFreeRho(*scales[k]);
+    }
+  return model;
+}
+
+std::vector<std::string> rhoScaleAdvice(const HbModel& scene_model) {
+  const HbModel model = withScaleFreeRhos(scene_model);  // the ρ a system would use
+  std::vector<int> with_rho;
+  for (int l = 0; l < static_cast<int>(model.laws.size()); ++l)
+    if (model.laws[l].law->compareRho(LawScales{})) with_rho.push_back(l);
+  std::vector<std::string> out;
+  if (with_rho.empty()) return out;
+  const auto scales = lawScales(model, with_rho);
+  for (size_t k = 0; k < with_rho.size(); ++k) {
+    if (!scales[k]) continue;
+    const auto rho = model.laws[with_rho[k]].law->compareRho(*scales[k]);
+    const double ratio = rho->in_use / rho->scale_free;
+    if (ratio <= kRhoMisscale && ratio >= 1.0 / kRhoMisscale) continue;
+    out.push_back("law[" + std::to_string(with_rho[k]) + "] (" + model.laws[with_rho[k]].law->type() +
+                  "): rho = " + formatNumber(rho->in_use) + " is " + formatNumber(ratio) +
+                  " times the scale-free rho = " + formatNumber(rho->scale_free) +
+                  " of this structure at omega = " + formatNumber(model.omega) +
+                  "; a rho this far from it can keep the solver from converging: leave rho unset "
+                  "(scale-free) or set rho_factor");
+  }
+  return out;
 }
 
 }  // namespace eqhb

@@ -18,6 +18,9 @@
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/laws/law.h"
 
+#include <string>
+#include <vector>
+
 namespace eqhb {
 
 // `response` = X₀ from the linear response (0 when not known or unforced).
@@ -26,5 +29,18 @@ PhysicalScales physicalScales(const HbModel& model, double response);
 // The largest |x_lin| at the laws' DOFs over the basis harmonics (amplitude
 // √(a² + b²)), x_lin = A_k⁻¹ f_k; one dense or sparse factorisation per harmonic.
 double linearResponseAtLaws(const HbModel& model, bool sparse);
+
+// The model with every scale-free ρ set (Law::withScaleFreeRho) from the
+// driving-point compliance of the structure at each law's DOFs (the largest
+// over them): the smaller of the static |(K⁻¹)_ii| and the dynamic
+// |(A₁⁻¹)_ii| at the fundamental, by one factorisation of K and A₁ and one
+// solve per law DOF (see drivingPointCompliances). Laws given a ρ are kept.
+HbModel withScaleFreeRhos(HbModel model);
+
+// Why a solve may have failed because of ρ: for every law whose ρ in use is
+// more than kRhoMisscale away from its scale-free value (either way), one
+// sentence naming the law, both values and what to change. Empty otherwise.
+inline constexpr double kRhoMisscale = 1e3;
+std::vector<std::string> rhoScaleAdvice(const HbModel& model);
 
 }  // namespace eqhb

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/joints/friction_kernels.h"
 
 namespace eqhb {
 
@@ -25,12 +26,11 @@ std::string coulombFormName(CoulombForm form) {
   return "?";
 }
 
-Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, double rho, double beta)
-    : mu_n_(mu_n), form_(form), rho_(rho), beta_(beta) {
+Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, RhoSetting rho, double beta)
+    : mu_n_(mu_n), form_(form), rho_setting_(rho), rho_(rho.value), beta_(beta) {
   if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
     throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
-  if (!(rho > 0.0) || !std::isfinite(rho))
-    throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+  if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
   if (!(beta > 0.0) || !std::isfinite(beta))
     throwInputError("beta", formatNumber(beta), "regularisation slope must be finite and > 0");
 }
@@ -87,12 +87,11 @@ void Coulomb1D::evaluate(LawSamples& s, bool with_derivatives) const {
   switch (form_) {
     case CoulombForm::kMinMax:
       for (Eigen::Index i = 0; i < n; ++i) {
-        const double a = rho_ * (r[i] + mu_n_) - v[i];
-        const double b = rho_ * (r[i] - mu_n_) - v[i];
-        psi[i] = v[i] + std::min(0.0, a) + std::max(0.0, b);
+        const MinMaxBranch branch = minMaxBranch(rho_, v[i], r[i], mu_n_);
+        psi[i] = branch.psi;
         if (with_derivatives) {
-          const double lower = a < 0.0 ? 1.0 : 0.0;  // min branch active
-          const double upper = b > 0.0 ? 1.0 : 0.0;  // max branch active
+          const double lower = branch.lower ? 1.0 : 0.0;  // min branch active
+          const double upper = branch.upper ? 1.0 : 0.0;  // max branch active
           dv[i] = 1.0 - lower - upper;               // H(a) − H(b)
           dr[i] = rho_ * (lower + upper);            // ρ(1 − H(a) + H(b))
         }
@@ -131,6 +130,20 @@ void Coulomb1D::evaluate(LawSamples& s, bool with_derivatives) const {
       }
       break;
   }
+}
+
+std::optional<Law::RhoComparison> Coulomb1D::compareRho(const LawScales& scales) const {
+  if (form_ == CoulombForm::kTanh || form_ == CoulombForm::kPiecewise) return std::nullopt;
+  const double mobility = scales.mobility();
+  return RhoComparison{rho_, kScaleFreeRhoWeight * (form_ == CoulombForm::kMinMax ? mobility : 1.0 / mobility)};
+}
+
+std::shared_ptr<Law> Coulomb1D::withScaleFreeRho(const LawScales& scales) const {
+  const auto rho = compareRho(scales);
+  if (!rho_setting_.scale_free || !rho) return nullptr;
+  auto copy = std::make_shared<Coulomb1D>(*this);
+  copy->rho_ = rho_setting_.factor * rho->scale_free;
+  return copy;
 }
 
 double Coulomb1D::residualScale(const PhysicalScales& s, int) const {

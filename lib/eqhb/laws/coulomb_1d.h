@@ -51,7 +51,7 @@ double reversingStepForce(double v_start, double u_free, double delassus, double
 class Coulomb1D : public Law {
  public:
   // Throws InputError: μN >= 0, ρ > 0, β > 0, all finite.
-  Coulomb1D(double mu_n, CoulombForm form, double rho = 1.0, double beta = 100.0);
+  Coulomb1D(double mu_n, CoulombForm form, RhoSetting rho = {}, double beta = 100.0);
 
   std::string type() const override { return "coulomb-1d"; }
   int dimension() const override { return 1; }
@@ -69,6 +69,9 @@ class Coulomb1D : public Law {
   // slide; a reversal inside the step holds the mean force
   // (reversingStepForce).
   LocalVector solveStep(const StepProblem& step) const override;
+  // minmax: ρ = ω|G|; projection: ρ = 1/(ω|G|); tanh and piecewise have no ρ.
+  std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const override;
+  std::optional<RhoComparison> compareRho(const LawScales& scales) const override;
 
   CoulombForm form() const { return form_; }
   double muN() const { return mu_n_; }
@@ -77,6 +80,7 @@ class Coulomb1D : public Law {
  private:
   double mu_n_;
   CoulombForm form_;
+  RhoSetting rho_setting_;
   double rho_;
   double beta_;
 };

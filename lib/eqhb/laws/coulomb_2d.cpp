@@ -27,11 +27,11 @@ std::string coulomb2DFormName(Coulomb2DForm form) {
   return "?";
 }
 
-Coulomb2D::Coulomb2D(double mu_n, Coulomb2DForm form, double rho, double epsilon, double alpha)
-    : mu_n_(mu_n), form_(form), rho_(rho), epsilon_(epsilon), alpha_(alpha) {
+Coulomb2D::Coulomb2D(double mu_n, Coulomb2DForm form, RhoSetting rho, double epsilon, double alpha)
+    : mu_n_(mu_n), form_(form), rho_setting_(rho), rho_(rho.value), epsilon_(epsilon), alpha_(alpha) {
   if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
     throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
-  if (!(rho > 0.0) || !std::isfinite(rho)) throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+  if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
   if (!(epsilon > 0.0) || !std::isfinite(epsilon))
     throwInputError("epsilon", formatNumber(epsilon), "smoothing must be finite and > 0");
   if (!(alpha > 0.0) || !std::isfinite(alpha))
@@ -136,6 +136,19 @@ std::vector<std::pair<std::string, double>> Coulomb2D::violations(const LawSampl
       sliding = std::max(sliding, (r + mu_n_ * v / v.norm()).norm() / mu_n_);
   }
   return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
+}
+
+std::optional<Law::RhoComparison> Coulomb2D::compareRho(const LawScales& scales) const {
+  if (form_ == Coulomb2DForm::kTanh) return std::nullopt;
+  return RhoComparison{rho_, kScaleFreeRhoWeight / scales.mobility()};
+}
+
+std::shared_ptr<Law> Coulomb2D::withScaleFreeRho(const LawScales& scales) const {
+  const auto rho = compareRho(scales);
+  if (!rho_setting_.scale_free || !rho) return nullptr;
+  auto copy = std::make_shared<Coulomb2D>(*this);
+  copy->rho_ = rho_setting_.factor * rho->scale_free;
+  return copy;
 }
 
 double Coulomb2D::residualScale(const PhysicalScales& s, int) const {

@@ -19,7 +19,7 @@ std::string coulomb2DFormName(Coulomb2DForm form);
 class Coulomb2D : public Law {
  public:
   // Throws InputError: μN >= 0, ρ > 0, ε > 0, α > 0, all finite.
-  Coulomb2D(double mu_n, Coulomb2DForm form, double rho = 1.0, double epsilon = 1e-4,
+  Coulomb2D(double mu_n, Coulomb2DForm form, RhoSetting rho = {}, double epsilon = 1e-4,
             double alpha = 100.0);
   std::string type() const override { return "coulomb-2d"; }
   int dimension() const override { return 2; }
@@ -36,12 +36,16 @@ class Coulomb2D : public Law {
   // min over the disc ‖λ‖ <= μN of ½ λᵀDλ + λᵀu_free (maximal dissipation),
   // by projected gradient to round-off (exact projection when D = d I).
   LocalVector solveStep(const StepProblem& step) const override;
+  // max, smoothed and projection compare r with ρv: ρ = 1/(ω|G|); tanh has none.
+  std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const override;
+  std::optional<RhoComparison> compareRho(const LawScales& scales) const override;
   Coulomb2DForm form() const { return form_; }
   double muN() const { return mu_n_; }
 
  private:
   double mu_n_;
   Coulomb2DForm form_;
+  RhoSetting rho_setting_;
   double rho_, epsilon_, alpha_;
 };
 

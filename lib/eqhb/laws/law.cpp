@@ -16,4 +16,8 @@ void LawSamples::resize(int samples, int dimension) {
 
 double Law::residualScale(const PhysicalScales& scales, int) const { return scales.force; }
 
+std::shared_ptr<Law> Law::withScaleFreeRho(const LawScales&) const { return nullptr; }
+
+std::optional<Law::RhoComparison> Law::compareRho(const LawScales&) const { return std::nullopt; }
+
 }  // namespace eqhb

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,44 @@ struct StepProblem {
 // displacement and a velocity, each > 0 (all 1: the absolute measure).
 struct PhysicalScales {
   double force = 1.0, displacement = 1.0, velocity = 1.0;
+};
+
+// The structure as a law sees it, from which a scale-free ρ is made: the
+// largest driving-point dynamic compliance |G_ii(ω)| = |(A₁⁻¹)_ii| at the
+// law's DOFs (length per force, A₁ = K − ω²M + iωC at the fundamental) and ω.
+// The condensed law equations weigh ω G λ (a velocity) or G λ (a gap) against
+// ρ λ in their two branches, so ρ = ω|G| (or 1/|G|, 1/(ω|G|) by the form's
+// units) gives both branches the same weight in any units (beam-joint-large's
+// hand-set ρ = ω x³/(3EI) is this compliance, statically).
+struct LawScales {
+  double omega = 1.0;       // rad per unit time, > 0
+  double compliance = 1.0;  // |G_ii(ω)|, > 0 and finite
+  double mobility() const { return omega * compliance; }
+};
+// The balance above, times this weight on ρ: the contact stiffens the
+// structure, so the free structure's compliance overstates what the law
+// sees; 3 was the best weight of 1, 3 and 10 over the shipped scenes and
+// NLvib's cantilever (every solve converged on its defaults at 3, one fewer
+// at 10 and two fewer at 1; the damper's sweep lost 21 of 61 points at 3,
+// 24 at 1, 27 at 10).
+inline constexpr double kScaleFreeRhoWeight = 3.0;
+
+// A law's ρ as the scene gives it: a value in the problem's units, or, with
+// no value, `factor` times the scale-free ρ that a system sets from the
+// structure at each ω (Law::withScaleFreeRho).
+struct RhoSetting {
+  RhoSetting(double rho = 1.0) : value(rho) {}  // a number is a given ρ
+  static RhoSetting scaleFree(double factor = 1.0) {
+    RhoSetting setting(factor);
+    setting.scale_free = true;
+    setting.factor = factor;
+    return setting;
+  }
+  double value;  // the ρ in use (the factor until a system sets it scale-free)
+  bool scale_free = false;
+  double factor = 1.0;
+  // The name of the scene key that set it, for messages.
+  const char* field() const { return scale_free ? "rho_factor" : "rho"; }
 };
 
 // The least scale an invariant is measured against, as a fraction of the
@@ -107,6 +146,16 @@ class Law {
   // The exact (set-valued) law on one time step: the force λ over the step.
   // Regularised forms are ignored here: the reference is the exact law.
   virtual LocalVector solveStep(const StepProblem& step) const = 0;
+  // For a law whose ρ is scale-free (RhoSetting::scaleFree): a copy with ρ
+  // set from `scales`; nullptr when the law has no ρ or was given one.
+  virtual std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const;
+  // The ρ in use next to the scale-free ρ (factor 1) for `scales`, of the
+  // law's first equation: what a failure blames on a badly scaled ρ.
+  // nullopt for a law without ρ.
+  struct RhoComparison {
+    double in_use, scale_free;
+  };
+  virtual std::optional<RhoComparison> compareRho(const LawScales& scales) const;
 };
 
 // A law attached to DOFs of the structure (0-based, one per component).

@@ -23,9 +23,10 @@ std::string signoriniFormName(SignoriniForm form) {
   return "?";
 }
 
-Signorini::Signorini(double gap, SignoriniForm form, double rho) : gap_(gap), form_(form), rho_(rho) {
+Signorini::Signorini(double gap, SignoriniForm form, RhoSetting rho)
+    : gap_(gap), form_(form), rho_setting_(rho), rho_(rho.value) {
   if (!std::isfinite(gap)) throwInputError("gap", formatNumber(gap), "must be finite (no NaN or Inf)");
-  if (!(rho > 0.0) || !std::isfinite(rho)) throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+  if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
 }
 
 void Signorini::evaluate(LawSamples& s, bool with_derivatives) const {
@@ -91,6 +92,17 @@ std::vector<std::pair<std::string, double>> Signorini::violations(const LawSampl
   return {{"penetration", relative(std::max(0.0, -g.minCoeff()), g_scale)},
           {"negative_pressure", relative(std::max(0.0, -p.minCoeff()), p_scale)},
           {"complementarity", relative((g * p).abs().maxCoeff(), g_scale * p_scale)}};
+}
+
+std::optional<Law::RhoComparison> Signorini::compareRho(const LawScales& scales) const {
+  return RhoComparison{rho_, kScaleFreeRhoWeight / scales.compliance};
+}
+
+std::shared_ptr<Law> Signorini::withScaleFreeRho(const LawScales& scales) const {
+  if (!rho_setting_.scale_free) return nullptr;
+  auto copy = std::make_shared<Signorini>(*this);
+  copy->rho_ = rho_setting_.factor * compareRho(scales)->scale_free;
+  return copy;
 }
 
 double Signorini::residualScale(const PhysicalScales& s, int) const {

@@ -22,7 +22,7 @@ std::string signoriniFormName(SignoriniForm form);
 class Signorini : public Law {
  public:
   // Throws InputError: g0 finite, ρ > 0 finite.
-  Signorini(double gap, SignoriniForm form, double rho = 1.0);
+  Signorini(double gap, SignoriniForm form, RhoSetting rho = {});
   std::string type() const override { return "signorini"; }
   int dimension() const override { return 1; }
   double forceSign() const override { return -1.0; }
@@ -39,11 +39,15 @@ class Signorini : public Law {
   // Moreau's velocity-level contact with Newton's impact law: when the gap
   // predicted at mid-step is closed, 0 <= ġ_end + e ġ_start ⊥ p >= 0.
   LocalVector solveStep(const StepProblem& step) const override;
+  // ρ compares a gap with a pressure: ρ = 1/|G|.
+  std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const override;
+  std::optional<RhoComparison> compareRho(const LawScales& scales) const override;
   double gap() const { return gap_; }
 
  private:
   double gap_;
   SignoriniForm form_;
+  RhoSetting rho_setting_;
   double rho_;
 };
 

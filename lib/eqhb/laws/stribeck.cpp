@@ -5,17 +5,18 @@
 
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/error.h"
+#include "eqhb/laws/joints/friction_kernels.h"
 
 namespace eqhb {
 
-Stribeck::Stribeck(double mu_n_dynamic, double mu_n_static, double v_s, double rho)
-    : dynamic_(mu_n_dynamic), drop_(mu_n_static - mu_n_dynamic), v_s_(v_s), rho_(rho) {
+Stribeck::Stribeck(double mu_n_dynamic, double mu_n_static, double v_s, RhoSetting rho)
+    : dynamic_(mu_n_dynamic), drop_(mu_n_static - mu_n_dynamic), v_s_(v_s), rho_setting_(rho), rho_(rho.value) {
   if (!(mu_n_dynamic >= 0.0) || !std::isfinite(mu_n_dynamic))
     throwInputError("muN_dynamic", formatNumber(mu_n_dynamic), "friction limit must be finite and >= 0");
   if (!(mu_n_static >= mu_n_dynamic) || !std::isfinite(mu_n_static))
     throwInputError("muN_static", formatNumber(mu_n_static), "must be finite and >= muN_dynamic");
   if (!(v_s > 0.0) || !std::isfinite(v_s)) throwInputError("v_s", formatNumber(v_s), "must be finite and > 0");
-  if (!(rho > 0.0) || !std::isfinite(rho)) throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+  if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
 }
 
 double Stribeck::limit(double v) const { return dynamic_ + drop_ * std::exp(-std::abs(v) / v_s_); }
@@ -27,11 +28,10 @@ void Stribeck::evaluate(LawSamples& s, bool with_derivatives) const {
     const double decay = drop_ * std::exp(-std::abs(v) / v_s_);
     const double l = dynamic_ + decay;
     const double dl = v > 0.0 ? -decay / v_s_ : v < 0.0 ? decay / v_s_ : 0.0;  // L'(v)
-    const double a = rho_ * (r + l) - v;
-    const double b = rho_ * (r - l) - v;
-    s.psi(i, 0) = v + std::min(0.0, a) + std::max(0.0, b);
+    const MinMaxBranch branch = minMaxBranch(rho_, v, r, l);
+    s.psi(i, 0) = branch.psi;
     if (with_derivatives) {
-      const double lower = a < 0.0 ? 1.0 : 0.0, upper = b > 0.0 ? 1.0 : 0.0;
+      const double lower = branch.lower ? 1.0 : 0.0, upper = branch.upper ? 1.0 : 0.0;
       s.dpsi_dvelocity(i, 0) = 1.0 + lower * (rho_ * dl - 1.0) + upper * (-rho_ * dl - 1.0);
       s.dpsi_dforce(i, 0) = rho_ * (lower + upper);
     }
@@ -75,6 +75,17 @@ std::vector<std::pair<std::string, double>> Stribeck::violations(const LawSample
   Eigen::VectorXd limits(s.velocity.rows());
   for (Eigen::Index i = 0; i < limits.size(); ++i) limits[i] = limit(s.velocity(i, 0));
   return frictionViolations(s.velocity.col(0), s.force.col(0), limits, scales.velocity);
+}
+
+std::optional<Law::RhoComparison> Stribeck::compareRho(const LawScales& scales) const {
+  return RhoComparison{rho_, kScaleFreeRhoWeight * scales.mobility()};
+}
+
+std::shared_ptr<Law> Stribeck::withScaleFreeRho(const LawScales& scales) const {
+  if (!rho_setting_.scale_free) return nullptr;
+  auto copy = std::make_shared<Stribeck>(*this);
+  copy->rho_ = rho_setting_.factor * compareRho(scales)->scale_free;
+  return copy;
 }
 
 double Stribeck::residualScale(const PhysicalScales& s, int) const {

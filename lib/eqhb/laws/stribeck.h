@@ -11,7 +11,7 @@ namespace eqhb {
 class Stribeck : public Law {
  public:
   // Throws InputError: 0 <= μ_d N <= μ_s N, v_s > 0, ρ > 0, all finite.
-  Stribeck(double mu_n_dynamic, double mu_n_static, double v_s, double rho = 1.0);
+  Stribeck(double mu_n_dynamic, double mu_n_static, double v_s, RhoSetting rho = {});
   std::string type() const override { return "stribeck"; }
   int dimension() const override { return 1; }
   bool usesDisplacement() const override { return false; }
@@ -28,6 +28,9 @@ class Stribeck : public Law {
   // v_θ = θ u_end + (1 − θ) v_start the velocity of the θ-method's forces;
   // a reversal inside the step holds the mean force (reversingStepForce).
   LocalVector solveStep(const StepProblem& step) const override;
+  // The minmax form compares v with ρr: ρ = ω|G|.
+  std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const override;
+  std::optional<RhoComparison> compareRho(const LawScales& scales) const override;
   double limit(double v) const;
   double dynamicLimit() const { return dynamic_; }        // μ_d N
   double staticLimit() const { return dynamic_ + drop_; }  // μ_s N = L(0)
@@ -36,7 +39,9 @@ class Stribeck : public Law {
  private:
   // λ without the reversal: stick if |u_free| <= D L(0), else slide.
   double stickOrSlideForce(double u_free, double v_start, double d, double theta) const;
-  double dynamic_, drop_, v_s_, rho_;
+  double dynamic_, drop_, v_s_;
+  RhoSetting rho_setting_;
+  double rho_;
 };
 
 }  // namespace eqhb

@@ -3,13 +3,21 @@
 // owns the document and its overrides.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "eqhb/laws/law.h"
+
 namespace eqhb {
 
-// Per law of the scene, in order: its ρ (1 when not given), NaN for a law
-// without ρ. Throws InputError as loadScene does.
-std::vector<double> lawRhos(const std::string& path, const std::vector<std::string>& overrides = {});
+// Per law of the scene, in order: its ρ as given (rho), or scale-free with
+// its rho_factor (1 when not given); nullopt for a law without ρ. Throws
+// InputError as loadScene does.
+std::vector<std::optional<RhoSetting>> lawRhos(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// The override that sets law `l`'s ρ to `setting` times `factor` (its rho,
+// or its rho_factor when scale-free).
+std::string scaledRhoOverride(int l, const RhoSetting& setting, double factor);
 
 }  // namespace eqhb

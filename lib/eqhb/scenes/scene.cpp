@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -346,6 +347,18 @@ const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
 }
 
 // contact-friction: dofs = [normal, tangential (, tangential)]; see scene.h.
+// A law's ρ: `rho` in the problem's units, or, without it, scale-free
+// (rho_factor, 1 by default, times the ρ a system makes from the structure's
+// compliance at the law: LawScales).
+RhoSetting readRho(TableReader& t, const std::string& field) {
+  if (t.has("rho") && t.has("rho_factor"))
+    t.fail(field + ".rho_factor", formatNumber(t.number("rho_factor")), "give rho or rho_factor, not both");
+  const char* key = t.has("rho") ? "rho" : "rho_factor";
+  const double x = t.number(key, 1.0);
+  if (!(x > 0.0)) t.fail(field + "." + key, formatNumber(x), "must be > 0");
+  return t.has("rho") ? RhoSetting(x) : RhoSetting::scaleFree(x);
+}
+
 std::shared_ptr<Law> readContactFriction(TableReader& t, const std::string& field, const std::vector<int>& dofs,
                                          const std::string& normal_form) {
   if (dofs.size() != 2 && dofs.size() != 3)
@@ -370,8 +383,7 @@ std::shared_ptr<Law> readContactFriction(TableReader& t, const std::string& fiel
   p.mu = non_negative("mu", std::nullopt, "friction coefficient");
   p.preload = non_negative("preload", std::nullopt, "normal preload N0");
   p.gap = t.number("gap", 0.0);
-  p.rho = t.number("rho", 1.0);
-  if (!(p.rho > 0.0)) t.fail(field + ".rho", formatNumber(p.rho), "must be > 0");
+  p.rho = readRho(t, field);
   p.normal = parseNormalForm(normal_form, field + ".form");
   p.normal_stiffness = positive_optional("k_n", "contact stiffness");
   if (p.normal == NormalForm::kCompliant && !p.normal_stiffness)
@@ -430,19 +442,19 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
   if (type == "coulomb-1d") {
     const double mu_n = t.number("muN");
     if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
-    const double rho = positive("rho", 1.0);
+    const RhoSetting rho = readRho(t, field);
     const double beta = positive("beta", 100.0);
     attached.law = std::make_shared<Coulomb1D>(mu_n, parseCoulombForm(form("minmax")), rho, beta);
   } else if (type == "coulomb-2d") {
     const double mu_n = t.number("muN");
     if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
-    const double rho = positive("rho", 1.0);
+    const RhoSetting rho = readRho(t, field);
     const double epsilon = positive("epsilon", 1e-4);
     const double alpha = positive("alpha", 100.0);
     attached.law = std::make_shared<Coulomb2D>(mu_n, parseCoulomb2DForm(form("max")), rho, epsilon, alpha);
   } else if (type == "signorini") {
     const double gap = t.number("gap");
-    const double rho = positive("rho", 1.0);
+    const RhoSetting rho = readRho(t, field);
     attached.law = std::make_shared<Signorini>(gap, parseSignoriniForm(form("min")), rho);
   } else if (type == "stribeck") {
     const double dynamic = t.number("muN_dynamic");
@@ -451,7 +463,7 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
     if (stat < dynamic)
       t.fail(field + ".muN_static", formatNumber(stat), "must be >= muN_dynamic = " + formatNumber(dynamic));
     const double v_s = positive("v_s", std::nullopt);
-    const double rho = positive("rho", 1.0);
+    const RhoSetting rho = readRho(t, field);
     form("minmax");
     attached.law = std::make_shared<Stribeck>(dynamic, stat, v_s, rho);
   } else if (type == "cubic") {
@@ -462,7 +474,7 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
     const double mu_n = t.number("muN");
     if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
     const double k_t = positive("k_t", std::nullopt);
-    const double rho = positive("rho", 1.0);
+    const RhoSetting rho = readRho(t, field);
     const int m = static_cast<int>(attached.dofs.size());
     if (m != 1 && m != 2) t.fail(field + ".dofs", describe(list), "a jenkins law acts on 1 or 2 DOFs");
     const std::string name = form(m == 1 ? "minmax" : "max");
@@ -763,7 +775,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   return parseScene(readSceneText(path), path, overrides);
 }
 
-std::vector<double> lawRhos(const std::string& path, const std::vector<std::string>& overrides) {
+std::vector<std::optional<RhoSetting>> lawRhos(const std::string& path, const std::vector<std::string>& overrides) {
   // Validated as a whole first: the document below is then well formed.
   const Scene scene = loadScene(path, overrides);
   const std::string text = readSceneText(path);
@@ -771,20 +783,27 @@ std::vector<double> lawRhos(const std::string& path, const std::vector<std::stri
   std::istringstream in(text);
   root = toml::parse(in, path);
   for (const auto& assignment : overrides) applyOverride(root, assignment);
-  std::vector<double> out;
+  std::vector<std::optional<RhoSetting>> out;
   if (!root.is_table() || root.as_table().count("law") == 0) return out;
+  auto number = [](const toml::value& v) {
+    return v.is_integer() ? static_cast<double>(v.as_integer()) : v.as_floating();
+  };
   for (const auto& law : root.at("law").as_array()) {
     const std::string type = toml::find<std::string>(law, "type");
-    double rho = std::numeric_limits<double>::quiet_NaN();
+    std::optional<RhoSetting> rho;
     if (lawTakesRho(type)) {
-      rho = 1.0;
-      if (law.as_table().count("rho"))
-        rho = law.at("rho").is_integer() ? static_cast<double>(law.at("rho").as_integer()) : law.at("rho").as_floating();
+      const auto& table = law.as_table();
+      if (table.count("rho")) rho = RhoSetting(number(law.at("rho")));
+      else rho = RhoSetting::scaleFree(table.count("rho_factor") ? number(law.at("rho_factor")) : 1.0);
     }
     out.push_back(rho);
   }
   if (out.size() != scene.model.laws.size()) throw std::logic_error("lawRhos: laws miscounted");
   return out;
+}
+
+std::string scaledRhoOverride(int l, const RhoSetting& setting, double factor) {
+  return "law[" + std::to_string(l) + "]." + setting.field() + "=" + formatNumber(setting.value * factor);
 }
 
 }  // namespace eqhb

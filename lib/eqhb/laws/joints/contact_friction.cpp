@@ -24,7 +24,8 @@ std::string normalFormName(NormalForm form) {
   return "?";
 }
 
-ContactFriction::ContactFriction(const ContactFrictionParameters& p) : p_(p) {
+ContactFriction::ContactFriction(const ContactFrictionParameters& p)
+    : p_(p), normal_rho_(p.rho.value), friction_rho_(p.rho.value) {
   if (p.tangential != 1 && p.tangential != 2)
     throwInputError("dofs", std::to_string(p.tangential + 1) + " DOF(s)",
                     "a contact-friction law acts on one normal and 1 or 2 tangential DOFs");
@@ -32,7 +33,8 @@ ContactFriction::ContactFriction(const ContactFrictionParameters& p) : p_(p) {
   if (!(p.preload >= 0.0) || !std::isfinite(p.preload))
     throwInputError("preload", formatNumber(p.preload), "normal preload N0 must be finite and >= 0");
   if (!std::isfinite(p.gap)) throwInputError("gap", formatNumber(p.gap), "must be finite (no NaN or Inf)");
-  if (!(p.rho > 0.0) || !std::isfinite(p.rho)) throwInputError("rho", formatNumber(p.rho), "must be finite and > 0");
+  if (!(p.rho.value > 0.0) || !std::isfinite(p.rho.value))
+    throwInputError(p.rho.field(), formatNumber(p.rho.value), "must be finite and > 0");
   if (p.normal == NormalForm::kCompliant) {
     if (!p.normal_stiffness) throwInputError("k_n", "(missing)", "the compliant normal form needs a contact stiffness k_n > 0");
     if (!(*p.normal_stiffness > 0.0) || !std::isfinite(*p.normal_stiffness))
@@ -62,25 +64,25 @@ void ContactFriction::evaluate(LawSamples& s, bool with_derivatives) const {
     double psi = 0.0, d_x = 0.0, d_p = 0.0;
     switch (p_.normal) {
       case NormalForm::kMin: {
-        const double a = p_.rho * (p_.gap - x_n);
-        if (a < pressure) psi = a, d_x = -p_.rho;
+        const double a = normal_rho_ * (p_.gap - x_n);
+        if (a < pressure) psi = a, d_x = -normal_rho_;
         else psi = pressure, d_p = 1.0;
         break;
       }
       case NormalForm::kFischerBurmeister: {
-        const double a = p_.rho * (p_.gap - x_n);
+        const double a = normal_rho_ * (p_.gap - x_n);
         const double root = std::hypot(a, pressure);
         psi = a + pressure - root;
         const double da = root > 0.0 ? 1.0 - a / root : 1.0 - std::sqrt(0.5);
         d_p = root > 0.0 ? 1.0 - pressure / root : 1.0 - std::sqrt(0.5);
-        d_x = -p_.rho * da;
+        d_x = -normal_rho_ * da;
         break;
       }
       case NormalForm::kCompliant: {
         // p = k_n max(0, −g) is the complementarity 0 <= p ⊥ g + p/k_n >= 0:
         // the min form on the gap of the layer's far side.
-        const double a = p_.rho * (p_.gap - x_n + pressure / *p_.normal_stiffness);
-        if (a < pressure) psi = a, d_x = -p_.rho, d_p = p_.rho / *p_.normal_stiffness;
+        const double a = normal_rho_ * (p_.gap - x_n + pressure / *p_.normal_stiffness);
+        if (a < pressure) psi = a, d_x = -normal_rho_, d_p = normal_rho_ / *p_.normal_stiffness;
         else psi = pressure, d_p = 1.0;
         break;
       }
@@ -91,7 +93,7 @@ void ContactFriction::evaluate(LawSamples& s, bool with_derivatives) const {
       u[b] = s.velocity(i, 1 + b) + (compliance_ > 0.0 ? compliance_ * s.force_rate(i, 1 + b) : 0.0);
     }
     const double limit = p_.mu * std::max(pressure, 0.0);
-    evaluateFriction(p_.friction, m, p_.rho, u, r, limit, point);
+    evaluateFriction(p_.friction, m, friction_rho_, u, r, limit, point);
     for (int a = 0; a < m; ++a) s.psi(i, 1 + a) = point.psi[a];
     if (!with_derivatives) continue;
     for (int c = 0; c < d * d; ++c) {
@@ -225,8 +227,21 @@ double ContactFriction::forceLevel() const { return p_.preload * std::max(1.0, p
 double ContactFriction::displacementLevel() const { return std::abs(p_.gap); }
 
 double ContactFriction::residualScale(const PhysicalScales& s, int component) const {
-  if (component == 0) return std::min(p_.rho * s.displacement, s.force);  // ρ g (+ p/k_n) and p
-  return frictionResidualScale(p_.friction, p_.rho, s);
+  if (component == 0) return std::min(normal_rho_ * s.displacement, s.force);  // ρ g (+ p/k_n) and p
+  return frictionResidualScale(p_.friction, friction_rho_, s);
+}
+
+std::optional<Law::RhoComparison> ContactFriction::compareRho(const LawScales& scales) const {
+  const double layer = p_.normal == NormalForm::kCompliant ? 1.0 / *p_.normal_stiffness : 0.0;
+  return RhoComparison{normal_rho_, kScaleFreeRhoWeight / (scales.compliance + layer)};
+}
+
+std::shared_ptr<Law> ContactFriction::withScaleFreeRho(const LawScales& scales) const {
+  if (!p_.rho.scale_free) return nullptr;
+  auto copy = std::make_shared<ContactFriction>(*this);
+  copy->normal_rho_ = p_.rho.factor * compareRho(scales)->scale_free;
+  copy->friction_rho_ = p_.rho.factor * scaleFreeFrictionRho(p_.friction, scales.omega * (scales.compliance + compliance_));
+  return copy;
 }
 
 }  // namespace eqhb

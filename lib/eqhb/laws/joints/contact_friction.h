@@ -41,7 +41,7 @@ struct ContactFrictionParameters {
   std::optional<double> normal_stiffness;       // k_n > 0, required by (only for) compliant
   FrictionForm friction = FrictionForm::kProjection;  // minmax only with m = 1
   std::optional<double> tangential_stiffness;   // k_t > 0: elastic friction
-  double rho = 1.0;                             // > 0
+  RhoSetting rho;                               // > 0; one value for both equations when given
 };
 
 class ContactFriction : public Law {
@@ -71,10 +71,16 @@ class ContactFriction : public Law {
   // of radius μp, with the slider of k_t) solved alternately to round-off.
   LocalVector solveStep(const StepProblem& step) const override;
 
+  // Scale-free: the normal ρ compares a gap with a pressure, 1/(|G| + 1/k_n);
+  // the friction ρ follows its form with the slip mobility ω(|G| + 1/k_t).
+  std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const override;
+  std::optional<RhoComparison> compareRho(const LawScales& scales) const override;
+
   const ContactFrictionParameters& parameters() const { return p_; }
 
  private:
   ContactFrictionParameters p_;
+  double normal_rho_, friction_rho_;  // both p_.rho unless scale-free
   double compliance_ = 0.0;  // 1/k_t, 0 when rigid
 };
 

@@ -29,10 +29,9 @@ namespace {
 void friction1D(FrictionForm form, double rho, double u, double r, double limit, FrictionPoint& o) {
   switch (form) {
     case FrictionForm::kMinMax: {
-      const double a = rho * (r + limit) - u;
-      const double b = rho * (r - limit) - u;
-      o.psi[0] = u + std::min(0.0, a) + std::max(0.0, b);
-      const double lower = a < 0.0 ? 1.0 : 0.0, upper = b > 0.0 ? 1.0 : 0.0;
+      const MinMaxBranch branch = minMaxBranch(rho, u, r, limit);
+      o.psi[0] = branch.psi;
+      const double lower = branch.lower ? 1.0 : 0.0, upper = branch.upper ? 1.0 : 0.0;
       o.d_u[0] = 1.0 - lower - upper;
       o.d_r[0] = rho * (lower + upper);
       o.d_limit[0] = rho * (lower - upper);
@@ -139,6 +138,10 @@ LocalVector minimiseOnDisc(const LocalMatrix& a, const LocalVector& b, double ra
     if (change <= 1e-15 * std::max(radius, 1e-300)) break;
   }
   return lambda;
+}
+
+double scaleFreeFrictionRho(FrictionForm form, double mobility) {
+  return kScaleFreeRhoWeight * (form == FrictionForm::kMinMax ? mobility : 1.0 / mobility);
 }
 
 double frictionResidualScale(FrictionForm form, double rho, const PhysicalScales& s) {

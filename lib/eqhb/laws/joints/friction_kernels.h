@@ -35,6 +35,27 @@ constexpr double kElasticSlidingFraction = 0.10;
 // Law::residualScale): minmax min(V, ρF), projection min(ρV, F), max F·min(F, ρV).
 double frictionResidualScale(FrictionForm form, double rho, const PhysicalScales& scales);
 
+// The scale-free ρ of a form for a slip mobility ω|G| (velocity per force):
+// minmax compares u with ρr (ρ = mobility), projection and max compare r with
+// ρu (ρ = 1 / mobility). See LawScales.
+double scaleFreeFrictionRho(FrictionForm form, double mobility);
+
+// The minmax form Ψ = u + min(0, a) + max(0, b), a = ρ(r + L) − u and
+// b = ρ(r − L) − u (b <= a), by branch: ρ(r + L) where a < 0, ρ(r − L) where
+// b > 0, u between; with lower/upper telling which branch is active. The
+// same value as the sum, but the sum returns a sliding sample's ρ(r ± L) as
+// u + (ρ(r ± L) − u), which rounds to 0 once ρF < 1e-16 V: the residual then
+// reads 0 whatever the force (a false convergence at ρ = 1e-20).
+struct MinMaxBranch {
+  double psi;
+  bool lower, upper;
+};
+inline MinMaxBranch minMaxBranch(double rho, double u, double r, double limit) {
+  const bool lower = rho * (r + limit) - u < 0.0, upper = rho * (r - limit) - u > 0.0;
+  const double psi = lower ? rho * (r + limit) : upper ? rho * (r - limit) : u;
+  return {psi, lower, upper};
+}
+
 FrictionForm parseFrictionForm(const std::string& name, const std::string& field);
 std::string frictionFormName(FrictionForm form);
 

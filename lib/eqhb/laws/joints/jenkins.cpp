@@ -7,15 +7,15 @@
 
 namespace eqhb {
 
-Jenkins::Jenkins(int dimension, double mu_n, double k_t, FrictionForm form, double rho)
-    : dimension_(dimension), mu_n_(mu_n), compliance_(1.0 / k_t), form_(form), rho_(rho) {
+Jenkins::Jenkins(int dimension, double mu_n, double k_t, FrictionForm form, RhoSetting rho)
+    : dimension_(dimension), mu_n_(mu_n), compliance_(1.0 / k_t), form_(form), rho_setting_(rho), rho_(rho.value) {
   if (dimension != 1 && dimension != 2)
     throwInputError("dofs", std::to_string(dimension) + " DOF(s)", "a jenkins law acts on 1 or 2 DOFs");
   if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
     throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
   if (!(k_t > 0.0) || !std::isfinite(k_t))
     throwInputError("k_t", formatNumber(k_t), "tangential stiffness must be finite and > 0");
-  if (!(rho > 0.0) || !std::isfinite(rho)) throwInputError("rho", formatNumber(rho), "must be finite and > 0");
+  if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
   if (form == FrictionForm::kMinMax && dimension != 1)
     throwInputError("form", "\"minmax\"", "the minmax form is one-dimensional; use max or projection");
 }
@@ -74,6 +74,17 @@ std::vector<std::pair<std::string, double>> Jenkins::violations(const LawSamples
     if (u.norm() > kElasticSlidingFraction * u_scale) sliding = std::max(sliding, (r + mu_n_ * u / u.norm()).norm() / mu_n_);
   }
   return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
+}
+
+std::optional<Law::RhoComparison> Jenkins::compareRho(const LawScales& scales) const {
+  return RhoComparison{rho_, scaleFreeFrictionRho(form_, scales.omega * (scales.compliance + compliance_))};
+}
+
+std::shared_ptr<Law> Jenkins::withScaleFreeRho(const LawScales& scales) const {
+  if (!rho_setting_.scale_free) return nullptr;
+  auto copy = std::make_shared<Jenkins>(*this);
+  copy->rho_ = rho_setting_.factor * compareRho(scales)->scale_free;
+  return copy;
 }
 
 double Jenkins::residualScale(const PhysicalScales& s, int) const {

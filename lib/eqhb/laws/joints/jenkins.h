@@ -16,7 +16,7 @@ class Jenkins : public Law {
  public:
   // Throws InputError naming the field: dimension 1 or 2, μN >= 0, k_t > 0,
   // ρ > 0, all finite; minmax only in 1D.
-  Jenkins(int dimension, double mu_n, double k_t, FrictionForm form, double rho = 1.0);
+  Jenkins(int dimension, double mu_n, double k_t, FrictionForm form, RhoSetting rho = {});
   std::string type() const override { return "jenkins"; }
   int dimension() const override { return dimension_; }
   bool usesDisplacement() const override { return false; }
@@ -37,11 +37,16 @@ class Jenkins : public Law {
   // end of the step minimises ½ rᵀ(hθD + I/k_t)r + rᵀ(x_pred − w_start)
   // over the disc ‖r‖ <= μN (maximal dissipation of the slip Δw).
   LocalVector solveStep(const StepProblem& step) const override;
+  // The slider sees the structure and the spring in series: its mobility is
+  // ω(|G| + 1/k_t), and ρ follows the form (scaleFreeFrictionRho).
+  std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const override;
+  std::optional<RhoComparison> compareRho(const LawScales& scales) const override;
 
  private:
   int dimension_;
   double mu_n_, compliance_;
   FrictionForm form_;
+  RhoSetting rho_setting_;
   double rho_;
 };
 
