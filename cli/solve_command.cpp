@@ -302,6 +302,9 @@ int runSolve(const SolveArguments& given) {
     auto solver = makeSolver(a.solver);
     estimate = estimateError(model, system->fullCoefficients(result.solution), *solver, options, !a.full);
   }
+  // "Converged" also needs the law met: a gross violation is no solution.
+  const std::vector<LawInvariants> invariants = checkInvariants(reported, answer);
+  const std::string gross = result.converged() ? grossViolation(invariants) : "";
   if (a.json) {
     nlohmann::json out;
     out["scene"] = scene.name;
@@ -313,7 +316,8 @@ int runSolve(const SolveArguments& given) {
     out["highest_harmonic"] = model.basis.highest();
     out["harmonic_set"] = HarmonicSet::kindName(model.basis.kind());
     out["samples"] = model.samples;
-    out["converged"] = result.converged();
+    out["converged"] = result.converged() && gross.empty();
+    if (!gross.empty()) out["law_violation"] = gross;
     out["termination"] = terminationName(result.termination);
     out["native_code"] = result.native_code;
     out["native_message"] = result.native_message;
@@ -338,13 +342,13 @@ int runSolve(const SolveArguments& given) {
     const nlohmann::json channels = solutionJson(reported, solution);
     out["dofs"] = channels["dofs"];
     out["laws"] = channels["laws"];
-    nlohmann::json invariants = nlohmann::json::array();
-    for (const auto& report : checkInvariants(reported, answer)) {
+    nlohmann::json invariants_json = nlohmann::json::array();
+    for (const auto& report : invariants) {
       nlohmann::json measures;
       for (const auto& [name, value] : report.violations) measures[name] = value;
-      invariants.push_back({{"law", report.law + 1}, {"type", report.type}, {"violations", measures}});
+      invariants_json.push_back({{"law", report.law + 1}, {"type", report.type}, {"violations", measures}});
     }
-    out["invariants"] = invariants;
+    out["invariants"] = invariants_json;
     if (with_stability) out["stability"] = stabilityJson(hill);
     if (choice) {
       out["rho"] = rhoJson(candidates.scene_rho, candidates.factors[choice->candidate]);
@@ -402,7 +406,7 @@ int runSolve(const SolveArguments& given) {
                 << " at H = " << model.basis.count() << ", N = " << model.samples << ", rho = "
                 << rhoJson(candidates.scene_rho, candidates.factors[choice->candidate]).dump() << " in " << choice->seconds
                 << " s of solves\n";
-    for (const auto& report : checkInvariants(reported, answer)) {
+    for (const auto& report : invariants) {
       std::cout << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";
       for (const auto& [name, value] : report.violations) std::cout << " " << name << " " << value;
       std::cout << "\n";
@@ -428,6 +432,12 @@ int runSolve(const SolveArguments& given) {
               << (result.native_message.empty() ? "" : " (" + result.native_message + ")") << "\n";
   if (!result.converged())
     for (const std::string& advice : rhoScaleAdvice(model)) std::cerr << "eqhb: " << advice << "\n";
+  if (!gross.empty()) {
+    std::cerr << "eqhb: the residual converged but the law is not met: " << gross
+              << " (a violation as large as the channel itself, not Gibbs ringing): not a solution\n";
+    for (const std::string& advice : rhoScaleAdvice(model)) std::cerr << "eqhb: " << advice << "\n";
+    return 1;
+  }
   if (choice && !choice->reached) {
     std::cerr << "eqhb: --accuracy " << *a.accuracy.tolerance << " not reached: " << choice->failure << "\n";
     return 1;

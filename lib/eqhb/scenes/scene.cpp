@@ -665,9 +665,10 @@ Scene buildScene(toml::value root, const std::string& source,
     TableReader sweep(top.raw("sweep"), "sweep", source);
     scene.sweep_from = sweep.number("from");
     scene.sweep_to = sweep.number("to");
-    if (!(*scene.sweep_from > 0.0) || !(*scene.sweep_to > *scene.sweep_from))
+    // Either direction: a sweep may run down from above a resonance.
+    if (!(*scene.sweep_from > 0.0) || !(*scene.sweep_to > 0.0) || *scene.sweep_to == *scene.sweep_from)
       sweep.fail("sweep", formatNumber(*scene.sweep_from) + ".." + formatNumber(*scene.sweep_to),
-                 "need 0 < from < to");
+                 "need from > 0, to > 0 and from != to");
     sweep.requireKnownKeys();
   }
   if (top.has("time_reference")) {
