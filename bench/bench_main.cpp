@@ -469,7 +469,7 @@ int main(int argc, char** argv) {
     ContinuationOptions options;
     options.from = *scene.sweep_from;
     options.to = *scene.sweep_to;
-    options.step = (options.to - options.from) / (quick ? 50 : 200);
+    options.step = std::abs(options.to - options.from) / (quick ? 50 : 200);  // a sweep may run downwards
     options.max_points = quick ? 1500 : 6000;
     options.condensed = path.stem() != "contact";  // contact: only the full system starts cold
     const Curve sequential = sweepSequential(scene.model, *solver, {}, options);

@@ -179,7 +179,7 @@ TEST(Scene, ANulInsideAStringIsRefused) {
 TEST(Scene, AnUnknownLawKeyListsTheKeysThatLawAllows) {
   // A typo of an optional key: the list holds the keys allowed, not only those present.
   expectError(replaced("muN = 7.2", "muN = 7.2\nrh0 = 2"),
-              "law[0].rh0 = 2: unknown key (allowed here: beta, dofs, form, muN, nodes, rho, type)");
+              "law[0].rh0 = 2: unknown key (allowed here: beta, dofs, form, muN, nodes, rho, rho_factor, type)");
   expectError(replaced("type = \"coulomb-1d\"\ndofs = [2]\nmuN = 7.2",
                        "type = \"cubic\"\ndofs = [2]\nepsilon = 1\nrho = 1"),
               "law[0].rho = 1: unknown key (allowed here: dofs, epsilon, nodes, type)");
@@ -318,13 +318,14 @@ TEST(Scene, LawRhosFollowTheFileAndItsOverrides) {
   const auto cubic = lawRhos(test::problem("cubic.toml"));
   ASSERT_EQ(cubic.size(), 1u);
   EXPECT_FALSE(cubic[0].has_value()) << "a cubic spring has no rho";
-  const auto damper = lawRhos(test::problem("damper.toml"));  // contact-friction, rho not given: scale-free
+  const auto cantilever = lawRhos(test::problem("cantilever-friction-si.toml"));  // rho not given: scale-free
+  ASSERT_EQ(cantilever.size(), 1u);
+  EXPECT_TRUE(cantilever[0]->scale_free);
+  EXPECT_EQ(cantilever[0]->factor, 1.0);
+  const auto damper = lawRhos(test::problem("damper.toml"));  // contact-friction, rho = 1 given
   ASSERT_FALSE(damper.empty());
-  for (const auto& r : damper) {
-    EXPECT_TRUE(r->scale_free);
-    EXPECT_EQ(r->factor, 1.0);
-  }
-  const auto scaled = lawRhos(test::problem("damper.toml"), {"law[0].rho_factor=0.1"});
+  for (const auto& r : damper) EXPECT_FALSE(r->scale_free);
+  const auto scaled = lawRhos(test::problem("cantilever-friction-si.toml"), {"law[0].rho_factor=0.1"});
   EXPECT_EQ(scaled[0]->factor, 0.1);
   EXPECT_EQ(scaledRhoOverride(0, *scaled[0], 0.1), "law[0].rho_factor=0.01");
   EXPECT_THROW(lawRhos(test::problem("friction-1d.toml"), {"law[0].rho=-1"}), InputError);

@@ -2,7 +2,6 @@
 
 #include <exception>
 
-#include "eqhb/error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
 #include "eqhb/sparse_matrix.h"
@@ -50,14 +49,6 @@ std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::Ve
     reports.push_back({static_cast<int>(l), attached.law->type(), attached.law->violations(s, scales)});
   }
   return reports;
-}
-
-std::string grossViolation(const std::vector<LawInvariants>& reports) {
-  for (const auto& report : reports)
-    for (const auto& [name, value] : report.violations)
-      if (!(value < kGrossViolation))
-        return "law[" + std::to_string(report.law) + "] (" + report.type + "): " + name + " = " + formatNumber(value);
-  return "";
 }
 
 }  // namespace eqhb

@@ -26,15 +26,6 @@ std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::Ve
 std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::VectorXd& full,
                                            const PhysicalScales& scales, int samples = 0);
 
-// A converged residual is not enough: a law whose worst violation reaches
-// its channel's own size (a friction force of the wrong sign or zero while
-// sliding, a pressure pulling) is not met. The Gibbs ringing of a truncated
-// series stays well below (0.88 at most over the shipped scenes on their
-// defaults). Returns "law[l] (type): name = value" of the first such measure,
-// or an empty string.
-inline constexpr double kGrossViolation = 1.0;
-std::string grossViolation(const std::vector<LawInvariants>& reports);
-
 // The problem's scales at the model's ω (problem_scales.h): the linear
 // response at the laws' DOFs, or the loads and stiffness where A_k is singular.
 PhysicalScales invariantScales(const HbModel& model);
