@@ -45,10 +45,7 @@ void HbSystem::residualScales(Eigen::Ref<Eigen::VectorXd> scales) const {
 }
 
 void HbSystem::setScaleFreeRhos() {
-  bool any = false;
-  for (const auto& attached : model_.laws) any = any || attached.law->withScaleFreeRho(LawScales{}) != nullptr;
-  if (!any) return;
-  model_ = withScaleFreeRhos(std::move(model_));
+  model_ = withScaleFreeRhos(std::move(model_));  // returns it as it was when no ρ is scale-free
   laws_.replaceLaws(model_.laws);
 }
 
@@ -203,8 +200,9 @@ void FullSystem::buildPattern(const Deadline& deadline) {
 void FullSystem::setOmega(double omega) {
   if (!(omega > 0.0) || !std::isfinite(omega))
     throwInputError("omega", formatNumber(omega), "must be finite and > 0");
+  const bool moved = omega != model_.omega;  // at construction ρ is set for this ω already
   model_.omega = omega;
-  setScaleFreeRhos();
+  if (moved) setScaleFreeRhos();
   // A_k = [K − (kω)²M, kωC; −kωC, K − (kω)²M] per DOF pair (see LinearStructure).
   double* a = linear_operator_.valuePtr();
   size_t e = 0;
@@ -341,8 +339,9 @@ void CondensedSystem::condenseAt(double omega, const Deadline& deadline) {
     throw;
   }
   factored_ = true;
+  const bool moved = omega != model_.omega;  // at construction ρ is set for this ω already
   model_.omega = omega;
-  setScaleFreeRhos();
+  if (moved) setScaleFreeRhos();
   const int n = model_.structure.dofs();
   const Eigen::VectorXd f = forcingCoefficients(model_);
   const auto& ks = model_.basis.harmonics();
