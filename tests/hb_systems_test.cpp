@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <complex>
+#include <string>
 
 #include "eqhb/error.h"
 #include "eqhb/backends/registry.h"
@@ -104,6 +105,34 @@ TEST(HbSystems, SingularDynamicStiffnessIsReportedForTheCondensedSystem) {
   model.omega = std::sqrt((3.0 - std::sqrt(5.0)) / 2.0);
   EXPECT_THROW(CondensedSystem{model}, std::runtime_error);
   EXPECT_NO_THROW(FullSystem{model});
+}
+
+// The physics check behind every solver's verdict (SquareSystem::violatedPhysics):
+// at the converged answer the friction force dissipates what its limit demands;
+// no force at all (1) or a force driving the slip (2) is refused, named, on both
+// systems, while the Gibbs ringing of a truncated answer is not.
+TEST(HbSystems, AFrictionForceThatDissipatesTooLittleIsNamed) {
+  for (bool condensed : {true, false}) {
+    const HbModel model = chainWithFriction(3.0, CoulombForm::kMinMax, 7, 0.45);
+    std::unique_ptr<HbSystem> system;
+    if (condensed) system = std::make_unique<CondensedSystem>(model);
+    else system = std::make_unique<FullSystem>(model);
+    const SolverResult r = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
+    ASSERT_TRUE(r.converged()) << r.summary();
+    EXPECT_EQ(system->violatedPhysics(r.solution), "") << "the answer itself";
+    Eigen::VectorXd full = system->fullCoefficients(r.solution);
+    const int forces = model.structure.dofs() * model.basis.size();
+    for (double factor : {0.0, -1.0}) {
+      Eigen::VectorXd wrong = full;
+      wrong.tail(wrong.size() - forces) *= factor;
+      const std::string why = system->violatedPhysics(system->fromFullCoefficients(wrong));
+      const std::string named = "law[0] (coulomb-1d) dissipates too little: dissipation_deficit = ";
+      ASSERT_EQ(why.rfind(named, 0), 0u) << (condensed ? "condensed" : "full") << " factor " << factor << ": " << why;
+      const double deficit = std::stod(why.substr(named.size()));
+      if (factor == 0.0) EXPECT_EQ(deficit, 1.0) << why;  // nothing dissipated
+      else EXPECT_GT(deficit, 1.5) << why;                  // energy put in, not taken out
+    }
+  }
 }
 
 TEST(HbSystems, InvalidModelsAreRejectedWithTheField) {

@@ -156,6 +156,24 @@ TEST(Solver, EvaluationLimitIsHonouredByEveryBackend) {
   }
 }
 
+// A residual within the tolerance is not enough: a point the system says
+// violates its physics is no solution, whichever backend found it.
+TEST_P(EveryBackend, AViolatedPhysicsIsNoSolution) {
+  class Unphysical : public ShiftSystem {
+   public:
+    std::string violatedPhysics(const Eigen::Ref<const Eigen::VectorXd>& z) override {
+      return z.isApprox(Eigen::VectorXd::Ones(3), 1e-6) ? "law[0] (test) dissipates nothing" : "";
+    }
+  };
+  Unphysical system;
+  const SolverResult r = makeSolver(GetParam())->solve(system, Eigen::VectorXd::Zero(3), {});
+  EXPECT_FALSE(r.converged()) << r.summary();
+  EXPECT_EQ(r.termination, Termination::kLawViolated) << r.summary();
+  EXPECT_LE(r.final_norm, 1e-10) << "the residual itself converged";
+  EXPECT_NE(r.native_message.find("law[0] (test) dissipates nothing"), std::string::npos) << r.native_message;
+  EXPECT_STREQ(terminationName(r.termination), "law_violated");
+}
+
 TEST(Solver, RegistryRejectsUnknownNames) {
   EXPECT_THROW(makeSolver("newton-raphson-deluxe"), std::invalid_argument);
   EXPECT_GE(registeredSolvers().size(), 2u);

@@ -5,9 +5,10 @@
 #include <stdexcept>
 
 #include "eqhb/error.h"
-#include "eqhb/harmonic_balance/system_memory.h"
-#include "eqhb/size_limits.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
+#include "eqhb/harmonic_balance/system_memory.h"
+#include "eqhb/laws/dissipation_deficit.h"
+#include "eqhb/size_limits.h"
 
 namespace eqhb {
 
@@ -42,6 +43,18 @@ void HbSystem::residualScales(Eigen::Ref<Eigen::VectorXd> scales) const {
     for (int a = 0; a < model_.laws[l].law->dimension(); ++a)
       scales.segment(first_law_row + model_.componentIndex(l, a) * nb_, nb_)
           .setConstant(model_.laws[l].law->residualScale(physical, a));
+}
+
+std::string HbSystem::violatedPhysics(const Eigen::Ref<const Eigen::VectorXd>& z) {
+  Eigen::VectorXd g(size());
+  if (!residual(z, g)) return "";  // not finite: the solver's verdict already refused it
+  const PhysicalScales physical = physicalScales(model_, responseAtLaws());
+  for (int l = 0; l < laws_.lawCount(); ++l)
+    for (const auto& [name, value] : laws_.violations(l, physical))
+      if (name == "dissipation_deficit" && !(value < kGrossDissipationDeficit))
+        return "law[" + std::to_string(l) + "] (" + model_.laws[l].law->type() + ") dissipates too little: " +
+               name + " = " + formatNumber(value) + " (0 when the friction force opposes the slip at its limit)";
+  return "";
 }
 
 void HbSystem::setScaleFreeRhos() {

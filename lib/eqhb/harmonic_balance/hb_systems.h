@@ -48,6 +48,10 @@ class HbSystem : public SquareSystem {
   // residual scale, in the model's physical scales at the current ω
   // (problem_scales.h).
   void residualScales(Eigen::Ref<Eigen::VectorXd> scales) const override;
+  // A friction law that dissipates half the energy its limit demands, or
+  // less, at z (dissipation_deficit >= kGrossDissipationDeficit, measured on
+  // the model's samples): "law[l] (type): dissipation_deficit = value".
+  std::string violatedPhysics(const Eigen::Ref<const Eigen::VectorXd>& z) override;
 
  protected:
   // The largest amplitude of the linear response at the laws' DOFs.

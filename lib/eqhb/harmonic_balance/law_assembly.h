@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -39,6 +40,11 @@ class LawAssembly {
   bool evaluate(int l, double omega, bool with_jacobian);
 
   const Eigen::MatrixXd& residual(int l) const { return slots_[l].psi_coefficients; }
+  // The law's own checks (Law::violations) on the samples of its last
+  // evaluate(): the model's samples, or the first half-period of them.
+  std::vector<std::pair<std::string, double>> violations(int l, const PhysicalScales& scales) const {
+    return laws_[l].law->violations(slots_[l].samples, scales);
+  }
   // ∂(projected Ψ_a)/∂(coefficients of x at DOF b), velocity included.
   const Eigen::MatrixXd& displacementBlock(int l, int a, int b) const {
     return slots_[l].displacement_blocks[a * dimension(l) + b];

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/dissipation_deficit.h"
 #include "eqhb/laws/joints/friction_kernels.h"
 
 namespace eqhb {
@@ -68,13 +69,18 @@ std::vector<std::pair<std::string, double>> frictionViolations(
   // every sample of that noise would count as sliding.
   const double v_scale = invariantScale(v.cwiseAbs().maxCoeff(), velocity_scale);
   double excess = 0.0, sliding = 0.0;
+  DissipationDeficit deficit;
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (limit[i] <= 0.0) continue;
     excess = std::max(excess, std::abs(r[i]) / limit[i] - 1.0);
     if (std::abs(v[i]) > kSlidingFraction * v_scale)  // clearly sliding: r = −L sign(v)
       sliding = std::max(sliding, std::abs(r[i] + std::copysign(limit[i], v[i])) / limit[i]);
+    deficit.add(r[i] * v[i], limit[i] * std::abs(v[i]));
   }
-  return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
+  const double floor = kSlidingFraction * static_cast<double>(v.size()) * limit.maxCoeff() * v_scale;
+  return {{"force_limit_excess", excess},
+          {"sliding_force_error", sliding},
+          {"dissipation_deficit", deficit.value(floor)}};
 }
 
 void Coulomb1D::evaluate(LawSamples& s, bool with_derivatives) const {

@@ -62,7 +62,8 @@ class Coulomb1D : public Law {
   double forceLevel() const override { return mu_n_; }
   double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess: max(|r|/μN − 1, 0); sliding_force_error: max over
-  // clearly sliding samples of |r + μN sign(v)| / μN.
+  // clearly sliding samples of |r + μN sign(v)| / μN; dissipation_deficit:
+  // 1 − (Σ −r v)/(Σ μN|v|) (dissipation_deficit.h).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
                                                          const PhysicalScales& scales) const override;
   // λ = proj_[−μN, μN](−u_free / D): stick (u_end = 0) if that fits, else

@@ -4,8 +4,9 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/error.h"
+#include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/laws/dissipation_deficit.h"
 
 namespace eqhb {
 
@@ -128,14 +129,19 @@ std::vector<std::pair<std::string, double>> Coulomb2D::violations(const LawSampl
   for (Eigen::Index i = 0; i < s.velocity.rows(); ++i) v_scale = std::max(v_scale, s.velocity.row(i).norm());
   v_scale = invariantScale(v_scale, scales.velocity);  // stuck: v ≡ 0 up to rounding
   double excess = 0.0, sliding = 0.0;
-  if (mu_n_ <= 0.0) return {{"force_limit_excess", 0.0}, {"sliding_force_error", 0.0}};
+  if (mu_n_ <= 0.0) return {{"force_limit_excess", 0.0}, {"sliding_force_error", 0.0}, {"dissipation_deficit", 0.0}};
+  DissipationDeficit deficit;
   for (Eigen::Index i = 0; i < s.force.rows(); ++i) {
     const Eigen::Vector2d r = s.force.row(i).transpose(), v = s.velocity.row(i).transpose();
     excess = std::max(excess, r.norm() / mu_n_ - 1.0);
     if (v.norm() > kSlidingFraction * v_scale)  // clearly sliding: r = −μN v/‖v‖
       sliding = std::max(sliding, (r + mu_n_ * v / v.norm()).norm() / mu_n_);
+    deficit.add(r.dot(v), mu_n_ * v.norm());
   }
-  return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
+  const double floor = kSlidingFraction * static_cast<double>(s.force.rows()) * mu_n_ * v_scale;
+  return {{"force_limit_excess", excess},
+          {"sliding_force_error", sliding},
+          {"dissipation_deficit", deficit.value(floor)}};
 }
 
 std::optional<Law::RhoComparison> Coulomb2D::compareRho(const LawScales& scales) const {

@@ -30,7 +30,8 @@ class Coulomb2D : public Law {
   double forceLevel() const override { return mu_n_; }
   double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess: max(‖r‖/μN − 1, 0); sliding_force_error: max over
-  // clearly sliding samples of ‖r + μN v/‖v‖‖ / μN.
+  // clearly sliding samples of ‖r + μN v/‖v‖‖ / μN; dissipation_deficit:
+  // 1 − (Σ −r·v)/(Σ μN‖v‖) (dissipation_deficit.h).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
                                                          const PhysicalScales& scales) const override;
   // min over the disc ‖λ‖ <= μN of ½ λᵀDλ + λᵀu_free (maximal dissipation),

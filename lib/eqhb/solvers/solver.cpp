@@ -1,6 +1,7 @@
 #include "eqhb/solvers/solver.h"
 
 #include <cmath>
+#include <exception>
 #include <sstream>
 
 #include "eqhb/error.h"
@@ -18,6 +19,7 @@ const char* terminationName(Termination termination) {
     case Termination::kEvaluationFailed: return "evaluation_failed";
     case Termination::kInvalidOptions: return "invalid_options";
     case Termination::kBackendError: return "backend_error";
+    case Termination::kLawViolated: return "law_violated";
   }
   return "unknown";
 }
@@ -163,6 +165,25 @@ bool MonitoredSystem::timeLimitReached() const {
   return options_.time_limit > 0.0 && elapsedSeconds() >= options_.time_limit;
 }
 
+namespace {
+
+// "Converged" must mean the physics holds: a residual within the tolerance
+// whose law is grossly violated between its samples is reported as such.
+void refuseViolatedPhysics(SquareSystem& system, SolverResult& result) {
+  std::string violated;
+  try {
+    violated = system.violatedPhysics(result.solution);
+  } catch (const std::exception& e) {
+    violated = std::string("its physics could not be checked: ") + e.what();
+  }
+  if (violated.empty()) return;
+  result.termination = Termination::kLawViolated;
+  result.native_message += (result.native_message.empty() ? "" : "; ") +
+                           std::string("the residual is within the tolerance but ") + violated;
+}
+
+}  // namespace
+
 SolverResult Solver::solve(SquareSystem& system, const Eigen::VectorXd& z0,
                            const SolverOptions& options) {
   SolverResult result;
@@ -226,6 +247,7 @@ SolverResult Solver::solve(SquareSystem& system, const Eigen::VectorXd& z0,
                                " evaluation(s) failed (non-finite residual or Jacobian)";
     result.termination = Termination::kEvaluationFailed;
   }
+  if (result.converged()) refuseViolatedPhysics(system, result);
   return result;
 }
 

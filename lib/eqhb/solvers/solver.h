@@ -8,6 +8,9 @@
 // only when ‖S⁻¹g(z)‖₂ <= residual_tolerance, whatever the backend said.
 // One rule for every backend: a problem and the same problem in other units
 // (forces and μN times 1e-11, or 1e6) get the same verdict and iterates.
+// A point within the tolerance is then asked whether its physics holds
+// (SquareSystem::violatedPhysics): a residual can vanish while the law it
+// stands for does not, when its equations lose their scale.
 #pragma once
 
 #include <Eigen/Dense>
@@ -30,6 +33,8 @@ enum class Termination {
   kEvaluationFailed,  // the residual or Jacobian was not finite / threw
   kInvalidOptions,    // options rejected before any evaluation
   kBackendError,      // the backend failed for another reason
+  kLawViolated,       // ‖S⁻¹g‖ <= tolerance, yet a law grossly violated between
+                      // the samples (SquareSystem::violatedPhysics): no solution
 };
 
 const char* terminationName(Termination termination);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <string>
 
 #include "eqhb/sparse_matrix.h"
 
@@ -27,6 +28,14 @@ class SquareSystem {
   // relative error in the problem's own units. Solvers see and judge g_i / s_i
   // (solver.h). The default, 1, is the absolute measure.
   virtual void residualScales(Eigen::Ref<Eigen::VectorXd> scales) const { scales.setOnes(); }
+
+  // Asked of a point whose residual is within the tolerance: why it is no
+  // solution all the same (a law grossly violated, named), or an empty
+  // string when it is one. The default knows no physics to check.
+  virtual std::string violatedPhysics(const Eigen::Ref<const Eigen::VectorXd>& z) {
+    static_cast<void>(z);
+    return "";
+  }
 
   // True when the system assembles its Jacobian sparse without ever forming
   // a dense size() x size() matrix. Others get the fallback below, which

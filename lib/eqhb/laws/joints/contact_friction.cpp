@@ -5,6 +5,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/laws/dissipation_deficit.h"
 
 namespace eqhb {
 
@@ -197,6 +198,7 @@ std::vector<std::pair<std::string, double>> ContactFriction::violations(const La
   // An elastic slider's slip velocity jumps where stick ends (see kElasticSlidingFraction).
   const double sliding_fraction = compliance_ > 0.0 ? kElasticSlidingFraction : kSlidingFraction;
   double complementarity = 0.0, compliance = 0.0, excess = 0.0, sliding = 0.0;
+  DissipationDeficit deficit;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double p = p_.preload - s.force(i, 0), g = p_.gap - s.displacement(i, 0);
     complementarity = std::max(complementarity, std::abs(g * p));
@@ -209,6 +211,7 @@ std::vector<std::pair<std::string, double>> ContactFriction::violations(const La
     const Eigen::Vector2d u = slip(i);
     if (u.norm() > sliding_fraction * u_scale && p > 0.05 * p_max)  // clearly sliding and pressed: r = −μp u/‖u‖
       sliding = std::max(sliding, (r + limit * u / u.norm()).norm());
+    deficit.add(r.dot(u), limit * u.norm());
   }
   std::vector<std::pair<std::string, double>> out = {{"negative_pressure", relative(-p_min, p_max)}};
   if (p_.normal == NormalForm::kCompliant) {
@@ -219,6 +222,7 @@ std::vector<std::pair<std::string, double>> ContactFriction::violations(const La
   }
   out.push_back({"force_limit_excess", relative(excess, limit_scale)});
   out.push_back({"sliding_force_error", relative(sliding, limit_scale)});
+  out.push_back({"dissipation_deficit", deficit.value(sliding_fraction * static_cast<double>(n) * limit_scale * u_scale)});
   return out;
 }
 

@@ -63,7 +63,8 @@ class ContactFriction : public Law {
   // penetration max(−g)/max|g| (rigid forms), complementarity max|g p|/(max|g| max p)
   // (rigid forms) or compliance_error max|p − k_n max(0, −g)|/max p (compliant),
   // force_limit_excess max(‖r_t‖ − μ max(p, 0))/(μ max p), sliding_force_error
-  // max ‖r_t + μ p u/‖u‖‖/(μ max p) over samples clearly sliding and pressed.
+  // max ‖r_t + μ p u/‖u‖‖/(μ max p) over samples clearly sliding and pressed,
+  // dissipation_deficit 1 − (Σ −r_t·u)/(Σ μ max(p, 0)‖u‖) (dissipation_deficit.h).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
                                                          const PhysicalScales& scales) const override;
   // Normal (Moreau's velocity-level contact with Newton's impact law, or the

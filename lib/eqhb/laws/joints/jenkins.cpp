@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/dissipation_deficit.h"
 
 namespace eqhb {
 
@@ -64,16 +65,21 @@ std::vector<std::pair<std::string, double>> Jenkins::violations(const LawSamples
   double u_scale = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) u_scale = std::max(u_scale, slip(i).norm());
   u_scale = invariantScale(u_scale, scales.velocity);  // stuck: u ≡ 0 up to rounding
-  if (mu_n_ <= 0.0) return {{"force_limit_excess", 0.0}, {"sliding_force_error", 0.0}};
+  if (mu_n_ <= 0.0) return {{"force_limit_excess", 0.0}, {"sliding_force_error", 0.0}, {"dissipation_deficit", 0.0}};
   double excess = 0.0, sliding = 0.0;
+  DissipationDeficit deficit;
   for (Eigen::Index i = 0; i < n; ++i) {
     Eigen::Vector2d r = Eigen::Vector2d::Zero();
     for (int b = 0; b < m; ++b) r[b] = s.force(i, b);
     excess = std::max(excess, r.norm() / mu_n_ - 1.0);
     const Eigen::Vector2d u = slip(i);
     if (u.norm() > kElasticSlidingFraction * u_scale) sliding = std::max(sliding, (r + mu_n_ * u / u.norm()).norm() / mu_n_);
+    deficit.add(r.dot(u), mu_n_ * u.norm());
   }
-  return {{"force_limit_excess", excess}, {"sliding_force_error", sliding}};
+  const double floor = kElasticSlidingFraction * static_cast<double>(n) * mu_n_ * u_scale;
+  return {{"force_limit_excess", excess},
+          {"sliding_force_error", sliding},
+          {"dissipation_deficit", deficit.value(floor)}};
 }
 
 std::optional<Law::RhoComparison> Jenkins::compareRho(const LawScales& scales) const {

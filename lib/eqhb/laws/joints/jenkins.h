@@ -30,7 +30,8 @@ class Jenkins : public Law {
   double residualScale(const PhysicalScales& scales, int component) const override;
   // force_limit_excess max(‖r‖/μN − 1, 0); sliding_force_error max over
   // samples clearly slipping (‖u‖ > kElasticSlidingFraction of max, u the
-  // slider's velocity ẋ + ṙ/k_t) of ‖r + μN u/‖u‖‖/μN.
+  // slider's velocity ẋ + ṙ/k_t) of ‖r + μN u/‖u‖‖/μN; dissipation_deficit
+  // 1 − (Σ −r·u)/(Σ μN‖u‖) (dissipation_deficit.h).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
                                                          const PhysicalScales& scales) const override;
   // Implicit slider: with w_start = x_start + r_start/k_t, the force at the
