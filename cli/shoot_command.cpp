@@ -27,6 +27,10 @@ void addShootCommand(CLI::App& app, ShootArguments& a) {
       ->capture_default_str();
   cmd->add_option("--max-iterations", a.max_iterations, "Newton iterations on the period map")->capture_default_str();
   cmd->add_option("--solver", a.hb.solver, "Backend of the harmonic-balance start");
+  cmd->add_option("--fallback", a.hb.fallback,
+                  "Steps tried when the harmonic-balance start fails (as for solve: cold, full, a backend name, "
+                  "comma-separated, or none)")
+      ->capture_default_str();
   cmd->add_option("--time-limit", a.hb.time_limit,
                   "Seconds for the whole run, harmonic-balance start included; 0 = none (exit 1 when reached)")
       ->check(representableNumber())

@@ -19,6 +19,7 @@
 #include "eqhb/scenes/scene.h"
 #include "eqhb/solvers/deadline.h"
 #include "eqhb/stability/hill_stability.h"
+#include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "representable_number.h"
 
@@ -104,6 +105,24 @@ void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
                   "dense or sparse Jacobians and factorisations (auto: sparse for large systems)")
       ->check(CLI::IsMember({"auto", "dense", "sparse"}))
       ->capture_default_str();
+  cmd->add_option("--fallback", a.fallback,
+                  "Steps tried, in order, when a solve (a sweep's point after its halved steps) fails: cold "
+                  "(coarse start, then zero), full (the full system), or a backend name; comma-separated, or none. "
+                  "default: cold,full and Ipopt's least squares (else ceres-lm)")
+      ->capture_default_str();
+}
+
+nlohmann::json fallbackJson(const FallbackReport& report) {
+  nlohmann::json attempts = nlohmann::json::array();
+  for (const FallbackAttempt& a : report.attempts)
+    attempts.push_back({{"step", a.step},
+                        {"solver", a.result.solver},
+                        {"termination", terminationName(a.result.termination)},
+                        {"iterations", a.result.iterations},
+                        {"residual_norm", a.result.final_norm},
+                        {"seconds", a.result.seconds}});
+  return {{"taken", report.taken.empty() ? nlohmann::json(nullptr) : nlohmann::json(report.taken)},
+          {"attempts", attempts}, {"seconds", report.seconds}};
 }
 
 nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd& c) {
@@ -184,6 +203,7 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
   };
 
   auto solver = makeSolver(a.solver);
+  const OwnedFallbackChain fallbacks(a.fallback, a.solver, "--fallback");
 
   Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system->size());
   if (a.from_harmonics) {
@@ -221,6 +241,13 @@ HbRun solveHarmonicBalance(const SolveArguments& a) {
       throw InputError("--option: " + run.result.native_message);
     // The time of a solve includes its coarse start.
     run.times.push_back(run.cold_start.used ? run.cold_start.seconds : run.result.seconds);
+  }
+  // The default path: a failed solve gets the fallback steps (once, after the repeats).
+  if (!run.result.converged()) {
+    const bool started_cold = !a.from_harmonics && !a.start_full.size();
+    run.result = solveWithFallbacks(*system, *solver, withinLimit("the solve, before its fallbacks"), run.result,
+                                    started_cold, fallbacks.chain(), &run.fallback);
+    for (double& t : run.times) t += run.fallback.seconds;
   }
   std::sort(run.times.begin(), run.times.end());
   run.options = options;
@@ -321,6 +348,7 @@ int runSolve(const SolveArguments& given) {
     out["cold_start"] = coldStartJson(run.cold_start, a.start_full.size() ? "given"
                                                       : a.from_harmonics ? "from-harmonics"
                                                                          : "zero");
+    if (!run.fallback.attempts.empty()) out["fallback"] = fallbackJson(run.fallback);
     out["iterations"] = result.iterations;
     out["residual_evaluations"] = result.residual_evaluations;
     out["jacobian_evaluations"] = result.jacobian_evaluations;
@@ -381,6 +409,10 @@ int runSolve(const SolveArguments& given) {
         std::cout << "  the solve from it stopped (" << terminationName(cold.first_attempt.termination) << " after "
                   << cold.first_attempt.iterations << " iterations); solved again from zero (above)\n";
     }
+    if (!run.fallback.attempts.empty())
+      std::cout << "fallback: " << describeFallbacks(run.fallback)
+                << (run.fallback.taken.empty() ? "; none converged" : "; the result above is " + run.fallback.taken + "'s")
+                << "\n";
     std::cout << "linear algebra: " << (sparse_solver ? "sparse" : "dense");
     if (condensed)
       std::cout << ", A_k factored " << (sparse_factors ? "sparse (UMFPACK)" : "dense") << " ("
@@ -427,6 +459,8 @@ int runSolve(const SolveArguments& given) {
     std::cerr << "eqhb: the solve did not converge: " << terminationName(result.termination)
               << ", |g| = " << result.final_norm << " > tolerance " << options.residual_tolerance
               << (result.native_message.empty() ? "" : " (" + result.native_message + ")") << "\n";
+  if (!result.converged() && !run.fallback.attempts.empty())
+    std::cerr << "eqhb: fallbacks tried: " << describeFallbacks(run.fallback) << "\n";
   if (!result.converged())
     for (const std::string& advice : rhoScaleAdvice(model)) std::cerr << "eqhb: " << advice << "\n";
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "eqhb/continuation/coarse_start.h"
+#include "eqhb/continuation/fallback_chain.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/solvers/solver.h"
@@ -35,6 +36,7 @@ struct SolveArguments {
   std::optional<int> from_harmonics;  // seed by continuation in H from this H₀
   std::string cold_start = "coarse";  // --cold-start: coarse (CoarseStart) or zero
   std::string linear_algebra = "auto";  // --linear-algebra: auto, dense or sparse
+  std::string fallback = "default";     // --fallback: steps after a failed solve (default_path.h)
   bool stability = false;  // --stability: Floquet multipliers by Hill's method
   AccuracyArguments accuracy;           // --error-estimate, --accuracy (solve only)
   RefineArguments refine;               // --refine shoot (solve only)
@@ -50,6 +52,7 @@ struct HbRun {
   std::vector<double> times;  // sorted
   double setup_seconds = 0.0;  // building the system (pattern, factorisations)
   ColdStartReport cold_start;  // the coarse start of the last repeat (used = false: none)
+  FallbackReport fallback;     // the fallback steps after a failed solve (none tried: empty)
 };
 HbRun solveHarmonicBalance(const SolveArguments& args);
 // The common solver options and the --option pass-through; throws InputError.

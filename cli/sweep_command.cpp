@@ -12,6 +12,7 @@
 #include "eqhb/harmonic_balance/problem_scales.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/stability/curve_stability.h"
 #include "terminal/progress.h"
@@ -74,6 +75,7 @@ nlohmann::json curveJson(const Scene& scene, const HbModel& model, const Solver&
                             {"energy", p.energy},
                             {"max_abs", p.max_abs},
                             {"first_harmonic", p.first_harmonic}};
+    if (!p.fallback.empty()) point["fallback"] = p.fallback;
     if (!std::isnan(p.error_estimate)) point["error_estimate"] = p.error_estimate;
     if (p.accuracy_met >= 0) {
       point["harmonics"] = p.harmonics;
@@ -181,6 +183,8 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   if (with_accuracy && s.stability)
     throwInputError("--stability", "(set)", "not with --accuracy: the points of such a curve differ in H");
   auto solver = makeSolver(s.solver);
+  const OwnedFallbackChain fallbacks(s.fallback, s.solver, "--fallback");
+  options.fallbacks = fallbacks.chain();
   const int dofs = scene.model.structure.dofs();
   const int expected = w.arclength ? 0 : static_cast<int>(options.gridPoints());
   ProgressLine line(verbosity().progress, scene.name + " sweep");

@@ -224,6 +224,40 @@ TEST(Continuation, ArclengthDoesNotTurnBackAtASpuriousFold) {
   for (const auto& p : curve.points) EXPECT_TRUE(p.omega >= 0.8 && p.omega <= 1.4) << p.omega;
 }
 
+// Past Duffing's upper fold the branch the sequential sweep followed ends:
+// from the previous point the dogleg stalls (12 points lost), the fallback
+// chain's cold start finds the remaining branch, and the whole grid converges
+// on the same amplitudes wherever the previous point's start was enough.
+TEST(Continuation, SequentialPointsLostPastAFoldAreFoundByTheFallbackChain) {
+  const Scene scene = loadScene(test::problem("duffing.toml"));
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.from = *scene.sweep_from;
+  options.to = *scene.sweep_to;
+  ContinuationOptions alone = options;
+  alone.fallbacks = FallbackChain();
+  const Curve lost = sweepSequential(scene.model, *solver, {}, alone);
+  const Curve found = sweepSequential(scene.model, *solver, {}, options);
+  EXPECT_GT(lost.failed_points, 0);
+  EXPECT_EQ(found.failed_points, 0) << found.stop_reason;
+  EXPECT_TRUE(found.complete);
+  ASSERT_EQ(lost.points.size(), found.points.size());
+  int cold = 0;
+  for (size_t i = 0; i < found.points.size(); ++i) {
+    const CurvePoint &a = lost.points[i], &b = found.points[i];
+    ASSERT_TRUE(b.converged) << b.omega;
+    if (!b.fallback.empty()) {
+      EXPECT_EQ(b.fallback, "cold");
+      ++cold;
+      // The branch it found lies below the one that ended: a jump down.
+      EXPECT_LT(b.max_abs[0], found.points[i - 1].max_abs[0]) << b.omega;
+    }
+    if (a.converged && b.fallback.empty() && i > 0 && found.points[i - 1].fallback.empty())
+      EXPECT_NEAR(a.max_abs[0], b.max_abs[0], 1e-9) << a.omega;
+  }
+  EXPECT_GE(cold, 1);
+}
+
 TEST(ArclengthSteps, StepFollowsEffortAndTurnWithinItsBounds) {
   ContinuationOptions options;
   options.step = 0.01;

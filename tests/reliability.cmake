@@ -64,13 +64,20 @@ set_tests_properties(cli.solve_time_limit_covers_setup PROPERTIES TIMEOUT 30)
 set(CUBIC ${PROJECT_SOURCE_DIR}/problems/cubic.toml)
 add_test(NAME cli.shoot_time_limit
          COMMAND ${EXPECT_EXIT} 1 "NOT converged: time limit reached after [0-9]+ Newton steps"
-                 ${EQHB_CLI} shoot ${CUBIC} --omega 0.8 --time-limit 1)
+                 ${EQHB_CLI} shoot ${CUBIC} --omega 0.8 --time-limit 1 --fallback none)
 add_test(NAME cli.shoot_unconverged_has_no_multipliers
          COMMAND ${EXPECT_EXIT} 1 "\"multipliers\": null"
-                 ${EQHB_CLI} shoot ${CUBIC} --omega 0.8 --time-limit 1 --json)
+                 ${EQHB_CLI} shoot ${CUBIC} --omega 0.8 --time-limit 1 --fallback none --json)
 add_test(NAME cli.shoot_progress
          COMMAND ${EXPECT_EXIT} 1 "cubic shoot  Newton step [0-9]+/40  elapsed .* period maps"
-                 ${EQHB_CLI} --progress shoot ${CUBIC} --omega 0.8 --time-limit 1)
+                 ${EQHB_CLI} --progress shoot ${CUBIC} --omega 0.8 --time-limit 1 --fallback none)
+# With the default path its harmonic-balance start converges (Ipopt) and the
+# orbit is found in a fraction of a second.
+if(EQHB_WITH_IPOPT)
+  add_test(NAME cli.shoot_from_the_default_path
+           COMMAND ${EXPECT_EXIT} 0 "stable \\(spectral radius 0.95"
+                   ${EQHB_CLI} shoot ${CUBIC} --omega 0.8 --time-limit 20)
+endif()
 set_tests_properties(cli.shoot_time_limit cli.shoot_unconverged_has_no_multipliers cli.shoot_progress
                      PROPERTIES TIMEOUT 30)
 
@@ -108,3 +115,35 @@ add_test(NAME cli.cantilever_si_sweeps_on_defaults
 add_test(NAME cli.badly_scaled_rho_is_named
          COMMAND ${EXPECT_EXIT} 1 "law\\[0\\] \\(coulomb-1d\\): rho = 1e-20 is .* times the scale-free rho"
                  ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/friction-1d.toml --set law[0].rho=1e-20)
+
+# The default path: a failed solve or sweep point gets the fallback steps
+# (cold start, full system, another backend) before it is given up.
+add_test(NAME cli.fallback_unknown_step
+         COMMAND ${EXPECT_EXIT} 2 "--fallback = cold,newton-deluxe: has an unknown step newton-deluxe"
+                 ${EQHB_CLI} solve ${SCENE} --fallback cold,newton-deluxe)
+add_test(NAME cli.fallback_empty_step
+         COMMAND ${EXPECT_EXIT} 2 "--fallback = cold,,full: has an empty step"
+                 ${EQHB_CLI} sweep ${SCENE} --fallback cold,,full)
+add_test(NAME cli.fallback_repeated_step
+         COMMAND ${EXPECT_EXIT} 2 "--fallback = full,full: names full twice"
+                 ${EQHB_CLI} solve ${SCENE} --fallback full,full)
+# Past their folds, Duffing's and the contact scene's sequential sweeps lose
+# points from the previous point's start; the cold start finds them.
+foreach(scene duffing contact cubic damper contact-friction-2d)
+  add_test(NAME cli.${scene}_sequential_sweep_is_complete
+           COMMAND ${EXPECT_EXIT} 0 "points, 0 failed"
+                   ${EQHB_CLI} sweep ${PROJECT_SOURCE_DIR}/problems/${scene}.toml --quiet)
+endforeach()
+add_test(NAME cli.duffing_sweep_without_fallback_loses_points
+         COMMAND ${EXPECT_EXIT} 1 "111 points, 12 failed"
+                 ${EQHB_CLI} sweep ${PROJECT_SOURCE_DIR}/problems/duffing.toml --fallback none --quiet)
+if(EQHB_WITH_IPOPT)
+  # cubic at omega = 0.8 from rest: the own dogleg, the full system and the
+  # cold start fail; the default's last step, Ipopt's least squares, solves it.
+  add_test(NAME cli.cubic_default_path_takes_the_backup
+           COMMAND ${EXPECT_EXIT} 0 "fallback: full \\(dogleg: [a-z_]+ after [0-9]+ iterations\\), ipopt-ls \\(ipopt-ls: converged\\)"
+                   ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/cubic.toml --omega 0.8)
+  add_test(NAME cli.cubic_without_fallback_fails
+           COMMAND ${EXPECT_EXIT} 1 "did not converge"
+                   ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/cubic.toml --omega 0.8 --fallback none)
+endif()

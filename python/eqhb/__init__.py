@@ -71,7 +71,7 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
 
 def solve(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", system="condensed",
           tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
-          initial=None, cold_start="coarse"):
+          initial=None, cold_start="coarse", fallback="default"):
     """One harmonic-balance solve. Returns a dict: converged, termination,
     iterations, residual/jacobian evaluations, residual_norm, seconds, and
     "solution" (harmonics, x_cos/x_sin and lambda_cos/lambda_sin per channel,
@@ -79,12 +79,16 @@ def solve(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", s
     coefficient vector to pass as `initial` to a later solve). Without
     `initial`, the solve starts from a coarse harmonic balance (about H/3
     harmonics on few samples, as `eqhb solve`; "cold_start" in the result
-    says what it did) or, with cold_start="zero", from zero."""
+    says what it did) or, with cold_start="zero", from zero. A solve that
+    fails gets the `fallback` steps in order ("cold", "full", a backend
+    name; comma-separated, or "none"; "default": cold, full, then Ipopt's
+    least squares, else ceres-lm): "fallback" in the result lists each
+    attempt and the step "taken"."""
     return _solve(_model(model), _real(omega, "omega", True), _integer(harmonics, "harmonics", True),
                   _integer(samples, "samples", True), _text(solver, "solver"), _text(system, "system"),
                   _real(tolerance, "tolerance"), _integer(max_iterations, "max_iterations"),
                   _integer(max_evaluations, "max_evaluations"), _real(time_limit, "time_limit"), _options(options),
-                  _vector(initial, "initial"), _text(cold_start, "cold_start"))
+                  _vector(initial, "initial"), _text(cold_start, "cold_start"), _text(fallback, "fallback"))
 
 
 def stability(model, solution, *, omega=None, harmonics=None, samples=None):
@@ -107,17 +111,20 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
 
 def sweep(model, start=None, stop=None, *, step=0.01, method="sequential", harmonics=None, samples=None,
           solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
-          time_limit=0.0, options=None, max_points=20000):
+          time_limit=0.0, options=None, max_points=20000, fallback="default"):
     """A frequency-response curve by continuation in omega ("sequential" on a
     grid of `step`, or "arclength", which passes turning points). Returns a
     dict of arrays over the points: omega, converged, max_abs (points x dofs),
     first_harmonic, energy, fold, x_cos/x_sin (points x dofs x harmonics), and
-    folds, stop_reason, complete, failed_points, seconds."""
+    folds, stop_reason, complete, failed_points, seconds; "fallback" per
+    point names the step that converged a point that failed from the
+    previous one (see solve)."""
     return _sweep(_model(model), _real(start, "start", True), _real(stop, "stop", True), _real(step, "step"),
                   _text(method, "method"), _integer(harmonics, "harmonics", True), _integer(samples, "samples", True),
                   _text(solver, "solver"), _text(system, "system"), _real(tolerance, "tolerance"),
                   _integer(max_iterations, "max_iterations"), _integer(max_evaluations, "max_evaluations"),
-                  _real(time_limit, "time_limit"), _options(options), _integer(max_points, "max_points"))
+                  _real(time_limit, "time_limit"), _options(options), _integer(max_points, "max_points"),
+                  _text(fallback, "fallback"))
 
 
 def simulate(model, omega=None, *, step=1e-4, periods=5000, theta=0.5, periodic_tolerance=1e-9, restitution=0.0,

@@ -117,7 +117,7 @@ py::dict curveDict(const HbModel& model, const Curve& curve) {
                              static_cast<py::ssize_t>(h)});
   auto cos_view = x_cos.mutable_unchecked<3>();
   auto sin_view = x_sin.mutable_unchecked<3>();
-  py::list terminations;
+  py::list terminations, fallbacks;
   const int nb = model.basis.size();
   for (Eigen::Index p = 0; p < points; ++p) {
     const CurvePoint& c = curve.points[p];
@@ -130,6 +130,7 @@ py::dict curveDict(const HbModel& model, const Curve& curve) {
     iterations.mutable_at(p) = c.iterations;
     evaluations.mutable_at(p) = c.residual_evaluations;
     terminations.append(c.termination);
+    fallbacks.append(c.fallback);
     for (int i = 0; i < dofs; ++i) {
       max_abs(p, i) = i < static_cast<int>(c.max_abs.size()) ? c.max_abs[i] : NAN;
       first(p, i) = i < static_cast<int>(c.first_harmonic.size()) ? c.first_harmonic[i] : NAN;
@@ -145,6 +146,7 @@ py::dict curveDict(const HbModel& model, const Curve& curve) {
   d["omega"] = toArray(omega);
   d["converged"] = converged;
   d["termination"] = terminations;
+  d["fallback"] = fallbacks;  // per point: the fallback step that converged it, "" if none was needed
   d["iterations"] = iterations;
   d["residual_evaluations"] = evaluations;
   d["residual_norm"] = toArray(residual);

@@ -12,6 +12,7 @@
 
 #include "conversions.h"
 #include "matrix_argument.h"
+#include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/coarse_start.h"
 #include "eqhb/continuation/continuation.h"
@@ -97,10 +98,11 @@ py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int>
                std::optional<int> samples, const std::string& solver_name, const std::string& system,
                double tolerance, int max_iterations, int max_evaluations, double time_limit,
                const std::map<std::string, std::string>& backend, const std::optional<Eigen::VectorXd>& initial,
-               const std::string& cold_start) {
+               const std::string& cold_start, const std::string& fallback) {
   const HbModel model = withSettings(m.scene.model, omega, harmonics, samples);
   const SolverOptions options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend);
   auto solver = makeSolver(solver_name);
+  const OwnedFallbackChain fallbacks(fallback, solver_name, "fallback");
   auto hb = makeHbSystem(model, condensedSystem(system));
   Eigen::VectorXd z0 = Eigen::VectorXd::Zero(hb->size());
   if (initial) {
@@ -126,6 +128,11 @@ py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int>
     py::gil_scoped_release unlocked;
     result = coarse ? coarse->solve(*solver, *hb, options, &report) : solver->solve(*hb, z0, options);
   }
+  FallbackReport tried;
+  if (!result.converged() && result.termination != Termination::kInvalidOptions) {
+    py::gil_scoped_release unlocked;
+    result = solveWithFallbacks(*hb, *solver, options, result, !initial, fallbacks.chain(), &tried);
+  }
   if (result.termination == Termination::kInvalidOptions) throw InputError("options: " + result.native_message);
   py::dict d = resultDict(result);
   if (report.used) d["seconds"] = report.seconds;  // the coarse solve included
@@ -139,6 +146,24 @@ py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int>
     cold["retried_from_zero"] = report.retried_from_zero;
   }
   d["cold_start"] = cold;
+  if (!tried.attempts.empty()) {
+    py::list attempts;
+    for (const FallbackAttempt& a : tried.attempts) {
+      py::dict one;
+      one["step"] = a.step;
+      one["solver"] = a.result.solver;
+      one["termination"] = terminationName(a.result.termination);
+      one["iterations"] = a.result.iterations;
+      one["residual_norm"] = a.result.final_norm;
+      attempts.append(one);
+    }
+    py::dict f;
+    f["taken"] = tried.taken.empty() ? py::object(py::none()) : py::object(py::str(tried.taken));
+    f["attempts"] = attempts;
+    f["seconds"] = tried.seconds;
+    d["fallback"] = f;
+    d["seconds"] = d["seconds"].cast<double>() + tried.seconds;
+  }
   d["system"] = system;
   d["unknowns"] = hb->size();
   d["omega"] = model.omega;
@@ -181,7 +206,7 @@ py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<doubl
                const std::string& method, std::optional<int> harmonics, std::optional<int> samples,
                const std::string& solver_name, const std::string& system, double tolerance, int max_iterations,
                int max_evaluations, double time_limit, const std::map<std::string, std::string>& backend,
-               int max_points) {
+               int max_points, const std::string& fallback) {
   const HbModel model = withSettings(m.scene.model, std::nullopt, harmonics, samples);
   if (method != "sequential" && method != "arclength")
     throwInputError("method", "\"" + method + "\"", "must be \"sequential\" or \"arclength\"");
@@ -197,6 +222,8 @@ py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<doubl
   options.validate();
   const SolverOptions solver_options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend);
   auto solver = makeSolver(solver_name);
+  const OwnedFallbackChain fallbacks(fallback, solver_name, "fallback");
+  options.fallbacks = fallbacks.chain();
   Curve curve;
   {
     py::gil_scoped_release unlocked;
@@ -378,11 +405,11 @@ PYBIND11_MODULE(_eqhb, m) {
   m.def("_solve", &solve, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),
         py::arg("solver"), py::arg("system"), py::arg("tolerance"), py::arg("max_iterations"),
         py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"), py::arg("initial"),
-        py::arg("cold_start"));
+        py::arg("cold_start"), py::arg("fallback"));
   m.def("_sweep", &sweep, py::arg("model"), py::arg("start"), py::arg("stop"), py::arg("step"), py::arg("method"),
         py::arg("harmonics"), py::arg("samples"), py::arg("solver"), py::arg("system"), py::arg("tolerance"),
         py::arg("max_iterations"), py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"),
-        py::arg("max_points"));
+        py::arg("max_points"), py::arg("fallback"));
   m.def("_stability", &stability, py::arg("model"), py::arg("full"), py::arg("omega"), py::arg("harmonics"),
         py::arg("samples"));
   m.def("_shoot", &shoot, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),

@@ -198,3 +198,26 @@ def test_bad_input_raises_naming_the_field(call, field):
         call()
     assert field in str(error.value)
     assert isinstance(error.value, ValueError)
+
+
+def test_a_sweep_point_lost_past_a_fold_is_found_by_the_fallback_chain():
+    # Duffing's upper branch ends at its fold: from the previous point the
+    # dogleg stalls; the default path's cold start finds the lower branch.
+    duffing = eqhb.load_scene(PROBLEMS / "duffing.toml")
+    plain = eqhb.sweep(duffing, fallback="none")
+    assert not plain["complete"] and plain["failed_points"] > 0
+    rescued = eqhb.sweep(duffing)
+    assert rescued["complete"] and rescued["failed_points"] == 0
+    assert "cold" in rescued["fallback"]
+    assert all(step == "" for step, ok in zip(rescued["fallback"], plain["converged"]) if ok)
+
+
+def test_a_failed_solve_reports_each_fallback_attempt():
+    cubic = eqhb.load_scene(PROBLEMS / "cubic.toml")
+    alone = eqhb.solve(cubic, 0.8, fallback="none")
+    assert not alone["converged"] and "fallback" not in alone
+    chained = eqhb.solve(cubic, 0.8, fallback="full,dogleg-newton")
+    assert [a["step"] for a in chained["fallback"]["attempts"]] == ["full", "dogleg-newton"]
+    assert chained["converged"] == (chained["fallback"]["taken"] is not None)
+    with pytest.raises(eqhb.InputError, match="fallback = cold,nope: has an unknown step nope"):
+        eqhb.solve(cubic, 0.8, fallback="cold,nope")

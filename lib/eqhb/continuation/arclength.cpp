@@ -20,6 +20,11 @@ namespace {
 // met so far: near rest (an antiresonance) a relative scale would blow up.
 constexpr double kScaleFloorFraction = 1e-3;
 
+// Where a bridge tries its fixed-ω point: these fractions of the range ahead.
+constexpr double kBridgeFractions[] = {1e-3, 1e-2, 3e-2};
+// A curve bridged this often is not being traced by arclength any more.
+constexpr int kMostBridges = 10;
+
 struct ArcPoint {
   Eigen::VectorXd z;
   double omega = 0.0;
@@ -71,9 +76,13 @@ class ArclengthSweep {
       if (first.converged()) first.solution = system_->fromFullCoefficients(full);
     }
     if (!first.converged()) {
-      stop("no solution at the start " + at(options_.from) + " (" + terminationName(first.termination) +
-           "): try --full or another --solver");
-      return false;
+      FallbackReport tried;
+      first = solveWithFallbacks(*system_, solver_, solver_options_, first, false, options_.fallbacks, &tried);
+      if (!first.converged()) {
+        stop("no solution at the start " + at(options_.from) + " (" + terminationName(first.termination) +
+             "; fallbacks: " + describeFallbacks(tried) + ")");
+        return false;
+      }
     }
     current_.z = first.solution;
     current_.omega = options_.from;
@@ -94,6 +103,24 @@ class ArclengthSweep {
   void trace() {
     ArclengthStep step(options_);
     KinkTest kink;
+    // Where the curve cannot be followed: bridge to a point further on and
+    // start afresh there (true: go on), or stop saying why (false).
+    auto bridgeOrStop = [&](const std::string& reason) {
+      if (static_cast<int>(bridged_.size()) >= kMostBridges) {
+        stop(reason + "; the curve was bridged " + std::to_string(bridged_.size()) +
+             " times already: arclength cannot follow it here, sweep it sequentially");
+        return false;
+      }
+      if (bridge()) {
+        step = ArclengthStep(options_);
+        kink.reset();
+        if (current_.omega != options_.to) return true;
+        finishAtTheEnd();
+        return false;
+      }
+      stop(reason + "; no point found a little further in omega either (fallbacks included)");
+      return false;
+    };
     while (static_cast<int>(curve_.points.size()) < options_.max_points) {
       const ArcScales s = scales();
       const Eigen::VectorXd y = s.scaled(current_.z, current_.omega);
@@ -103,12 +130,13 @@ class ArclengthSweep {
       bordered.setConstraint(t, predicted);
       const SolverResult r = solver_.solve(bordered, predicted, solver_options_);
       if (!r.converged()) {
-        if (!step.halve())
-          return stop("the corrector failed (" + std::string(terminationName(r.termination)) + ") near " +
-                           at(current_.omega) + " even with the step at --min-step = " +
-                           formatNumber(options_.min_step) + ": give a smaller --min-step, or try --full or "
-                           "another --solver");
-        continue;
+        if (step.halve()) continue;
+        if (bridgeOrStop("the corrector failed (" + std::string(terminationName(r.termination)) + ") near " +
+                         at(current_.omega) + " even with the step at --min-step = " +
+                         formatNumber(options_.min_step) + ": give a smaller --min-step, or try --full or "
+                         "another --solver"))
+          continue;
+        return;
       }
       const Eigen::VectorXd& y_new = r.solution;
       const double omega_new = y_new[n_] * s.omega;
@@ -121,10 +149,10 @@ class ArclengthSweep {
       }
       Eigen::VectorXd t_new;
       if (!tangentAt(*system_, s, y_new, t, &t_new)) {
-        if (!step.halve())
-          return stop("no tangent (singular bordered Jacobian) at " + at(omega_new) +
-                           ": a bifurcation point; give a smaller --min-step to step across it");
-        continue;
+        if (step.halve() || bridgeOrStop("no tangent (singular bordered Jacobian) at " + at(omega_new) +
+                                          ": a bifurcation point; give a smaller --min-step to step across it"))
+          continue;
+        return;
       }
       double turn = angleBetween(t, t_new);
       if (turn > options_.max_turn) {
@@ -133,19 +161,22 @@ class ArclengthSweep {
         // spurious direction) does not shrink with the step: cross it along
         // the secant, the direction the curve actually took.
         if (!kink.isKink(step.size(), turn)) {
-          if (!step.halve())
-            return stop("the tangent turns by " + formatNumber(degrees(turn)) + " degrees at " +
-                             at(omega_new) + " even with the step at --min-step = " +
-                             formatNumber(options_.min_step) + ": give a smaller --min-step");
-          continue;
+          if (step.halve() || bridgeOrStop("the tangent turns by " + formatNumber(degrees(turn)) + " degrees at " +
+                                            at(omega_new) + " even with the step at --min-step = " +
+                                            formatNumber(options_.min_step) + ": give a smaller --min-step"))
+            continue;
+          return;
         }
         t_new = (y_new - y).normalized();
         turn = angleBetween(t, t_new);
         const double heading = folds_.direction();
-        if (heading != 0.0 && t_new[n_] * heading < 0.0)
-          return stop("the curve turns back at a kink at " + at(omega_new) +
+        if (heading != 0.0 && t_new[n_] * heading < 0.0) {
+          if (bridgeOrStop("the curve turns back at a kink at " + at(omega_new) +
                            " (the tangent's omega-component changes sign without passing through zero: not a "
-                           "fold); try --full, more --samples or a smaller --max-step");
+                           "fold); try --full, more --samples or a smaller --max-step"))
+            continue;
+          return;
+        }
       }
       kink.reset();
       current_.z = y_new.head(n_) * s.z;
@@ -157,6 +188,50 @@ class ArclengthSweep {
     }
     stop("max_points = " + std::to_string(options_.max_points) + " reached at " + at(current_.omega) +
          ", before the end of the range: give a larger --max-points or --max-step");
+  }
+
+  // The corrector failed even at the smallest step (the curve's Jacobian
+  // breaks down there, as at a nonsmooth law's switch): solve with ω fixed a
+  // little further in the direction of travel, from the current point and
+  // then by the fallback chain, and go on from there along a new tangent.
+  // The point found is marked (fallback "bridge"): the curve between the two
+  // points is not traced, and the jump is said in the stop reason.
+  bool bridge() {
+    const double heading = folds_.direction() != 0.0 ? folds_.direction() : direction_;
+    for (double fraction : kBridgeFractions) {
+      const double target = std::clamp(current_.omega + heading * fraction * (hi_ - lo_), lo_, hi_);
+      if (target == current_.omega) return false;
+      try {
+        system_->setOmega(target);
+      } catch (const std::exception&) {
+        continue;  // singular at this ω: try further
+      }
+      SolverResult r = solver_.solve(*system_, current_.z, solver_options_);
+      std::string taken = "bridge";
+      if (!r.converged()) {
+        FallbackReport tried;
+        r = solveWithFallbacks(*system_, solver_, solver_options_, r, false, options_.fallbacks, &tried);
+        if (!r.converged()) continue;
+        taken += " (" + tried.taken + ")";
+      }
+      const double floor = std::max(kScaleFloorFraction * std::max(largest_norm_, r.solution.norm()), 1e-12);
+      const ArcScales s = ArcScales::at(r.solution, floor, hi_ - lo_);
+      Eigen::VectorXd ahead = Eigen::VectorXd::Zero(n_ + 1), tangent;
+      ahead[n_] = heading;
+      if (!tangentAt(*system_, s, s.scaled(r.solution, target), ahead, &tangent)) continue;
+      const double from = current_.omega;
+      current_ = {r.solution, target, s.physicalDirection(tangent)};
+      largest_norm_ = std::max(largest_norm_, current_.z.norm());
+      bridged_.push_back(formatNumber(from) + " -> " + formatNumber(target));
+      record(current_, r, tangent[n_], taken);
+      return true;
+    }
+    return false;
+  }
+
+  void finishAtTheEnd() {
+    curve_.complete = true;
+    stop("reached the end of the range, " + at(options_.to));
   }
 
   // The corrector left the range between ŷ and ŷ_new: solve at the end it
@@ -181,8 +256,7 @@ class ArclengthSweep {
     const double tangent_omega = tangentAt(*system_, s, landed, heading, &tangent) ? tangent[n_] : NAN;
     record({r.solution, end, {}}, r, tangent_omega);
     if (end == options_.to) {
-      curve_.complete = true;
-      stop("reached the end of the range, " + at(end));
+      finishAtTheEnd();
       return true;
     }
     stop("the curve turned back and left the range at its start, " + at(end) +
@@ -195,10 +269,11 @@ class ArclengthSweep {
     return ArcScales::at(current_.z, std::max(kScaleFloorFraction * largest_norm_, 1e-12), hi_ - lo_);
   }
 
-  void record(const ArcPoint& point, const SolverResult& r, double tangent_omega) {
+  void record(const ArcPoint& point, const SolverResult& r, double tangent_omega, const std::string& fallback = "") {
     model_.omega = point.omega;
     CurvePoint p = describePoint(model_, system_->fullCoefficients(point.z));
     addSolverCounts(r, &p);
+    p.fallback = fallback;
     p.tangent_omega = tangent_omega;
     curve_.points.push_back(p);
     const int index = static_cast<int>(curve_.points.size()) - 1;
@@ -212,7 +287,13 @@ class ArclengthSweep {
     if (progress_) progress_(curve_.points.back(), index);
   }
 
-  void stop(const std::string& reason) { curve_.stop_reason = reason; }
+  void stop(const std::string& reason) {
+    curve_.stop_reason = reason;
+    if (bridged_.empty()) return;
+    curve_.stop_reason += " (" + std::to_string(bridged_.size()) + " bridge(s), the curve not traced between: ";
+    for (size_t i = 0; i < bridged_.size(); ++i) curve_.stop_reason += (i ? ", " : "") + bridged_[i];
+    curve_.stop_reason += ")";
+  }
 
   HbModel model_;
   Solver& solver_;
@@ -225,6 +306,7 @@ class ArclengthSweep {
   ArcPoint current_;
   double largest_norm_ = 0.0;
   FoldWatch folds_;
+  std::vector<std::string> bridged_;  // "ω_from -> ω_to" of each bridge
   Curve curve_;
 };
 

@@ -80,8 +80,11 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
   for (const auto& p : curve.points) with_estimate = with_estimate || !std::isnan(p.error_estimate);
   bool with_accuracy = false;
   for (const auto& p : curve.points) with_accuracy = with_accuracy || p.accuracy_met >= 0;
+  bool with_fallback = false;
+  for (const auto& p : curve.points) with_fallback = with_fallback || !p.fallback.empty();
   out << ",energy,fold" << (with_stability ? ",stable,bifurcation" : "") << (with_estimate ? ",error_estimate" : "")
-      << (with_accuracy ? ",harmonics,samples,accuracy_met,accuracy_seconds" : "") << "\n";
+      << (with_accuracy ? ",harmonics,samples,accuracy_met,accuracy_seconds" : "")
+      << (with_fallback ? ",fallback" : "") << "\n";
   out.precision(10);
   for (const auto& p : curve.points) {
     out << p.omega << "," << (p.converged ? "true" : "false") << "," << p.termination << "," << p.iterations << ","
@@ -94,6 +97,7 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
     if (with_accuracy)
       out << "," << p.harmonics << "," << p.samples << ","
           << (p.accuracy_met >= 0 ? std::to_string(p.accuracy_met) : "") << "," << p.accuracy_seconds;
+    if (with_fallback) out << "," << p.fallback;
     out << "\n";
   }
   out.close();
@@ -171,6 +175,22 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
         }
       }
       point.converged = std::abs(target - at) <= 1e-15 && r.converged();
+    }
+    if (!point.converged && why.empty()) {
+      FallbackReport tried;
+      const bool started_cold = std::isnan(last_converged_omega) && !options.start_full.size();
+      const SolverResult rescued =
+          solveWithFallbacks(*system, solver, solver_options, r, started_cold, options.fallbacks, &tried);
+      for (const FallbackAttempt& attempt : tried.attempts) addSolverCounts(attempt.result, &point);
+      if (rescued.converged()) {
+        r = rescued;
+        point.fallback = tried.taken;
+      } else if (!tried.attempts.empty()) {
+        why = "fallbacks: " + describeFallbacks(tried);
+        point.converged = false;  // the point reports the first failure's termination
+        point.termination = terminationName(r.termination);
+        point.residual_norm = r.final_norm;
+      }
     }
     if (point.converged) {
       z = r.solution;

@@ -2,8 +2,9 @@
 //
 //  sequential: ω on a grid from `from` to `to` (either direction), the
 //    previous solution as predictor; a failed corrector halves the step
-//    (intermediate points) down to min_step, then the curve stops and says
-//    where and why.
+//    (intermediate points) down to min_step; a point still failed then gets
+//    the fallback chain (fallback_chain.h: cold start, full system, another
+//    backend), and only then counts as failed, saying why.
 //  arclength (arclength.cpp): pseudo-arclength in scaled unknowns
 //    ŷ = (z / s_z, ω / s_ω), s_z = ‖z‖ of the current point (floored at 10⁻³
 //    of the largest so far) updated every point, s_ω = |to − from|: tangent
@@ -14,7 +15,11 @@
 //    secant (and a sweep that turns back at one stops: not a fold). The step
 //    follows the corrector's effort and the turn, within [min_step,
 //    max_step]. The last point lies exactly on `to` (solved there with ω
-//    fixed); a curve that leaves the range at `from` is not complete. Folds
+//    fixed); a curve that leaves the range at `from` is not complete. Where
+//    the curve cannot be followed even at min_step (a corrector failure, no
+//    tangent, a kink turning back), a bridge solves with ω fixed a little
+//    further on (fallbacks included) and starts afresh there, the jump said
+//    on the point and in the stop reason. Folds
 //    are where the ω-component of the tangent changes sign (and stays
 //    changed for three points). Either direction, from < to or from > to.
 //  harmonics: solve at H₀ and reuse the solution as the start at larger H.
@@ -26,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "eqhb/continuation/fallback_chain.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/solvers/solver.h"
 
@@ -42,6 +48,7 @@ struct CurvePoint {
   std::vector<double> first_harmonic;  // per DOF, |(a₁, b₁)|
   double energy = 0.0;                 // period mean of ½ẋᵀMẋ + ½xᵀKx
   bool fold = false;                   // a turning point lies just before this point
+  std::string fallback;                // the fallback step that converged it; empty: none needed
   double tangent_omega = NAN;          // arclength: ω-component of the unit tangent here
   int stable = -1;                     // Hill stability: 1, 0, or −1 (not computed)
   std::string bifurcation;             // stability analysis: kind, between the previous point and this
@@ -74,6 +81,9 @@ struct ContinuationOptions {
   int max_points = 20000;
   int target_iterations = 12;   // arclength step adaptation aims at this
   bool condensed = true;
+  // For a sequential point that fails from the previous one (after the
+  // halved steps), and for the first point of either method.
+  FallbackChain fallbacks = FallbackChain::standard(nullptr);
   // The first point's start: its [x; λ] coefficients (FullSystem layout, the
   // model's H) at `from`, e.g. a solution already known there; empty: zero.
   Eigen::VectorXd start_full;

@@ -1,0 +1,119 @@
+#include "eqhb/continuation/fallback_chain.h"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <sstream>
+
+#include "eqhb/continuation/coarse_start.h"
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+namespace {
+
+constexpr const char* kCold = "cold";
+constexpr const char* kFull = "full";
+
+// The solve's own cold start on `system`: coarse start, then zero.
+SolverResult solveCold(Solver& solver, HbSystem& system, const SolverOptions& options) {
+  CoarseStart start(system.model(), system.condensed(), options.linear_algebra);
+  return start.solve(solver, system, options, nullptr);
+}
+
+// The same ω on the full system, its answer mapped back to `condensed`'s unknowns.
+SolverResult solveOnFullSystem(Solver& solver, HbSystem& condensed, const SolverOptions& options) {
+  auto full = makeHbSystem(condensed.model(), false, options.linear_algebra);
+  SolverResult result = solveCold(solver, *full, options);
+  result.solution = condensed.fromFullCoefficients(full->fullCoefficients(result.solution));
+  return result;
+}
+
+}  // namespace
+
+FallbackChain FallbackChain::standard(Solver* backup) {
+  FallbackChain chain;
+  chain.steps = {kCold, kFull};
+  chain.solvers = {nullptr, nullptr};
+  if (backup) {
+    chain.steps.push_back(backup->name());
+    chain.solvers.push_back(backup);
+  }
+  return chain;
+}
+
+FallbackChain FallbackChain::parse(const std::string& text, const std::string& field,
+                                   const std::function<Solver*(const std::string&)>& solver_for) {
+  FallbackChain chain;
+  if (text == "none") return chain;
+  std::stringstream list(text);
+  for (std::string step; std::getline(list, step, ',');) {
+    if (step.empty()) throwInputError(field, text, "has an empty step (steps: cold, full or a backend name, comma-separated, or none)");
+    if (std::find(chain.steps.begin(), chain.steps.end(), step) != chain.steps.end())
+      throwInputError(field, text, "names " + step + " twice");
+    Solver* backend = nullptr;
+    if (step != kCold && step != kFull) {
+      backend = solver_for(step);
+      if (!backend)
+        throwInputError(field, text, "has an unknown step " + step + " (steps: cold, full or a backend name, or none)");
+    }
+    chain.steps.push_back(step);
+    chain.solvers.push_back(backend);
+  }
+  if (chain.steps.empty() || text.back() == ',')
+    throwInputError(field, text, "has an empty step (steps: cold, full or a backend name, comma-separated, or none)");
+  return chain;
+}
+
+SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOptions& options,
+                                const SolverResult& failed, bool started_cold, const FallbackChain& chain,
+                                FallbackReport* report) {
+  FallbackReport local;
+  FallbackReport& r = report ? *report : local;
+  r = FallbackReport();
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  // The time limit is the chain's whole: each step gets what is left.
+  auto remaining = [&]() {
+    SolverOptions o = options;
+    if (options.time_limit > 0.0) o.time_limit = options.time_limit - elapsed();
+    return o;
+  };
+  if (failed.termination == Termination::kInvalidOptions || failed.termination == Termination::kTimeLimit) return failed;
+  for (size_t i = 0; i < chain.steps.size(); ++i) {
+    const std::string& step = chain.steps[i];
+    if (step == kCold && started_cold) continue;        // the failed solve was this one
+    if (step == kFull && !system.condensed()) continue;  // already on the full system
+    if (options.time_limit > 0.0 && elapsed() >= options.time_limit) break;
+    FallbackAttempt attempt{step, SolverResult()};
+    try {
+      if (step == kCold) attempt.result = solveCold(solver, system, remaining());
+      else if (step == kFull) attempt.result = solveOnFullSystem(solver, system, remaining());
+      else attempt.result = solveCold(*chain.solvers[i], system, remaining());
+    } catch (const std::exception& e) {  // a singular A_k, a system too large for memory
+      attempt.result.solver = step;
+      attempt.result.termination = Termination::kBackendError;
+      attempt.result.native_message = e.what();
+    }
+    r.attempts.push_back(attempt);
+    if (attempt.result.converged()) {
+      r.taken = step;
+      r.seconds = elapsed();
+      return attempt.result;
+    }
+  }
+  r.seconds = elapsed();
+  return failed;
+}
+
+std::string describeFallbacks(const FallbackReport& report) {
+  std::string out;
+  for (const FallbackAttempt& a : report.attempts) {
+    if (!out.empty()) out += ", ";
+    out += a.step + " (" + a.result.solver + ": " + terminationName(a.result.termination) +
+           (a.result.converged() ? "" : " after " + std::to_string(a.result.iterations) + " iterations") + ")";
+  }
+  return out.empty() ? "no fallback step applied" : out;
+}
+
+}  // namespace eqhb

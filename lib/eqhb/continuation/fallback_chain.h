@@ -1,0 +1,68 @@
+// The default path of a solve that failed: further attempts, in a fixed
+// order, before a point is given up.
+//
+//   1. cold   the coarse start, then zero (CoarseStart), when the failed
+//             solve started elsewhere (a sweep's previous point): past a fold
+//             the branch it came from no longer exists.
+//   2. full   the same ω on the full system (the condensed one failed): its
+//             unknowns keep x, which conditions some contacts better.
+//   3. SOLVER another backend on the system, from the cold start (the caller
+//             names it: the core knows no backend by name).
+//
+// Measured on the shipped scenes' sequential sweeps with the own dogleg: the
+// points that failed from the previous point (Duffing and the cubic chain
+// just past their folds, the damper above ω = 1.11, contact near its
+// grazing frequencies) converge cold; contact-friction-2d at ω = 0.15 only
+// on the full system; cubic at ω = 0.8 only with Ipopt.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/solvers/solver.h"
+
+namespace eqhb {
+
+struct FallbackChain {
+  // Steps in order: "cold", "full", or a backend supplied in `solvers` by its
+  // Solver::name(). Empty: no fallback.
+  std::vector<std::string> steps;
+  std::vector<Solver*> solvers;  // the backends named in `steps`, owned by the caller
+
+  // The default order, with `backup` (may be null: no backend step) last.
+  static FallbackChain standard(Solver* backup);
+  // Parses "cold,full,NAME" (or "none"); `solver_for` returns the backend for a
+  // NAME that is neither cold nor full, or null for an unknown one. Throws
+  // InputError naming `field` for an unknown, empty or repeated step.
+  static FallbackChain parse(const std::string& text, const std::string& field,
+                             const std::function<Solver*(const std::string&)>& solver_for);
+};
+
+// One attempt of the chain: its step and how it ended.
+struct FallbackAttempt {
+  std::string step;
+  SolverResult result;
+};
+
+struct FallbackReport {
+  std::vector<FallbackAttempt> attempts;  // each step tried, in order
+  std::string taken;                      // the step that converged; empty if none did
+  double seconds = 0.0;                   // all attempts
+};
+
+// After `failed` (a solve of `system` at its ω that did not converge, from
+// `start`): the chain's steps until one converges. Returns that result with
+// its solution in `system`'s unknowns (a full-system answer mapped back), or
+// `failed` when no step converged. options.time_limit bounds all the steps
+// together. A step that cannot be set up (a singular A_k, memory) is recorded
+// as failed with the reason.
+SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOptions& options,
+                                const SolverResult& failed, bool started_cold, const FallbackChain& chain,
+                                FallbackReport* report);
+
+// "cold (dogleg: not_progressing after 25 iterations), full (converged)" — one line for messages.
+std::string describeFallbacks(const FallbackReport& report);
+
+}  // namespace eqhb
