@@ -2,6 +2,8 @@
 # Set-up and entry point for a fresh Debian 12 machine.
 #   ./run.sh bench [--quick]   install, build, run the benchmark over all scenes -> results/
 #   ./run.sh test              install, build, run the test suite (ctest)
+#   ./run.sh field [--quick]   install, build, sweep the field problems (problems/field/)
+#                              on every backend -> results/field-suite.md, .json
 #   ./run.sh perf-check        short benchmark compared with bench/baseline.json (CI)
 #   ./run.sh baseline          re-record bench/baseline.json (on purpose only)
 #   ./run.sh sanitize          the test suite under ASan + UBSan (clang), then every
@@ -89,6 +91,13 @@ case "${1:-}" in
     /usr/bin/python3 bench/charts.py results
     echo "report: results/report.md (and micro.md, convergence.txt, charts *.png/*.svg)"
     ;;
+  field)
+    shift
+    install_packages
+    build
+    mkdir -p results
+    /usr/bin/python3 bench/field_suite.py --eqhb build/eqhb --out results "$@"
+    ;;
   perf-check)
     install_packages
     build
@@ -135,7 +144,7 @@ case "${1:-}" in
     echo "bench/baseline.json re-recorded: commit it with the reason"
     ;;
   *)
-    echo "usage: $0 test | bench [--quick] | perf-check | baseline | sanitize" >&2
+    echo "usage: $0 test | bench [--quick] | field [--quick] | perf-check | baseline | sanitize" >&2
     exit 2
     ;;
 esac

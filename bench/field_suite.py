@@ -28,6 +28,7 @@ import tomllib
 
 BACKENDS = ["dogleg", "dogleg-newton", "minpack", "ceres-lm", "ipopt-ls"]
 METHODS = ["sequential", "arclength"]
+DEFAULT_STEP = 0.01  # eqhb sweep's default --step (omega)
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -107,7 +108,13 @@ def curve_max_abs_at(points, omega):
     return candidates
 
 
-def sweep(eqhb, scene, backend, method, timeout):
+def grid_points(lo, hi, step):
+    if not all(isinstance(v, (int, float)) for v in (lo, hi, step)) or step <= 0:
+        return None
+    return int(math.floor(abs(hi - lo) / step + 1e-9)) + 1
+
+
+def sweep(eqhb, scene, backend, method, timeout, span):
     cmd = [eqhb, "sweep", scene, "--json", "--solver", backend, "--quiet"]
     if method == "arclength":
         cmd.append("--arclength")
@@ -122,16 +129,16 @@ def sweep(eqhb, scene, backend, method, timeout):
     if code is None:
         row["stop_reason"] = f"timeout after {timeout:g} s"
     if data is None:
-        row.update({"converged": 0, "asked": None, "points": 0, "complete": False, "fallbacks": 0})
+        asked = grid_points(span[0], span[1], DEFAULT_STEP) if method == "sequential" else None
+        row.update({"converged": 0, "asked": asked, "points": 0, "complete": False, "fallbacks": 0})
         row.setdefault("stop_reason", last_line(err) or "no JSON output")
         return row, []
     points = data.get("points", [])
     converged = sum(1 for p in points if p.get("converged"))
     asked = len(points)
     if method == "sequential":
-        settings = data.get("settings", {})
-        grid = settings.get("grid_points") or settings.get("points")
-        if isinstance(grid, int) and grid >= asked:
+        grid = grid_points(data.get("from"), data.get("to"), data.get("step"))
+        if grid is not None and grid >= asked:
             asked = grid
     row.update({
         "converged": converged,
@@ -261,7 +268,7 @@ def main():
         entry["shoot"] = refs
         for backend in backends:
             for method in METHODS:
-                row, points = sweep(eqhb, scene, backend, method, args.timeout)
+                row, points = sweep(eqhb, scene, backend, method, args.timeout, (lo, hi))
                 if refs:
                     row["shoot_rel_diff"] = compare(points, refs)
                 entry["runs"].append(row)
