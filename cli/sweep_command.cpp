@@ -27,10 +27,10 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
   addSolverOptions(cmd, s);
   cmd->add_option("--from", w.from, "Start frequency (default: the scene's sweep.from)");
   cmd->add_option("--to", w.to, "End frequency (default: the scene's sweep.to)");
-  auto* step = cmd->add_option("--step", w.step, "Grid step in omega (sequential) or initial scaled arclength step")
-                   ->capture_default_str();
+  cmd->add_option("--step", w.step,
+                  "Grid step in omega (sequential; default a hundredth of the range, 101 points in any unit) or "
+                  "initial scaled arclength step (default 0.01)");
   cmd->add_flag("--arclength", w.arclength, "Pseudo-arclength continuation (passes turning points)");
-  (void)step;
   cmd->add_option("--min-step", w.min_step,
                   "Smallest step: in omega for the sequential sweep's halvings (default min(1e-6, step)), in "
                   "scaled arclength for --arclength; a sweep that needs less stops and says where");
@@ -162,12 +162,13 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   auto positive = [](const char* name, double value) {
     if (!(value > 0.0) || !std::isfinite(value)) throwInputError(name, formatNumber(value), "must be finite and > 0");
   };
-  positive("--step", w.step);
+  const double step = w.step ? *w.step : ContinuationOptions::defaultStep(options.from, options.to, w.arclength);
+  positive("--step", step);
   if (w.min_step) positive("--min-step", *w.min_step);
   if (w.max_step) positive("--max-step", *w.max_step);
-  options.step = w.step;
-  options.min_step = w.min_step ? *w.min_step : std::min(1e-6, w.step);
-  options.max_step = w.max_step ? *w.max_step : std::max(0.1, w.step);
+  options.step = step;
+  options.min_step = w.min_step ? *w.min_step : std::min(1e-6, step);
+  options.max_step = w.max_step ? *w.max_step : std::max(0.1, step);
   if (options.min_step > options.max_step)
     throwInputError(w.min_step ? "--min-step" : "--max-step",
                     formatNumber(w.min_step ? options.min_step : options.max_step),

@@ -11,7 +11,7 @@ namespace eqhb::cli {
 
 struct SweepArguments {
   std::optional<double> from, to;  // default: the scene's [sweep]
-  double step = 0.01;
+  std::optional<double> step;  // default: ContinuationOptions::defaultStep
   std::optional<double> min_step, max_step;  // default: min(1e-6, step), max(0.1, step)
   bool arclength = false;
   int max_points = 20000;

@@ -109,17 +109,18 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
                       _integer(harmonics, "harmonics", True), _integer(samples, "samples", True))
 
 
-def sweep(model, start=None, stop=None, *, step=0.01, method="sequential", harmonics=None, samples=None,
+def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmonics=None, samples=None,
           solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, max_points=20000, fallback="default"):
     """A frequency-response curve by continuation in omega ("sequential" on a
-    grid of `step`, or "arclength", which passes turning points). Returns a
+    grid of `step`, by default a hundredth of the range, or "arclength",
+    which passes turning points, from a scaled step of 0.01). Returns a
     dict of arrays over the points: omega, converged, max_abs (points x dofs),
     first_harmonic, energy, fold, x_cos/x_sin (points x dofs x harmonics), and
     folds, stop_reason, complete, failed_points, seconds; "fallback" per
     point names the step that converged a point that failed from the
     previous one (see solve)."""
-    return _sweep(_model(model), _real(start, "start", True), _real(stop, "stop", True), _real(step, "step"),
+    return _sweep(_model(model), _real(start, "start", True), _real(stop, "stop", True), _real(step, "step", True),
                   _text(method, "method"), _integer(harmonics, "harmonics", True), _integer(samples, "samples", True),
                   _text(solver, "solver"), _text(system, "system"), _real(tolerance, "tolerance"),
                   _integer(max_iterations, "max_iterations"), _integer(max_evaluations, "max_evaluations"),

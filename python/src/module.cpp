@@ -202,7 +202,7 @@ py::dict stability(const PyModel& m, const Eigen::VectorXd& full, std::optional<
   return d;
 }
 
-py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<double> to, double step,
+py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<double> to, std::optional<double> given_step,
                const std::string& method, std::optional<int> harmonics, std::optional<int> samples,
                const std::string& solver_name, const std::string& system, double tolerance, int max_iterations,
                int max_evaluations, double time_limit, const std::map<std::string, std::string>& backend,
@@ -214,6 +214,8 @@ py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<doubl
   if (!from && !m.scene.sweep_from) throwInputError("start", "(missing)", "the model has no sweep range: give start and stop");
   options.from = from ? *from : *m.scene.sweep_from;
   options.to = to ? *to : m.scene.sweep_to.value_or(options.from);
+  const double step = given_step ? *given_step
+                                 : ContinuationOptions::defaultStep(options.from, options.to, method == "arclength");
   options.step = step;
   options.min_step = std::min(1e-6, step);
   options.max_step = std::max(1.0, step);

@@ -91,8 +91,10 @@ class ArclengthSweep {
     guess[n_] = direction_;
     const ArcScales s = scales();
     Eigen::VectorXd tangent;
-    if (!tangentAt(*system_, s, s.scaled(current_.z, current_.omega), guess, &tangent)) {
-      stop("no tangent at the start " + at(options_.from) + " (singular bordered Jacobian)");
+    if (!tangentAt(*system_, s, s.scaled(current_.z, current_.omega), guess, &tangent) &&
+        !secantTangent(s, direction_, &tangent)) {
+      stop("no tangent at the start " + at(options_.from) +
+           " (singular bordered Jacobian, and no solution a little further in omega for a secant)");
       return false;
     }
     current_.direction = s.physicalDirection(tangent);
@@ -149,6 +151,11 @@ class ArclengthSweep {
       }
       Eigen::VectorXd t_new;
       if (!tangentAt(*system_, s, y_new, t, &t_new)) {
+        // A singular Jacobian along the curve (a stuck slider's undetermined
+        // mean): the secant is the direction the curve took.
+        t_new = (y_new - y).normalized();
+      }
+      if (!t_new.allFinite()) {
         if (step.halve() || bridgeOrStop("no tangent (singular bordered Jacobian) at " + at(omega_new) +
                                           ": a bifurcation point; give a smaller --min-step to step across it"))
           continue;
@@ -218,7 +225,9 @@ class ArclengthSweep {
       const ArcScales s = ArcScales::at(r.solution, floor, hi_ - lo_);
       Eigen::VectorXd ahead = Eigen::VectorXd::Zero(n_ + 1), tangent;
       ahead[n_] = heading;
-      if (!tangentAt(*system_, s, s.scaled(r.solution, target), ahead, &tangent)) continue;
+      if (!tangentAt(*system_, s, s.scaled(r.solution, target), ahead, &tangent))
+        tangent = (s.scaled(r.solution, target) - s.scaled(current_.z, current_.omega)).normalized();  // the jump's
+      if (!tangent.allFinite()) continue;
       const double from = current_.omega;
       current_ = {r.solution, target, s.physicalDirection(tangent)};
       largest_norm_ = std::max(largest_norm_, current_.z.norm());
@@ -227,6 +236,23 @@ class ArclengthSweep {
       return true;
     }
     return false;
+  }
+
+  // Where the bordered Jacobian is singular at the current point (a friction
+  // slider stuck over the whole period leaves its mean undetermined): the
+  // secant to the solution with ω fixed a little further on, heading `heading`.
+  bool secantTangent(const ArcScales& s, double heading, Eigen::VectorXd* tangent) {
+    const double target = std::clamp(current_.omega + heading * kBridgeFractions[0] * (hi_ - lo_), lo_, hi_);
+    if (target == current_.omega) return false;
+    try {
+      system_->setOmega(target);
+    } catch (const std::exception&) {
+      return false;
+    }
+    const SolverResult r = solver_.solve(*system_, current_.z, solver_options_);
+    if (!r.converged()) return false;
+    *tangent = (s.scaled(r.solution, target) - s.scaled(current_.z, current_.omega)).normalized();
+    return tangent->allFinite();
   }
 
   void finishAtTheEnd() {

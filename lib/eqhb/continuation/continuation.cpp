@@ -29,6 +29,10 @@ void ContinuationOptions::validate() const {
   if (max_points < 1) throwInputError("max_points", std::to_string(max_points), "must be >= 1");
 }
 
+double ContinuationOptions::defaultStep(double from, double to, bool arclength) {
+  return arclength ? 0.01 : std::abs(to - from) / 100.0;
+}
+
 double ContinuationOptions::gridPoints() const { return std::floor(std::abs(to - from) / step + 1e-9) + 1.0; }
 
 void ContinuationOptions::validateGrid() const {
@@ -190,6 +194,25 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
         point.converged = false;  // the point reports the first failure's termination
         point.termination = terminationName(r.termination);
         point.residual_norm = r.final_norm;
+      }
+    }
+    if (!point.converged && !why.empty()) {
+      // The condensed system cannot be set at this ω: the full system can.
+      FallbackReport tried;
+      Eigen::VectorXd full;
+      const SolverResult rescued = solveWhereCondensationIsSingular(system->model(), target, solver, solver_options,
+                                                                    options.fallbacks, &full, &tried);
+      for (const FallbackAttempt& attempt : tried.attempts) addSolverCounts(attempt.result, &point);
+      if (rescued.converged()) {
+        point.fallback = tried.taken;
+        z = system->fromFullCoefficients(full);  // λ: the condensed unknowns, at any ω
+        last_converged_omega = target;
+        HbModel at = system->model();
+        at.omega = target;
+        describeInto(at, full, &point);
+        curve.points.push_back(point);
+        if (progress) progress(curve.points.back(), i);
+        continue;
       }
     }
     if (point.converged) {

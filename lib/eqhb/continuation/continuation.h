@@ -87,6 +87,11 @@ struct ContinuationOptions {
   // The first point's start: its [x; λ] coefficients (FullSystem layout, the
   // model's H) at `from`, e.g. a solution already known there; empty: zero.
   Eigen::VectorXd start_full;
+  // The step when none is given: a sequential grid of a hundredth of the
+  // range (101 points in any unit: 0.007 on a nondimensional 0.1 -> 0.8,
+  // 2.6 rad/s on a cantilever's 110 -> 370 rad/s), an arclength start of
+  // 0.01 in the scaled unknowns.
+  static double defaultStep(double from, double to, bool arclength);
   // Throws InputError naming the field.
   void validate() const;
   // Points of the sequential grid, floor(|to − from| / step) + 1, as a

@@ -106,6 +106,35 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
   return failed;
 }
 
+SolverResult solveWhereCondensationIsSingular(const HbModel& model, double omega, Solver& solver,
+                                              const SolverOptions& options, const FallbackChain& chain,
+                                              Eigen::VectorXd* full, FallbackReport* report) {
+  FallbackReport local;
+  FallbackReport& r = report ? *report : local;
+  r = FallbackReport();
+  SolverResult result;
+  result.termination = Termination::kBackendError;
+  result.native_message = "the condensed system is singular at this omega and the fallbacks have no full step";
+  if (std::find(chain.steps.begin(), chain.steps.end(), kFull) == chain.steps.end()) return result;
+  const auto start = std::chrono::steady_clock::now();
+  FallbackAttempt attempt{kFull, SolverResult()};
+  try {
+    HbModel at = model;
+    at.omega = omega;
+    auto system = makeHbSystem(at, false, options.linear_algebra);
+    attempt.result = solveCold(solver, *system, options);
+    *full = system->fullCoefficients(attempt.result.solution);
+  } catch (const std::exception& e) {
+    attempt.result.solver = solver.name();
+    attempt.result.termination = Termination::kBackendError;
+    attempt.result.native_message = e.what();
+  }
+  r.attempts.push_back(attempt);
+  if (attempt.result.converged()) r.taken = kFull;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return attempt.result;
+}
+
 std::string describeFallbacks(const FallbackReport& report) {
   std::string out;
   for (const FallbackAttempt& a : report.attempts) {

@@ -62,6 +62,15 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
                                 const SolverResult& failed, bool started_cold, const FallbackChain& chain,
                                 FallbackReport* report);
 
+// Where the condensed system cannot be set at ω at all (A_k singular: an
+// undamped structure exactly at a harmonic's resonance), the chain's "full"
+// step alone applies: the full system at ω, from its cold start. Returns
+// that result, its [x; λ] in `full`, or a result that is not converged when
+// the chain has no "full" step.
+SolverResult solveWhereCondensationIsSingular(const HbModel& model, double omega, Solver& solver,
+                                              const SolverOptions& options, const FallbackChain& chain,
+                                              Eigen::VectorXd* full, FallbackReport* report);
+
 // "cold (dogleg: not_progressing after 25 iterations), full (converged)" — one line for messages.
 std::string describeFallbacks(const FallbackReport& report);
 
