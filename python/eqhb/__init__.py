@@ -105,7 +105,7 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
         if "full" not in solution:
             raise InputError("solution: a dict must be what solve returned or its \"solution\" (it has no \"full\")")
         solution = solution["full"]
-    return _stability(_model(model), _vector(solution, "full"), _real(omega, "omega", True),
+    return _stability(_model(model), _vector(solution, "solution"), _real(omega, "omega", True),
                       _integer(harmonics, "harmonics", True), _integer(samples, "samples", True))
 
 

@@ -178,7 +178,7 @@ py::dict stability(const PyModel& m, const Eigen::VectorXd& full, std::optional<
   const Eigen::Index full_size =
       static_cast<Eigen::Index>(model.basis.size()) * (model.structure.dofs() + model.lawComponents());
   if (full.size() != full_size || !full.allFinite())
-    throwInputError("full", "(" + std::to_string(full.size()) + " values)",
+    throwInputError("solution", "(" + std::to_string(full.size()) + " values)",
                     "must be a finite full coefficient vector [x; lambda] of " + std::to_string(full_size) +
                         " values (the \"full\" entry of a solution at these settings)");
   HillResult hill;

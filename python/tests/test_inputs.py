@@ -152,6 +152,8 @@ WRONG_TYPES = [
     (lambda: eqhb.solve(SCENE_MODEL, max_iterations=2**40), "max_iterations"),
     (lambda: eqhb.solve(SCENE_MODEL, initial=[[1.0], [1.0, 2.0]]), "initial"),
     (lambda: eqhb.stability(SCENE_MODEL, {"converged": True}), "solution"),
+    (lambda: eqhb.stability(SCENE_MODEL, np.array(["a", "b"])), "solution"),
+    (lambda: eqhb.stability(SCENE_MODEL, np.zeros(3)), "solution"),
     (lambda: eqhb.stability(SCENE_MODEL, np.zeros(40), omega=[0.4]), "omega"),
     (lambda: eqhb.sweep(SCENE_MODEL, 0.3, 0.4, step="fine"), "step"),
     (lambda: eqhb.sweep(SCENE_MODEL, 0.3, 0.4, max_points=1e3), "max_points"),
