@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "eqhb/continuation/arclength_steps.h"
+#include "eqhb/continuation/coarse_start.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/backends/registry.h"
@@ -251,6 +252,14 @@ TEST(Continuation, SequentialPointsLostPastAFoldAreFoundByTheFallbackChain) {
       ++cold;
       // The branch it found lies below the one that ended: a jump down.
       EXPECT_LT(b.max_abs[0], found.points[i - 1].max_abs[0]) << b.omega;
+      // And it is the answer at the grid point itself (past the fold the
+      // lower branch is the only one): a solve there from rest agrees.
+      HbModel at = scene.model;
+      at.omega = b.omega;
+      auto alone = makeHbSystem(at, true);
+      const SolverResult r = CoarseStart(at, true, LinearAlgebra::kAuto).solve(*solver, *alone, {}, nullptr);
+      ASSERT_TRUE(r.converged()) << b.omega;
+      EXPECT_NEAR(describePoint(at, alone->fullCoefficients(r.solution)).max_abs[0], b.max_abs[0], 1e-9) << b.omega;
     }
     if (a.converged && b.fallback.empty() && i > 0 && found.points[i - 1].fallback.empty())
       EXPECT_NEAR(a.max_abs[0], b.max_abs[0], 1e-9) << a.omega;

@@ -250,6 +250,11 @@ class ArclengthSweep {
       return false;
     }
     const SolverResult r = solver_.solve(*system_, current_.z, solver_options_);
+    try {
+      system_->setOmega(current_.omega);  // back to the point the curve is at (its x is read from the system)
+    } catch (const std::exception&) {
+      return false;
+    }
     if (!r.converged()) return false;
     *tangent = (s.scaled(r.solution, target) - s.scaled(current_.z, current_.omega)).normalized();
     return tangent->allFinite();

@@ -180,7 +180,8 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
       }
       point.converged = std::abs(target - at) <= 1e-15 && r.converged();
     }
-    if (!point.converged && why.empty()) {
+    // The halved steps leave the system at their last ω: the fallbacks solve at the grid point.
+    if (!point.converged && why.empty() && trySetOmega(*system, target, &why)) {
       FallbackReport tried;
       const bool started_cold = std::isnan(last_converged_omega) && !options.start_full.size();
       const SolverResult rescued =
