@@ -172,3 +172,15 @@ add_test(NAME field.sequential_sweeps_complete
                  ${FIELD}/tmdsimpy-sdof-jenkins-f33.toml
                  ${FIELD}/tmdsimpy-sdof-jenkins-f38.toml)
 set_tests_properties(field.sequential_sweeps_complete PROPERTIES TIMEOUT 60)
+# A scene's N is chosen for its own H: --harmonics raises it where the new H
+# needs more (Duffing's 29 samples for 7 harmonics become 166 for 40), keeps
+# it where it is enough, and an explicit --samples below 2 k_max + 1 is refused.
+add_test(NAME cli.harmonics_raise_too_few_samples
+         COMMAND ${EXPECT_EXIT} 0 "\"samples\": ?166"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/duffing.toml --harmonics 40 --json)
+add_test(NAME cli.harmonics_keep_enough_samples
+         COMMAND ${EXPECT_EXIT} 0 "\"samples\": ?1024"
+                 ${EQHB_CLI} solve ${SCENE} --harmonics 40 --json)
+add_test(NAME cli.given_samples_too_few_for_harmonics
+         COMMAND ${EXPECT_EXIT} 2 "harmonic_balance.samples = 50: must be >= 2 k_max . 1 = 81"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/duffing.toml --harmonics 40 --samples 50)

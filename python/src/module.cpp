@@ -87,6 +87,7 @@ HbModel withSettings(const HbModel& base, std::optional<double> omega, std::opti
                      std::optional<int> samples) {
   HbModel model = base;
   if (omega) model.omega = *omega;
+  if (harmonics && !samples) model.samples = samplesForHarmonics(model, *harmonics);
   if (harmonics) model.basis = HarmonicSet(model.basis.kind(), *harmonics);
   if (samples) model.samples = *samples;
   if (omega && !(std::isfinite(*omega) && *omega > 0)) throwInputError("omega", formatNumber(*omega), "must be > 0");

@@ -1,5 +1,6 @@
 #include "eqhb/harmonic_balance/hb_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -8,6 +9,14 @@
 #include "eqhb/size_limits.h"
 
 namespace eqhb {
+
+int samplesForHarmonics(const HbModel& model, int harmonics) {
+  const HarmonicSet basis(model.basis.kind(), harmonics);
+  if (model.samples >= basis.minimumSamples()) return model.samples;
+  const double ratio = static_cast<double>(basis.highest()) / std::max(1, model.basis.highest());
+  const double scaled = std::min(std::ceil(model.samples * ratio), 1e9);
+  return std::max(basis.minimumSamples(), static_cast<int>(scaled));
+}
 
 void HbModel::validate() const {
   if (!(omega > 0.0) || !std::isfinite(omega))

@@ -28,4 +28,11 @@ struct HbModel {
   int componentIndex(int l, int a) const;
 };
 
+// N for `model` on `harmonics` harmonics when no N is given: its own where
+// that is enough, else raised in proportion to the highest harmonic (a
+// scene's N is chosen for its H: Duffing's 29 samples for 7 harmonics
+// become 166 for 40), never below 2 k_max + 1. Throws InputError for a
+// harmonic count the basis refuses.
+int samplesForHarmonics(const HbModel& model, int harmonics);
+
 }  // namespace eqhb
