@@ -157,12 +157,16 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
     point.omega = target;
     SolverResult r;
     std::string why;
+    // Where A_k is singular at the grid point the condensed system cannot be
+    // set there at all; only the full system can solve it (below).
+    const bool singular = !trySetOmega(*system, target, &why);
+    Eigen::VectorXd singular_full;  // that point's [x; λ]
     // Try straight; on failure, walk from the last converged ω with halved steps.
-    if (trySetOmega(*system, target, &why)) {
+    if (!singular) {
       r = solver.solve(*system, z, solver_options);
       addSolverCounts(r, &point);
     }
-    if (!point.converged && !std::isnan(last_converged_omega)) {
+    if (!point.converged && !singular && !std::isnan(last_converged_omega)) {
       Eigen::VectorXd walk = z;
       double at = last_converged_omega, h = std::abs(target - at) / 2.0;
       while (h >= options.min_step && std::abs(target - at) > 1e-15) {
@@ -181,7 +185,7 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
       point.converged = std::abs(target - at) <= 1e-15 && r.converged();
     }
     // The halved steps leave the system at their last ω: the fallbacks solve at the grid point.
-    if (!point.converged && why.empty() && trySetOmega(*system, target, &why)) {
+    if (!point.converged && !singular && trySetOmega(*system, target, &why)) {
       FallbackReport tried;
       const bool started_cold = std::isnan(last_converged_omega) && !options.start_full.size();
       const SolverResult rescued =
@@ -197,30 +201,20 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
         point.residual_norm = r.final_norm;
       }
     }
-    if (!point.converged && !why.empty()) {
-      // The condensed system cannot be set at this ω: the full system can.
+    if (singular) {
       FallbackReport tried;
-      Eigen::VectorXd full;
-      const SolverResult rescued = solveWhereCondensationIsSingular(system->model(), target, solver, solver_options,
-                                                                    options.fallbacks, &full, &tried);
+      solveWhereCondensationIsSingular(system->model(), target, solver, solver_options, options.fallbacks,
+                                       &singular_full, &tried);
       for (const FallbackAttempt& attempt : tried.attempts) addSolverCounts(attempt.result, &point);
-      if (rescued.converged()) {
-        point.fallback = tried.taken;
-        z = system->fromFullCoefficients(full);  // λ: the condensed unknowns, at any ω
-        last_converged_omega = target;
-        HbModel at = system->model();
-        at.omega = target;
-        describeInto(at, full, &point);
-        curve.points.push_back(point);
-        if (progress) progress(curve.points.back(), i);
-        continue;
-      }
+      point.fallback = tried.taken;
     }
     if (point.converged) {
-      z = r.solution;
+      // λ alone is the condensed unknowns, at any ω; x of a singular point
+      // comes from its full solve (the system's factors are at another ω).
+      z = singular ? system->fromFullCoefficients(singular_full) : r.solution;
       last_converged_omega = target;
       m.omega = target;
-      describeInto(m, system->fullCoefficients(z), &point);
+      describeInto(m, singular ? singular_full : system->fullCoefficients(z), &point);
     } else {
       ++curve.failed_points;
       if (!why.empty()) point.termination += " (" + why + ")";

@@ -21,11 +21,20 @@ SolverResult solveCold(Solver& solver, HbSystem& system, const SolverOptions& op
   return start.solve(solver, system, options, nullptr);
 }
 
+// `model` on the full system from its cold start; `full` gets the answer's [x; λ].
+SolverResult solveFullSystemAt(const HbModel& model, Solver& solver, const SolverOptions& options,
+                               Eigen::VectorXd* full) {
+  auto system = makeHbSystem(model, false, options.linear_algebra);
+  SolverResult result = solveCold(solver, *system, options);
+  *full = system->fullCoefficients(result.solution);
+  return result;
+}
+
 // The same ω on the full system, its answer mapped back to `condensed`'s unknowns.
 SolverResult solveOnFullSystem(Solver& solver, HbSystem& condensed, const SolverOptions& options) {
-  auto full = makeHbSystem(condensed.model(), false, options.linear_algebra);
-  SolverResult result = solveCold(solver, *full, options);
-  result.solution = condensed.fromFullCoefficients(full->fullCoefficients(result.solution));
+  Eigen::VectorXd full;
+  SolverResult result = solveFullSystemAt(condensed.model(), solver, options, &full);
+  result.solution = condensed.fromFullCoefficients(full);
   return result;
 }
 
@@ -121,9 +130,7 @@ SolverResult solveWhereCondensationIsSingular(const HbModel& model, double omega
   try {
     HbModel at = model;
     at.omega = omega;
-    auto system = makeHbSystem(at, false, options.linear_algebra);
-    attempt.result = solveCold(solver, *system, options);
-    *full = system->fullCoefficients(attempt.result.solution);
+    attempt.result = solveFullSystemAt(at, solver, options, full);
   } catch (const std::exception& e) {
     attempt.result.solver = solver.name();
     attempt.result.termination = Termination::kBackendError;
