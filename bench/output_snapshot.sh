@@ -27,12 +27,12 @@ run() {
   grep -qE "$only" <<<"$name" || return 0
   local raw status
   raw=$(mktemp)
-  "$eqhb" "$@" >"$raw" 2>"$out/$name.stderr"
+  "$eqhb" "$@" >"$raw" 2>"$raw.err"
   status=$?
   /usr/bin/python3 "$strip" <"$raw" >"$out/$name.out"
+  /usr/bin/python3 "$strip" <"$raw.err" >"$out/$name.stderr"
   echo "$status" >"$out/$name.rc"
-  sed -i -E 's/[0-9.]+(e-?[0-9]+)? ?(s|ms|µs)\b/<time>/g' "$out/$name.stderr"
-  rm -f "$raw"
+  rm -f "$raw" "$raw.err"
 }
 
 # run_csv NAME ARGS...: as run, and the --out CSV written by the command.

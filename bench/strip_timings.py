@@ -4,7 +4,8 @@ build, or builds meant to behave alike, print the same text.
 JSON (one object, or one per line): drops every key that names a time
 ("seconds", "time", "times", "*_seconds", "*_time", "*_ms"). CSV (--csv):
 drops the columns whose header names a time. Any other text: replaces
-numbers followed by a time unit (s, ms, µs) with <time>.
+numbers followed by a time unit (s, ms, µs) with <time>, memory figures
+and shares of time likewise. Memory keys (rss, mib) go with the times.
 """
 import csv
 import io
@@ -12,8 +13,11 @@ import json
 import re
 import sys
 
-TIME_KEY = re.compile(r"(^|_)(seconds?|times?|ms|wall|elapsed)($|_)", re.IGNORECASE)
+TIME_KEY = re.compile(r"(^|_)(seconds?|times?|ms|wall|elapsed|rss|mib)($|_)", re.IGNORECASE)
 TIME_TEXT = re.compile(r"[0-9.]+(e-?[0-9]+)? ?(s|ms|µs)\b")
+# Memory and shares of time vary from run to run like times do.
+MEMORY_TEXT = re.compile(r"(peak RSS|RSS) [0-9.]+(e-?[0-9]+)? ?(MiB|MB|KB|GiB)")
+SHARE_TEXT = re.compile(r"[0-9.]+(e-?[0-9]+)? % of the ([a-z ]*)time")
 
 
 def strip_json(value):
@@ -48,6 +52,8 @@ def strip_text(text):
         try:
             out.append(json.dumps(strip_json(json.loads(line)), sort_keys=True))
         except ValueError:
+            line = MEMORY_TEXT.sub(r"\1 <memory>", line)
+            line = SHARE_TEXT.sub(r"<share> of the \2time", line)
             out.append(TIME_TEXT.sub("<time>", line))
     return "\n".join(out) + ("\n" if out else "")
 
