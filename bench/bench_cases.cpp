@@ -4,6 +4,7 @@
 #include <memory>
 #include <sstream>
 
+#include "case_verdict.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
@@ -94,14 +95,27 @@ void setRatiosToDogleg(std::vector<Case>& cases) {
         c.ratio_to_dogleg = c.median_seconds / d.median_seconds;
 }
 
+namespace {
+// A case's verdict in a table: a wrong answer is a failure, and says so.
+std::string verdictCell(const Case& c) {
+  switch (verdictOf(c)) {
+    case Verdict::kSolved: return "yes";
+    case Verdict::kUnchecked: return "converged (no reference)";
+    case Verdict::kWrongAnswer: return "**no** (wrong answer)";
+    case Verdict::kFailed: break;
+  }
+  return "**no** (" + c.termination + ")";
+}
+}  // namespace
+
 std::string table(const std::vector<Case>& cases, const std::string& study) {
   std::ostringstream t;
-  t << "| scene | H | form | system | solver | converged | iterations | f-evals | J-evals | ‖g‖ | median s | / dogleg | L2 err vs time ref | L2 err vs 4H |\n"
+  t << "| scene | H | form | system | solver | solved | iterations | f-evals | J-evals | ‖g‖ | median s | / dogleg | L2 err vs time ref | L2 err vs 4H |\n"
     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Case& c : cases) {
     if (c.study != study) continue;
     t << "| " << c.scene << " | " << c.harmonics << " | " << c.form << " | " << c.system << " | " << c.solver << " | "
-      << (c.converged ? "yes" : "**no** (" + c.termination + ")") << " | " << c.iterations << " | "
+      << verdictCell(c) << " | " << c.iterations << " | "
       << c.residual_evaluations << " | " << c.jacobian_evaluations << " | " << number(c.residual_norm) << " | "
       << number(c.median_seconds) << " | " << number(c.ratio_to_dogleg) << " | " << number(c.error_reference)
       << " | " << number(c.error_high_h) << " |\n";

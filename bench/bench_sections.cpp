@@ -106,9 +106,13 @@ std::string runCurves(const BenchOptions& options, const std::vector<fs::path>& 
     const int dofs = scene.model.structure.dofs();
     writeCurveCsv(options.out + "/curve_" + scene.name + "_sequential.csv", sequential, dofs);
     writeCurveCsv(options.out + "/curve_" + scene.name + "_arclength.csv", arclength, dofs);
-    curves << "| " << scene.name << " | " << sequential.points.size() << " | " << sequential.failed_points << " | "
-           << number(sequential.seconds) << " | " << arclength.points.size() << " | " << arclength.fold_omegas.size()
-           << " | " << arclength.stop_reason << " | " << number(arclength.seconds) << " |\n";
+    // A curve that lost points or stopped short is a failure, whatever it drew.
+    const bool sequential_whole = sequential.complete && sequential.failed_points == 0;
+    curves << "| " << scene.name << " | " << (sequential_whole ? "complete" : "**incomplete**") << " | "
+           << sequential.points.size() << " | " << sequential.failed_points << " | " << number(sequential.seconds)
+           << " | " << (arclength.complete ? "complete" : "**incomplete**") << " | " << arclength.points.size() << " | "
+           << arclength.fold_omegas.size() << " | " << arclength.stop_reason << " | " << number(arclength.seconds)
+           << " |\n";
     note(curves_line, cat("  curves ", scene.name, ": sequential ", sequential.failed_points, " failed, arclength ",
                           arclength.stop_reason));
   }

@@ -42,6 +42,13 @@ def number(text):
     return value
 
 
+def solved(row):
+    """A case solved its problem: converged and agrees with a reference (the
+    verdict eqhb-bench writes); a converged wrong answer is a failure. Older
+    files without a verdict fall back on convergence."""
+    return row.get("verdict", "solved" if row["converged"] == "true" else "failed") == "solved"
+
+
 def work_precision(folder, rows):
     by_scene = defaultdict(list)
     for r in rows:
@@ -51,11 +58,11 @@ def work_precision(folder, rows):
         fig, ax = plt.subplots(figsize=(7, 4.5))
         for solver in sorted({c["solver"] for c in cases}):
             pts = [(number(c["median_seconds"]), number(c["error_reference"])) for c in cases
-                   if c["solver"] == solver and c["converged"] == "true"]
+                   if c["solver"] == solver and solved(c)]
             pts = [p for p in pts if not math.isnan(p[1])]
             if pts:
                 ax.scatter([p[0] for p in pts], [max(p[1], 1e-16) for p in pts], label=solver, alpha=0.75)
-        failed = sum(c["converged"] != "true" for c in cases)
+        failed = sum(not solved(c) for c in cases)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("median time per solve [s]")
@@ -68,12 +75,19 @@ def work_precision(folder, rows):
 
 def performance_profile(folder, rows):
     cases = defaultdict(dict)
+    unchecked = set()
     for r in rows:
         if r["study"] != "scenes":
             continue
         key = (r["scene"], r["form"], r["system"])
-        t = number(r["median_seconds"]) if r["converged"] == "true" else math.inf
+        if r.get("verdict") == "unchecked":
+            unchecked.add(key)
+        t = number(r["median_seconds"]) if solved(r) else math.inf
         cases[key][r["solver"]] = t
+    # A case no answer could be checked on says nothing of who solves it.
+    for key in unchecked:
+        if all(math.isinf(t) for t in cases[key].values()):
+            del cases[key]
     solvers = sorted({s for c in cases.values() for s in c})
     ratios = defaultdict(list)
     for times in cases.values():
@@ -89,7 +103,8 @@ def performance_profile(folder, rows):
     ax.set_xscale("log")
     ax.set_xlabel("tau (time / best time on the case)")
     ax.set_ylabel("fraction of cases solved within tau")
-    ax.set_title(f"performance profile over {len(cases)} cases (scene x form x system)")
+    ax.set_title(f"performance profile over {len(cases)} cases (scene x form x system; solved = converged "
+                 f"and agrees with a reference)", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
     save(fig, folder, "performance_profile")

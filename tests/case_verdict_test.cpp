@@ -1,0 +1,66 @@
+#include "case_verdict.h"
+
+#include <gtest/gtest.h>
+
+namespace eqhb::bench {
+namespace {
+
+Case converged(const std::string& solver, const std::string& system, double error_reference, double error_high_h,
+               double seconds = 1e-3) {
+  Case c;
+  c.study = "scenes";
+  c.scene = "damper";
+  c.form = "minmax";
+  c.solver = solver;
+  c.system = system;
+  c.harmonics = 10;
+  c.converged = true;
+  c.median_seconds = seconds;
+  c.error_reference = error_reference;
+  c.error_high_h = error_high_h;
+  return c;
+}
+
+TEST(CaseVerdict, AConvergedAnswerFarFromBothReferencesIsAWrongAnswer) {
+  // The damper's ipopt-square answer: converged, 37 away from the time reference.
+  EXPECT_EQ(verdictOf(converged("ipopt-square", "full", 37.0, 12.0)), Verdict::kWrongAnswer);
+  EXPECT_EQ(verdictOf(converged("dogleg", "full", 0.02, 0.5)), Verdict::kSolved);
+  EXPECT_EQ(verdictOf(converged("dogleg", "full", NAN, 0.05)), Verdict::kSolved);
+  EXPECT_EQ(verdictOf(converged("dogleg", "full", NAN, NAN)), Verdict::kUnchecked);
+  Case failed = converged("dogleg", "full", 0.0, 0.0);
+  failed.converged = false;
+  EXPECT_EQ(verdictOf(failed), Verdict::kFailed);
+}
+
+TEST(CaseVerdict, TheDefaultSolvesMostAndAWrongAnswerDoesNotCount) {
+  // fast: converges everywhere, but half its answers are wrong; slow: solves
+  // every case; rescue: solves the one case slow misses... none here.
+  std::vector<Case> cases = {
+      converged("fast", "condensed", 0.01, NAN, 1e-5), converged("fast", "full", 5.0, NAN, 1e-5),
+      converged("slow", "condensed", 0.01, NAN, 1e-2), converged("slow", "full", 0.02, NAN, 1e-2),
+  };
+  DefaultChoice choice = chooseDefault(cases);
+  EXPECT_EQ(choice.default_backend, "slow");
+  EXPECT_EQ(choice.default_solved, 2);
+  EXPECT_EQ(choice.cases, 2);
+  EXPECT_EQ(choice.fallback_backend, "");
+
+  // A third scene case that only "fast" solves makes it the fallback, and a
+  // tie on cases solved goes to the faster backend.
+  Case extra = converged("fast", "full", 0.01, NAN, 1e-5);
+  extra.form = "fischer-burmeister";
+  Case missed = extra;
+  missed.solver = "slow";
+  missed.converged = false;
+  cases.push_back(extra);
+  cases.push_back(missed);
+  choice = chooseDefault(cases);
+  EXPECT_EQ(choice.default_backend, "fast");  // 2 solved each; fast is faster
+  EXPECT_EQ(choice.default_wrong_answers, 1);
+  EXPECT_EQ(choice.fallback_backend, "slow");
+  EXPECT_EQ(choice.either_solved, 3);
+  EXPECT_EQ(choice.cases, 3);
+}
+
+}  // namespace
+}  // namespace eqhb::bench
