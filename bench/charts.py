@@ -103,8 +103,8 @@ def performance_profile(folder, rows):
     ax.set_xscale("log")
     ax.set_xlabel("tau (time / best time on the case)")
     ax.set_ylabel("fraction of cases solved within tau")
-    ax.set_title(f"performance profile over {len(cases)} cases (scene x form x system; solved = converged "
-                 f"and agrees with a reference)", fontsize=9)
+    ax.set_title(f"performance profile over {len(cases)} cases (scene x form x system)\n"
+                 f"solved = converged and agrees with a reference", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
     save(fig, folder, "performance_profile")
