@@ -1,10 +1,12 @@
 #include "bench_cases.h"
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <sstream>
 
 #include "case_verdict.h"
+#include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
@@ -60,16 +62,27 @@ Case runCase(const std::string& study, const std::filesystem::path& path, const 
     c.termination = "not_applicable";
     return c;
   }
-  auto solver = makeSolver(solver_name);
+  // The default path is the own dogleg followed, where it fails, by the
+  // library's fallback chain (cold start, full system, a second backend):
+  // what a user gets without choosing, timed as a whole.
+  const bool default_path = solver_name == kDefaultPath;
+  auto solver = makeSolver(default_path ? "dogleg" : solver_name);
+  std::unique_ptr<OwnedFallbackChain> fallbacks;
+  if (default_path) fallbacks = std::make_unique<OwnedFallbackChain>("default", solver->name(), "solver");
   SolverOptions options;
   options.time_limit = time_limit;
   std::vector<double> times;
   SolverResult r;
   double spent = 0.0;  // repeat for a stable median; slow cases are repeated less
   for (int i = 0; i < repeats && (i == 0 || spent < 1.0); ++i) {
+    const auto start = std::chrono::steady_clock::now();
     r = solver->solve(*system, Eigen::VectorXd::Zero(system->size()), options);
-    times.push_back(r.seconds);
-    spent += r.seconds;
+    if (default_path && !r.converged() && r.termination != Termination::kInvalidOptions)
+      r = solveWithFallbacks(*system, *solver, options, r, true, fallbacks->chain(), nullptr);
+    const double seconds =
+        default_path ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() : r.seconds;
+    times.push_back(seconds);
+    spent += seconds;
   }
   c.repeats = static_cast<int>(times.size());
   c.converged = r.converged();

@@ -26,6 +26,10 @@ struct Case {
 
 double median(std::vector<double> v);
 
+// The backend name under which a case runs the library's default path: the
+// own dogleg, then the fallback chain where it fails (default_path.h).
+inline constexpr const char* kDefaultPath = "default-path";
+
 // The scene at `path` with the overrides `set`, solved from zero up to
 // `repeats` times (fewer once a second is spent); accuracy against `truth`
 // when it is given and the solve converged.

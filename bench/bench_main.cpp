@@ -49,6 +49,22 @@ std::vector<ScaleRow> runScaleSection(const BenchOptions& options) {
   return scale;
 }
 
+// --scenes-only: the scene study with its advice (bench.json, bench.csv, scenes.md).
+int runScenesOnly(const BenchOptions& options) {
+  const SceneLists scenes = listScenes(options.problems);
+  std::vector<Case> cases;
+  std::vector<TruthStatus> truths;
+  runSceneStudy(options, scenes.small, builtBackends(), cases, truths);
+  setRatiosToDogleg(cases);
+  ReportParts parts;
+  parts.metadata = writeCaseData(options.out, cases);
+  parts.truth_table = truthTable(truths);
+  parts.advice = adviseBackends(cases);
+  writeScenesReport(options, cases, parts);
+  std::cout << "scene study: " << options.out << "/scenes.md, " << options.out << "/bench.json\n";
+  return 0;
+}
+
 std::string joinStems(const std::vector<fs::path>& paths) {
   std::string names;
   for (const auto& path : paths) names += (names.empty() ? "" : ", ") + path.stem().string();
@@ -64,6 +80,7 @@ int main(int argc, char** argv) {
   fs::create_directories(options.out);
   if (options.compliant_only) return runCompliantOnly(options);
   if (options.scale_only) return runScaleOnly(options);
+  if (options.scenes_only) return runScenesOnly(options);
 
   const SceneLists scenes = listScenes(options.problems);
   const std::vector<std::string> built = builtBackends();

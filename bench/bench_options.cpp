@@ -16,6 +16,8 @@ bool parseBenchOptions(int argc, char** argv, BenchOptions& options, int& exit_c
   app.add_flag("--scale-only", options.scale_only, "Run the scale study alone (scale.csv, scale.md)");
   app.add_flag("--compliant-only", options.compliant_only,
                "Run the compliant-vs-Signorini study alone (compliant.csv, compliant.md)");
+  app.add_flag("--scenes-only", options.scenes_only,
+               "Run the scene study alone: every scene, form, system and backend with the advice (scenes.md)");
   app.add_option("--repeats", options.repeats, "Solves per case for the median time (capped at ~1 s per case)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--reference-step", options.reference_step, "Time step of the time-domain references");

@@ -12,6 +12,7 @@ struct BenchOptions {
   bool quick = false;          // fewer backends, forms and repeats
   bool scale_only = false;     // the scale study alone
   bool compliant_only = false; // the compliant-vs-Signorini study alone
+  bool scenes_only = false;    // the scene study alone (bench.json, bench.csv, scenes.md)
   int repeats = 7;             // solves per case for the median time (at most 3 with quick)
   double reference_step = 2e-4;  // time step of the time-domain references
 };

@@ -176,4 +176,13 @@ void writeReport(const BenchOptions& options, const std::vector<Case>& cases, co
          << "\n![scale study](scale.png)\n";
 }
 
+void writeScenesReport(const BenchOptions& options, const std::vector<Case>& cases, const ReportParts& parts) {
+  std::ofstream(options.out + "/scenes.md")
+      << "# eqhb scene study\n\n" << defaultAndFallback(cases) << "| scene | backend | formulations solved | median s |\n"
+      << "|---|---|---|---|\n" << parts.advice.summary_rows << "\nRun: " << runLine(parts.metadata) << ".\n\n"
+      << "## Which backend for which scene\n\nThe rule: " << kAdviceRule << ".\n\n" << parts.advice.bullets
+      << "\n## References of truth\n\n" << parts.truth_table << "\n## Scenes, formulations and backends\n\n"
+      << table(cases, "scenes");
+}
+
 }  // namespace eqhb::bench

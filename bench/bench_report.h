@@ -31,5 +31,7 @@ struct ReportParts {
   std::vector<ScaleRow> scale;
 };
 void writeReport(const BenchOptions& options, const std::vector<Case>& cases, const ReportParts& parts);
+// scenes.md: the summary, the advice and the scene table alone (--scenes-only).
+void writeScenesReport(const BenchOptions& options, const std::vector<Case>& cases, const ReportParts& parts);
 
 }  // namespace eqhb::bench

@@ -18,6 +18,7 @@ namespace {
 using Formulation = std::pair<std::string, std::vector<std::string>>;
 
 bool isBuilt(const std::vector<std::string>& built, const std::string& name) {
+  if (name == kDefaultPath) return true;
   return std::find(built.begin(), built.end(), name) != built.end();
 }
 
@@ -141,7 +142,7 @@ void runSceneStudy(const BenchOptions& options, const std::vector<fs::path>& sce
   const std::vector<std::string> scene_backends =
       options.quick ? std::vector<std::string>{"dogleg", "dogleg-newton", "minpack"}
                     : std::vector<std::string>{"dogleg", "dogleg-newton", "minpack", "ceres-lm", "ceres-dogleg",
-                                               "ipopt-ls", "ipopt-square", "nlopt-slsqp"};
+                                               "ipopt-ls", "ipopt-square", "nlopt-slsqp", kDefaultPath};
   const std::vector<std::string> variant_backends = {"dogleg", "dogleg-newton", "minpack", "ipopt-ls"};
   ProgressLine line(cli::verbosity().progress, "bench 2/5 scenes");
   for (const auto& path : scenes) {
