@@ -7,6 +7,7 @@
 #include "eqhb/solvers/deadline.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/version.h"
+#include "flag_names.h"
 #include "generate_command.h"
 #include "shoot_command.h"
 #include "solve_command.h"
@@ -60,7 +61,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return eqhb::cli::runCompare(compare_hb, compare_time);
     return eqhb::cli::runSolve(solve);
   } catch (const eqhb::InputError& e) {
-    std::cerr << "eqhb: error: " << e.what() << "\n";
+    std::cerr << "eqhb: error: " << eqhb::cli::withFlagNames(e.what()) << "\n";
     return 2;
   } catch (const eqhb::IoError& e) {  // a file could not be written: not the input's fault
     std::cerr << "eqhb: I/O error: " << e.what() << "\n";
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
     std::cerr << "eqhb: stopped: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "eqhb: error: " << e.what() << "\n";
+    std::cerr << "eqhb: error: " << eqhb::cli::withFlagNames(e.what()) << "\n";
     return 2;
   }
 }

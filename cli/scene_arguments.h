@@ -1,26 +1,18 @@
 // Options shared by the commands that load a scene: the file, the common
-// overrides (--omega, --harmonics, --samples, --form, --rho) and --set.
+// overrides (--omega, --harmonics, --samples, --form, --rho) and --set,
+// read into the application layer's scene settings.
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <optional>
-#include <string>
-#include <vector>
 
-#include "eqhb/scenes/scene.h"
+#include "eqhb/app/scene_settings.h"
 
 namespace eqhb::cli {
 
-struct SceneArguments {
-  std::string scene;
-  std::optional<double> omega, rho;
-  std::optional<int> harmonics, samples;
-  std::optional<std::string> form;
-  std::vector<std::string> overrides;  // --set
-};
+using SceneArguments = app::SceneSettings;
 
 void addSceneOptions(CLI::App* command, SceneArguments& args);
 // Loads the scene with every override applied; throws InputError.
-Scene loadSceneWith(const SceneArguments& args);
+inline Scene loadSceneWith(const SceneArguments& args) { return app::loadScene(args); }
 
 }  // namespace eqhb::cli

@@ -97,7 +97,7 @@ StudySettings studySettings(const SolveArguments& s, const StudyArguments& a, st
   // here so that a wrong path is one error, not a failed row per sample.
   const Scene scene = loadSceneWith(s.scene);
   *scene_name = scene.name;
-  settings.scene_path = s.scene.scene;
+  settings.scene_path = s.scene.path;
   settings.overrides = s.scene.overrides;
   if (s.scene.harmonics) settings.overrides.push_back("harmonic_balance.harmonics=" + std::to_string(*s.scene.harmonics));
   if (s.scene.samples) settings.overrides.push_back("harmonic_balance.samples=" + std::to_string(*s.scene.samples));

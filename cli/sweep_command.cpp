@@ -15,6 +15,7 @@
 #include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/stability/curve_stability.h"
+#include "flag_names.h"
 #include "terminal/progress.h"
 #include "terminal/run_program.h"
 #include "terminal/verbosity.h"
@@ -325,7 +326,7 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
         break;
       }
     std::cerr << "eqhb: --accuracy " << accurate->tolerance << " not met at omega = " << where.str();
-    if (first_miss) std::cerr << " (at omega = " << first_miss->omega << ": " << first_miss->accuracy_failure << ")";
+    if (first_miss) std::cerr << " (at omega = " << first_miss->omega << ": " << withFlagNames(first_miss->accuracy_failure) << ")";
     std::cerr << "\n";
     return 1;
   }

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "eqhb/app/simulate.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"
 #include "solve_command.h"
@@ -20,9 +21,9 @@ struct TimeArguments {
   CLI::Option *step = nullptr, *theta = nullptr, *periods = nullptr, *periodic_tolerance = nullptr;
 };
 
-// The run's time options: the general defaults, then the scene's
-// [time_reference], then what the command line gave.
-TimeOptions timeOptionsFor(const Scene& scene, const TimeArguments& time);
+// The settings given on the command line (app::timeOptionsFor puts them
+// over the scene's [time_reference] and the general defaults).
+app::TimeSettings timeSettings(const TimeArguments& time);
 
 void addSimulateCommand(CLI::App& app, SolveArguments& solve, TimeArguments& time);
 void addCompareCommand(CLI::App& app, SolveArguments& solve, TimeArguments& time);

@@ -6,7 +6,7 @@ set(EQHB_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/eqhb)
 get_property(eqhb_adapters GLOBAL PROPERTY EQHB_LIBRARIES)
 get_property(EQHB_BACKENDS GLOBAL PROPERTY EQHB_BACKENDS)
 
-install(TARGETS eqhb_core ${eqhb_adapters} EXPORT eqhbTargets
+install(TARGETS eqhb_core eqhb_app ${eqhb_adapters} EXPORT eqhbTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -38,7 +38,7 @@ install(FILES ${PROJECT_BINARY_DIR}/eqhbConfig.cmake ${PROJECT_BINARY_DIR}/eqhbC
 
 # pkg-config: static archives carry their dependencies into every link, so
 # they are public requirements then; shared libraries keep them private.
-set(EQHB_PC_LIBS "-leqhb_solvers")
+set(EQHB_PC_LIBS "-leqhb_app -leqhb_solvers")
 set(EQHB_PC_REQUIRES_DEPS "fftw3")
 set(EQHB_PC_LIBS_DEPS " -lumfpack -lamd -lsuitesparseconfig")  # SuiteSparse has no .pc file on Debian 12
 foreach(backend ${EQHB_BACKENDS})

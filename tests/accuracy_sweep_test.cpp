@@ -88,7 +88,7 @@ TEST(AccuracySweep, NamesThePointsWhereTheLargestHIsNotEnough) {
         found = true;
         EXPECT_EQ(p.accuracy_met, 0);
         EXPECT_GT(p.error_estimate, 5e-3);
-        EXPECT_NE(p.accuracy_failure.find("--max-harmonics"), std::string::npos) << p.accuracy_failure;
+        EXPECT_NE(p.accuracy_failure.find("max_harmonics"), std::string::npos) << p.accuracy_failure;
       }
     EXPECT_TRUE(found) << omega;
   }

@@ -191,7 +191,7 @@ TEST(AccuracyTarget, NotReachedBelowTheLargestH) {
   const AccuracyChoice c =
       chooseHarmonics(scene("coulomb-oscillator.toml", 0.6), 1e-5, 5, 20, *solver, tightOptions(), true);
   EXPECT_FALSE(c.reached);
-  EXPECT_NE(c.failure.find("--max-harmonics = 20"), std::string::npos) << c.failure;
+  EXPECT_NE(c.failure.find("max_harmonics = 20"), std::string::npos) << c.failure;
 }
 
 TEST(AccuracyTarget, RejectsAToleranceThatIsNotARelativeError) {

@@ -7,6 +7,7 @@ contact by an equality-based harmonic balance.
     curve = eqhb.sweep(model, 0.1, 0.8, step=0.005)
     reference = eqhb.simulate(model, omega=0.3, step=1e-3)
     orbit = eqhb.shoot(model, omega=0.3)                   # exact orbit, Floquet multipliers
+    errors = eqhb.compare(model, omega=0.3)                # harmonic balance against the reference
 
 A model comes from a scene file (`load_scene`) or from arrays (`model`: numpy
 or scipy.sparse M, C, K, laws and loads as dicts with the scene file's keys).
@@ -18,9 +19,9 @@ import numbers
 import os
 
 from ._eqhb import InputError, Model, __version__, solvers
-from ._eqhb import _shoot, _simulate, _solve, _stability, _sweep
+from ._eqhb import _compare, _shoot, _simulate, _solve, _stability, _sweep
 
-__all__ = ["InputError", "Model", "__version__", "load_scene", "model", "shoot", "simulate", "solve", "solvers", "stability",
+__all__ = ["InputError", "Model", "__version__", "compare", "load_scene", "model", "shoot", "simulate", "solve", "solvers", "stability",
            "sweep"]
 
 
@@ -69,26 +70,46 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
     return Model._from_arrays("\n".join(lines) + "\n", mass, damping, stiffness)
 
 
-def solve(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", system="condensed",
-          tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
-          initial=None, cold_start="coarse", fallback="default"):
-    """One harmonic-balance solve. Returns a dict: converged, termination,
-    iterations, residual/jacobian evaluations, residual_norm, seconds, and
-    "solution" (harmonics, x_cos/x_sin and lambda_cos/lambda_sin per channel,
-    one period sampled: t, x, lambda; max_abs_x, invariants, and "full", the
-    coefficient vector to pass as `initial` to a later solve). Without
-    `initial`, the solve starts from a coarse harmonic balance (about H/3
-    harmonics on few samples, as `eqhb solve`; "cold_start" in the result
-    says what it did) or, with cold_start="zero", from zero. A solve that
-    fails gets the `fallback` steps in order ("cold", "full", a backend
-    name; comma-separated, or "none"; "default": cold, full, then Ipopt's
-    least squares, else ceres-lm): "fallback" in the result lists each
-    attempt and the step "taken"."""
-    return _solve(_model(model), _real(omega, "omega", True), _integer(harmonics, "harmonics", True),
-                  _integer(samples, "samples", True), _text(solver, "solver"), _text(system, "system"),
-                  _real(tolerance, "tolerance"), _integer(max_iterations, "max_iterations"),
-                  _integer(max_evaluations, "max_evaluations"), _real(time_limit, "time_limit"), _options(options),
-                  _vector(initial, "initial"), _text(cold_start, "cold_start"), _text(fallback, "fallback"))
+def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, solver="dogleg",
+          system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0,
+          options=None, linear_algebra="auto", initial=None, cold_start="coarse", fallback="default",
+          from_harmonics=None, repeat=1, stability=False, error_estimate=False, accuracy=None, max_harmonics=320,
+          refine=None, restitution=0.0, refine_harmonics=None):
+    """One harmonic-balance solve, as `eqhb solve` runs it. Returns a dict
+    with every key of `eqhb solve --json` (converged, termination, iterations,
+    residual/jacobian evaluations, residual_norm, seconds, cold_start,
+    fallback, "dofs" and "laws", invariants, ...) and "solution" (harmonics,
+    x_cos/x_sin and lambda_cos/lambda_sin per channel, one period sampled: t,
+    x, lambda; max_abs_x, and "full", the coefficient vector to pass as
+    `initial` to a later solve).
+
+    The start: `initial` (a "full" vector), else the solutions at
+    from_harmonics, 2 from_harmonics, ... below H (continuation in H), else a
+    coarse harmonic balance (about H/3 harmonics on few samples;
+    cold_start="zero": from zero). A solve that fails gets the `fallback`
+    steps in order ("cold", "full", a backend name; comma-separated, or
+    "none"; "default": cold, full, then Ipopt's least squares, else ceres-lm).
+    form and rho apply to every law that has them. linear_algebra: "auto",
+    "dense" or "sparse". repeat: solves timed (the median is "seconds").
+
+    On the answer: stability (Floquet multipliers by Hill's method: the
+    "stability" dict, as eqhb.stability), error_estimate (one more solve at
+    2H: "error_estimate"), accuracy (a relative error in (0, 1): the cheapest
+    H, doubling from `harmonics` or 5 up to max_harmonics, and unless rho is
+    given the rho among each law's times 1, 0.1, 0.01, whose estimated error
+    of max|x| is <= accuracy: "accuracy" and "rho"), refine="shoot" (the exact
+    periodic orbit replaces the answer, on refine_harmonics harmonics if
+    given, restitution e of contact laws: "refinement")."""
+    args = _scene_args(omega, harmonics, samples, form, rho)
+    args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
+                         linear_algebra, cold_start, fallback))
+    args.update(initial=_vector(initial, "initial"), from_harmonics=_integer(from_harmonics, "from_harmonics", True),
+                repeat=_integer(repeat, "repeat"), stability=_flag(stability, "stability"),
+                error_estimate=_flag(error_estimate, "error_estimate"), accuracy=_real(accuracy, "accuracy", True),
+                max_harmonics=_integer(max_harmonics, "max_harmonics"),
+                refine=None if refine is None else _text(refine, "refine"), restitution=_real(restitution, "restitution"),
+                refine_harmonics=_integer(refine_harmonics, "refine_harmonics", True))
+    return _solve(_model(model), args)
 
 
 def stability(model, solution, *, omega=None, harmonics=None, samples=None):
@@ -128,34 +149,100 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
                   _text(fallback, "fallback"))
 
 
-def simulate(model, omega=None, *, step=1e-4, periods=5000, theta=0.5, periodic_tolerance=1e-9, restitution=0.0,
-             initial=None):
-    """The time-domain reference: Moreau-Jean integration to the periodic
-    steady state. Returns periodic, periods, step, steps_per_period,
+def simulate(model, omega=None, *, step=None, periods=None, theta=None, periodic_tolerance=None, max_seconds=0.0,
+             restitution=0.0, initial=None, from_hb=False, harmonics=None, samples=None, form=None, rho=None,
+             solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
+             time_limit=0.0, options=None, linear_algebra="auto", cold_start="coarse", fallback="default"):
+    """The time-domain reference, as `eqhb simulate`: Moreau-Jean integration
+    to the periodic steady state. step, periods, theta and
+    periodic_tolerance left None take the scene's [time_reference], else
+    1e-4, 5000, 0.5 and 1e-9; max_seconds stops an unsettled run (0: none).
+    It starts from rest, from `initial` (a "full" vector) or, with from_hb,
+    from the harmonic-balance solution (solved as by solve, with the solver
+    arguments). Returns periodic, timed_out, periods, step, steps_per_period,
     periodicity_error, seconds, the last period (t, x, v, lambda: one row per
-    DOF or law component), max_abs_x and its Fourier "coefficients"."""
-    return _simulate(_model(model), _real(omega, "omega", True), _real(step, "step"), _integer(periods, "periods"),
-                     _real(theta, "theta"), _real(periodic_tolerance, "periodic_tolerance"),
-                     _real(restitution, "restitution"), _vector(initial, "initial"))
+    DOF or law component), max_abs_x, "dofs" and "law_forces" (as `eqhb
+    simulate --json`) and the Fourier "coefficients"."""
+    args = _scene_args(omega, harmonics, samples, form, rho)
+    args.update(_time_args(step, periods, theta, periodic_tolerance, max_seconds, restitution))
+    args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
+                         linear_algebra, cold_start, fallback))
+    args.update(initial=_vector(initial, "initial"), from_hb=_flag(from_hb, "from_hb"))
+    return _simulate(_model(model), args)
 
 
-def shoot(model, omega=None, *, harmonics=None, samples=None, solver="dogleg", restitution=0.0, tolerance=1e-11,
-          max_iterations=40, time_limit=0.0):
-    """The exact periodic orbit by shooting (Coulomb 1D, Jenkins on one DOF
-    and Signorini laws in closed form, cubic, planar Coulomb with stick-slip and Stribeck by
-    Gauss-Legendre phases with located events;
-    Newton on the period map with saltation matrices), started from the
-    harmonic-balance solution. Returns converged, failure, period_residual, iterations,
-    state (y(t0) = [x; v]), monodromy, multipliers (complex, largest modulus
-    first), spectral_radius, stable (these three None when no orbit was found),
-    events per period, max_abs_x, and one
-    period sampled (t, x, v, lambda: one row per DOF or law component).
-    time_limit: seconds for the whole call (0: none); shooting that runs out of
-    it returns converged False, a harmonic-balance start that does raises."""
-    return _shoot(_model(model), _real(omega, "omega", True), _integer(harmonics, "harmonics", True),
-                  _integer(samples, "samples", True), _text(solver, "solver"), _real(restitution, "restitution"),
-                  _real(tolerance, "tolerance"), _integer(max_iterations, "max_iterations"),
-                  _real(time_limit, "time_limit"))
+def compare(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, step=None, periods=None,
+            theta=None, periodic_tolerance=None, max_seconds=0.0, restitution=0.0, from_rest=False,
+            solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
+            time_limit=0.0, options=None, linear_algebra="auto", cold_start="coarse", fallback="default"):
+    """A harmonic-balance solve against the time-domain reference started
+    from it (from rest with from_rest), as `eqhb compare`. Returns scene,
+    omega, harmonics, "hb" (converged, termination, residual_norm, seconds,
+    solver), "solution" (as solve's), "reference" (as simulate's) and
+    "errors": per channel (x1.., law1.lambda..) relative_l2,
+    relative_l2_velocity, relative_max_abs, first_harmonic_error, max_abs_hb,
+    max_abs_reference. The time settings are simulate's."""
+    args = _scene_args(omega, harmonics, samples, form, rho)
+    args.update(_time_args(step, periods, theta, periodic_tolerance, max_seconds, restitution))
+    args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
+                         linear_algebra, cold_start, fallback))
+    args.update(from_rest=_flag(from_rest, "from_rest"))
+    return _compare(_model(model), args)
+
+
+def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, from_hb=None, solver="dogleg",
+          fallback="default", restitution=0.0, tolerance=1e-11, max_iterations=40, time_limit=0.0):
+    """The exact periodic orbit by shooting, as `eqhb shoot` (Coulomb 1D,
+    Jenkins on one DOF and Signorini laws in closed form, cubic, planar
+    Coulomb with stick-slip and Stribeck by Gauss-Legendre phases with
+    located events; Newton on the period map with saltation matrices),
+    started from the harmonic-balance solution of the scene (solved as by
+    solve: coarse start, `fallback` steps; at from_hb harmonics if given).
+    Returns converged, failure, period_residual, tolerance, iterations,
+    flow_evaluations, state (y(t0) = [x; v]), monodromy, multipliers
+    (complex, largest modulus first), spectral_radius, stable (these three
+    None when no orbit was found), events per period, max_abs_x, "dofs",
+    "from_hb" (the start's solver report, harmonics, cold_start), and one
+    period sampled (t, x, v, lambda: one row per DOF or law component,
+    lambda_labels). tolerance and max_iterations are shooting's (relative
+    period residual, Newton steps). time_limit: seconds for the whole call
+    (0: none); shooting that runs out of it returns converged False, a
+    harmonic-balance start that does raises."""
+    args = _scene_args(omega, harmonics, samples, form, rho)
+    args.update(_hb_args(solver, "condensed", 1e-10, 1000, 10000, time_limit, None, "auto", "coarse", fallback))
+    args.update(from_hb=_integer(from_hb, "from_hb", True), restitution=_real(restitution, "restitution"),
+                shooting_tolerance=_real(tolerance, "tolerance"),
+                shooting_max_iterations=_integer(max_iterations, "max_iterations"))
+    return _shoot(_model(model), args)
+
+
+def _scene_args(omega, harmonics, samples, form, rho):
+    return {"omega": _real(omega, "omega", True), "harmonics": _integer(harmonics, "harmonics", True),
+            "samples": _integer(samples, "samples", True), "form": None if form is None else _text(form, "form"),
+            "rho": _real(rho, "rho", True)}
+
+
+def _hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options, linear_algebra,
+             cold_start, fallback):
+    return {"solver": _text(solver, "solver"), "system": _text(system, "system"),
+            "tolerance": _real(tolerance, "tolerance"), "max_iterations": _integer(max_iterations, "max_iterations"),
+            "max_evaluations": _integer(max_evaluations, "max_evaluations"),
+            "time_limit": _real(time_limit, "time_limit"), "options": _options(options),
+            "linear_algebra": _text(linear_algebra, "linear_algebra"), "cold_start": _text(cold_start, "cold_start"),
+            "fallback": _text(fallback, "fallback")}
+
+
+def _time_args(step, periods, theta, periodic_tolerance, max_seconds, restitution):
+    return {"step": _real(step, "step", True), "periods": _integer(periods, "periods", True),
+            "theta": _real(theta, "theta", True),
+            "periodic_tolerance": _real(periodic_tolerance, "periodic_tolerance", True),
+            "max_seconds": _real(max_seconds, "max_seconds"), "restitution": _real(restitution, "restitution")}
+
+
+def _flag(value, field):
+    if not isinstance(value, bool):
+        raise InputError(f"{field} = {value!r}: must be True or False")
+    return value
 
 
 def _square_size(matrix, field):

@@ -1,9 +1,14 @@
 #include "conversions.h"
 
 #include <cmath>
+#include <complex>
+#include <cstdint>
 
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/laws/invariants.h"
+#include "eqhb/output/orbit_json.h"
+#include "eqhb/output/simulation_json.h"
+#include "eqhb/output/solution_json.h"
 
 namespace eqhb::python {
 
@@ -46,7 +51,10 @@ Eigen::MatrixXd samples(const std::vector<ChannelSummary>& channels, int n) {
 }  // namespace
 
 py::dict solutionDict(const HbModel& model, const Eigen::VectorXd& full) {
-  const HbSolution s = summarize(model, full);
+  return solutionDict(model, full, summarize(model, full));
+}
+
+py::dict solutionDict(const HbModel& model, const Eigen::VectorXd& full, const HbSolution& s) {
   py::dict d;
   d["harmonics"] = py::array_t<int>(model.basis.harmonics().size(), model.basis.harmonics().data());
   Eigen::MatrixXd cos, sin;
@@ -62,7 +70,7 @@ py::dict solutionDict(const HbModel& model, const Eigen::VectorXd& full) {
   d["x"] = toArray(samples(s.displacements, model.samples));
   d["lambda"] = toArray(samples(s.forces, model.samples));
   Eigen::VectorXd max_x(s.displacements.size()), max_v(s.displacements.size()), max_l(s.forces.size());
-  py::list labels;
+  py::list labels;  // the law components' (HbSolution's labelling)
   for (size_t i = 0; i < s.displacements.size(); ++i) {
     max_x[i] = s.displacements[i].max_abs;
     max_v[i] = s.displacements[i].max_abs_rate;
@@ -184,6 +192,108 @@ py::dict referenceDict(const HbModel& model, const TimeReference& ref) {
   d["lambda"] = toArray(Eigen::MatrixXd(ref.force.transpose()));
   d["max_abs_x"] = toArray(Eigen::VectorXd(ref.displacement.cwiseAbs().colwise().maxCoeff().transpose()));
   d["coefficients"] = solutionDict(model, ref.coefficients);
+  return d;
+}
+
+py::object fromJson(const nlohmann::json& v) {
+  switch (v.type()) {
+    case nlohmann::json::value_t::null: return py::none();
+    case nlohmann::json::value_t::boolean: return py::bool_(v.get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(v.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(v.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float: return py::float_(v.get<double>());
+    case nlohmann::json::value_t::string: return py::str(v.get<std::string>());
+    case nlohmann::json::value_t::array: {
+      py::list out;
+      for (const auto& item : v) out.append(fromJson(item));
+      return std::move(out);
+    }
+    case nlohmann::json::value_t::object: {
+      py::dict out;
+      for (const auto& [key, item] : v.items()) out[py::str(key)] = fromJson(item);
+      return std::move(out);
+    }
+    default: return py::none();
+  }
+}
+
+namespace {
+py::array_t<std::complex<double>> complexArray(const std::vector<std::complex<double>>& values) {
+  py::array_t<std::complex<double>> out(values.size());
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+}  // namespace
+
+py::dict stabilityDict(const HillResult& hill) {
+  py::dict d = fromJson(output::stabilityJson(hill));
+  std::vector<std::complex<double>> multipliers, exponents;
+  for (const auto& e : hill.exponents) {
+    multipliers.push_back(e.multiplier);
+    exponents.push_back(e.exponent);
+  }
+  d["multipliers"] = complexArray(multipliers);
+  d["exponents"] = complexArray(exponents);
+  d["failure"] = hill.failure;  // empty when computed
+  return d;
+}
+
+py::dict solveDict(const app::Solution& s) {
+  py::dict d = fromJson(output::solutionJson(s, false));
+  if (s.stability) d["stability"] = stabilityDict(*s.stability);
+  d["solution"] = solutionDict(s.reported, s.full, s.summary);
+  d["warnings"] = s.run.warnings;
+  return d;
+}
+
+py::dict orbitDict(const app::Orbit& o) {
+  py::dict d = fromJson(output::orbitJson(o, false));
+  const orbits::ShootingResult& orbit = o.orbit;
+  py::dict from_hb = resultDict(o.hb.result);
+  from_hb["harmonics"] = o.model().basis.count();
+  from_hb["cold_start"] = fromJson(output::coldStartJson(o.hb.cold_start, o.hb.start));
+  if (!o.hb.fallback.attempts.empty()) from_hb["fallback"] = fromJson(output::fallbackJson(o.hb.fallback));
+  d["from_hb"] = from_hb;
+  d["failure"] = orbit.failure;
+  d["state"] = toArray(orbit.state);
+  d["monodromy"] = toArray(orbit.monodromy);
+  const std::vector<std::complex<double>> multipliers(orbit.multipliers.data(),
+                                                      orbit.multipliers.data() + orbit.multipliers.size());
+  // Floquet multipliers belong to an orbit: None when none was found.
+  d["multipliers"] = orbit.converged ? py::object(complexArray(multipliers)) : py::none();
+  d["max_abs_x"] = toArray(orbit.max_abs);
+  d["lambda_labels"] = lawComponentLabels(o.model());
+  d["warnings"] = o.hb.warnings;
+  if (o.samples) {
+    d["t"] = py::array_t<double>(o.samples->times.size(), o.samples->times.data());
+    d["x"] = toArray(Eigen::MatrixXd(o.samples->displacement.transpose()));
+    d["v"] = toArray(Eigen::MatrixXd(o.samples->velocity.transpose()));
+    d["lambda"] = toArray(Eigen::MatrixXd(o.samples->force.transpose()));
+  }
+  return d;
+}
+
+py::dict simulationDict(const app::Simulation& s) {
+  py::dict d = referenceDict(s.model(), s.reference);
+  py::dict json = fromJson(output::simulationJson(s, false));
+  for (auto item : json)
+    if (!d.contains(item.first)) d[item.first] = item.second;
+  d["theta"] = s.options.theta;
+  d["periodic_tolerance"] = s.options.periodic_tolerance;
+  d["max_periods"] = s.options.max_periods;
+  if (s.hb) d["from_hb"] = resultDict(s.hb->result);
+  return d;
+}
+
+py::dict comparisonDict(const app::Comparison& c) {
+  py::dict d = fromJson(output::comparisonJson(c));
+  d["hb"]["solver"] = c.hb.result.solver;
+  d["solution"] = solutionDict(c.model(), c.hb.full());
+  py::dict reference = referenceDict(c.model(), c.reference);
+  for (auto item : py::dict(d["reference"]))
+    if (!reference.contains(item.first)) reference[item.first] = item.second;
+  d["reference"] = reference;
+  d["warnings"] = c.hb.warnings;
   return d;
 }
 

@@ -2,10 +2,16 @@
 // harmonic, dicts for the rest.
 #pragma once
 
+#include <pybind11/complex.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <nlohmann/json.hpp>
+
+#include "eqhb/app/shoot.h"
+#include "eqhb/app/simulate.h"
+#include "eqhb/app/solution.h"
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/references/time_integrator.h"
@@ -25,6 +31,24 @@ py::array_t<double> toArray(const Eigen::MatrixXd& m);
 // "max_abs_velocity", "max_abs_lambda", the labels, the laws' invariant
 // checks and the "full" vector (a start for a later solve).
 py::dict solutionDict(const HbModel& model, const Eigen::VectorXd& full);
+// The same with the channels' summary given (an orbit's exact max|x|).
+py::dict solutionDict(const HbModel& model, const Eigen::VectorXd& full, const HbSolution& summary);
+// A JSON value of the writers as Python objects (dicts, lists, numbers).
+py::object fromJson(const nlohmann::json& value);
+// A Hill analysis: the keys of the JSON writer's, multipliers and exponents
+// as complex arrays.
+py::dict stabilityDict(const HillResult& hill);
+// app::solve's result: every key of `eqhb solve --json` (output::solutionJson),
+// stability with complex multipliers, and "solution" (solutionDict of the
+// answer reported).
+py::dict solveDict(const app::Solution& solution);
+// app::shoot's result: the keys of `eqhb shoot --json`, "from_hb" with the
+// start's solver report, the monodromy, complex multipliers, "max_abs_x",
+// and one period (t, x, v, lambda) with "lambda_labels".
+py::dict orbitDict(const app::Orbit& orbit);
+// app::simulate's and app::compare's results: referenceDict plus the JSON keys.
+py::dict simulationDict(const app::Simulation& simulation);
+py::dict comparisonDict(const app::Comparison& comparison);
 // The solver's report: converged, termination, counts, norms, time.
 py::dict resultDict(const SolverResult& result);
 py::dict curveDict(const HbModel& model, const Curve& curve);

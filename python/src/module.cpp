@@ -11,7 +11,10 @@
 #include <optional>
 
 #include "conversions.h"
-#include "matrix_argument.h"
+#include "py_model.h"
+#include "eqhb/app/shoot.h"
+#include "eqhb/app/simulate.h"
+#include "eqhb/app/solve.h"
 #include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/coarse_start.h"
@@ -29,48 +32,23 @@
 
 namespace py = pybind11;
 using namespace eqhb;
-using python::curveDict;
-using python::matrixArgument;
-using python::referenceDict;
-using python::resultDict;
-using python::solutionDict;
+using namespace eqhb::python;
 
 namespace {
 
-// A scene as Python sees it: the model and the scene's own metadata.
-struct PyModel {
-  Scene scene;
-};
-
-// The model of `text` (a scene document whose structure only fixes the DOF
-// count) with M, C, K from arrays; the loads and laws come from the text.
-PyModel modelFromArrays(const std::string& text, const py::object& mass, const py::object& damping,
-                        const py::object& stiffness) {
-  StructureMatrices matrices;
-  matrices.mass = matrixArgument(mass, "mass");
-  matrices.stiffness = matrixArgument(stiffness, "stiffness");
-  if (damping.is_none()) {
-    matrices.damping.resize(matrices.mass.rows(), matrices.mass.cols());
-  } else {
-    matrices.damping = matrixArgument(damping, "damping");
-  }
-  checkStructureMatrices(matrices, 1e-12, MatrixNames{});
-  PyModel m{parseScene(text, "model")};
-  LinearStructure structure = toLinearStructure(matrices);
-  structure.loads = m.scene.model.structure.loads;
-  m.scene.model.structure = std::move(structure);
-  m.scene.model.validate();
-  return m;
-}
-
 SolverOptions solverOptions(double tolerance, int max_iterations, int max_evaluations, double time_limit,
-                            const std::map<std::string, std::string>& backend) {
+                            const std::map<std::string, std::string>& backend,
+                            const std::string& linear_algebra = "auto") {
   SolverOptions options;
   options.residual_tolerance = tolerance;
   options.max_iterations = max_iterations;
   options.max_evaluations = max_evaluations;
   options.time_limit = time_limit;
   options.backend = backend;
+  if (linear_algebra == "dense") options.linear_algebra = LinearAlgebra::kDense;
+  else if (linear_algebra == "sparse") options.linear_algebra = LinearAlgebra::kSparse;
+  else if (linear_algebra != "auto")
+    throwInputError("linear_algebra", "\"" + linear_algebra + "\"", "must be \"auto\", \"dense\" or \"sparse\"");
   std::string why;
   if (!options.isValid(&why)) throw InputError(why);
   return options;
@@ -82,94 +60,73 @@ bool condensedSystem(const std::string& system) {
   return system == "condensed";
 }
 
-// The model with another ω, H or N, validated.
-HbModel withSettings(const HbModel& base, std::optional<double> omega, std::optional<int> harmonics,
-                     std::optional<int> samples) {
-  HbModel model = base;
-  if (omega) model.omega = *omega;
-  if (harmonics && !samples) model.samples = samplesForHarmonics(model, *harmonics);
-  if (harmonics) model.basis = HarmonicSet(model.basis.kind(), *harmonics);
-  if (samples) model.samples = *samples;
-  if (omega && !(std::isfinite(*omega) && *omega > 0)) throwInputError("omega", formatNumber(*omega), "must be > 0");
-  model.validate();
-  return model;
+// The scene settings of one call: ω, H, N, form and ρ over the model's document.
+struct SceneArgs {
+  std::optional<double> omega;
+  std::optional<int> harmonics, samples;
+  std::optional<std::string> form;
+  std::optional<double> rho;
+  app::SceneSettings of(const PyModel& m) const { return sceneSettings(m, omega, harmonics, samples, form, rho); }
+};
+
+// The harmonic-balance options every call that solves takes.
+struct HbArgs {
+  std::string solver, system;
+  double tolerance;
+  int max_iterations, max_evaluations;
+  double time_limit;
+  std::map<std::string, std::string> backend;
+  std::string linear_algebra, cold_start, fallback;
+  app::SolveOptions options() const {
+    app::SolveOptions o;
+    o.solver = solver;
+    o.condensed = condensedSystem(system);
+    o.solver_options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend, linear_algebra);
+    o.cold_start = cold_start;
+    o.fallback = fallback;
+    return o;
+  }
+};
+
+SceneArgs sceneArgs(const py::dict& a) {
+  SceneArgs s;
+  s.omega = a["omega"].cast<std::optional<double>>();
+  s.harmonics = a["harmonics"].cast<std::optional<int>>();
+  s.samples = a["samples"].cast<std::optional<int>>();
+  s.form = a["form"].cast<std::optional<std::string>>();
+  s.rho = a["rho"].cast<std::optional<double>>();
+  return s;
 }
 
-py::dict solve(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
-               std::optional<int> samples, const std::string& solver_name, const std::string& system,
-               double tolerance, int max_iterations, int max_evaluations, double time_limit,
-               const std::map<std::string, std::string>& backend, const std::optional<Eigen::VectorXd>& initial,
-               const std::string& cold_start, const std::string& fallback) {
-  const HbModel model = withSettings(m.scene.model, omega, harmonics, samples);
-  const SolverOptions options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend);
-  auto solver = makeSolver(solver_name);
-  const OwnedFallbackChain fallbacks(fallback, solver_name, "fallback");
-  auto hb = makeHbSystem(model, condensedSystem(system));
-  Eigen::VectorXd z0 = Eigen::VectorXd::Zero(hb->size());
-  if (initial) {
-    const Eigen::Index full_size = static_cast<Eigen::Index>(model.basis.size()) *
-                                   (model.structure.dofs() + model.lawComponents());
-    if (initial->size() != full_size)
-      throwInputError("initial", "(" + std::to_string(initial->size()) + " values)",
-                      "must be a full coefficient vector [x; lambda] of " + std::to_string(full_size) +
-                          " values (the \"full\" entry of a solution)");
-    if (!initial->allFinite()) throwInputError("initial", "(vector)", "must be finite");
-    z0 = hb->fromFullCoefficients(*initial);
-  }
-  if (cold_start != "coarse" && cold_start != "zero")
-    throwInputError("cold_start", "\"" + cold_start + "\"", "must be \"coarse\" or \"zero\"");
-  // Without an initial guess, start from a coarse harmonic balance (as `eqhb solve`).
-  std::optional<CoarseStart> coarse;
-  if (!initial && cold_start == "coarse") {
-    coarse.emplace(model, condensedSystem(system), LinearAlgebra::kAuto);
-  }
-  SolverResult result;
-  ColdStartReport report;
+HbArgs hbArgs(const py::dict& a) {
+  return HbArgs{a["solver"].cast<std::string>(),         a["system"].cast<std::string>(),
+                a["tolerance"].cast<double>(),            a["max_iterations"].cast<int>(),
+                a["max_evaluations"].cast<int>(),         a["time_limit"].cast<double>(),
+                a["options"].cast<std::map<std::string, std::string>>(), a["linear_algebra"].cast<std::string>(),
+                a["cold_start"].cast<std::string>(),      a["fallback"].cast<std::string>()};
+}
+
+// eqhb.solve: app::solve with the call's settings and options (`args`, checked
+// and named by the package's solve).
+py::dict solve(const PyModel& m, const py::dict& args) {
+  const app::SceneSettings scene = sceneArgs(args).of(m);
+  app::SolveOptions o = hbArgs(args).options();
+  if (!args["initial"].is_none()) o.initial = args["initial"].cast<Eigen::VectorXd>();
+  o.from_harmonics = args["from_harmonics"].cast<std::optional<int>>();
+  o.repeat = args["repeat"].cast<int>();
+  o.stability = args["stability"].cast<bool>();
+  o.error_estimate = args["error_estimate"].cast<bool>();
+  o.accuracy = args["accuracy"].cast<std::optional<double>>();
+  o.max_harmonics = args["max_harmonics"].cast<int>();
+  o.refine = args["refine"].is_none() ? std::string() : args["refine"].cast<std::string>();
+  o.restitution = args["restitution"].cast<double>();
+  o.refine_harmonics = args["refine_harmonics"].is_none() ? 0 : args["refine_harmonics"].cast<int>();
+  std::optional<app::Solution> solution;
   {
     py::gil_scoped_release unlocked;
-    result = coarse ? coarse->solve(*solver, *hb, options, &report) : solver->solve(*hb, z0, options);
+    solution = app::solve(scene, o);
   }
-  FallbackReport tried;
-  if (!result.converged() && result.termination != Termination::kInvalidOptions) {
-    py::gil_scoped_release unlocked;
-    result = solveWithFallbacks(*hb, *solver, options, result, !initial, fallbacks.chain(), &tried);
-  }
-  if (result.termination == Termination::kInvalidOptions) throw InputError("options: " + result.native_message);
-  py::dict d = resultDict(result);
-  if (report.used) d["seconds"] = report.seconds;  // the coarse solve included
-  py::dict cold;
-  cold["kind"] = report.used ? "coarse" : initial ? "given" : "zero";
-  if (report.used) {
-    cold["harmonics"] = report.harmonics;
-    cold["samples"] = report.samples;
-    cold["converged"] = report.coarse.converged();
-    cold["iterations"] = report.coarse.iterations;
-    cold["retried_from_zero"] = report.retried_from_zero;
-  }
-  d["cold_start"] = cold;
-  if (!tried.attempts.empty()) {
-    py::list attempts;
-    for (const FallbackAttempt& a : tried.attempts) {
-      py::dict one;
-      one["step"] = a.step;
-      one["solver"] = a.result.solver;
-      one["termination"] = terminationName(a.result.termination);
-      one["iterations"] = a.result.iterations;
-      one["residual_norm"] = a.result.final_norm;
-      attempts.append(one);
-    }
-    py::dict f;
-    f["taken"] = tried.taken.empty() ? py::object(py::none()) : py::object(py::str(tried.taken));
-    f["attempts"] = attempts;
-    f["seconds"] = tried.seconds;
-    d["fallback"] = f;
-    d["seconds"] = d["seconds"].cast<double>() + tried.seconds;
-  }
-  d["system"] = system;
-  d["unknowns"] = hb->size();
-  d["omega"] = model.omega;
-  d["solution"] = solutionDict(model, hb->fullCoefficients(result.solution));
-  return d;
+  return solveDict(*solution);
 }
 
 // Floquet multipliers of a harmonic-balance solution by Hill's method.
@@ -187,20 +144,7 @@ py::dict stability(const PyModel& m, const Eigen::VectorXd& full, std::optional<
     py::gil_scoped_release unlocked;
     hill = hillStability(model, full);
   }
-  std::vector<std::complex<double>> multipliers, exponents;
-  for (const auto& e : hill.exponents) {
-    multipliers.push_back(e.multiplier);
-    exponents.push_back(e.exponent);
-  }
-  py::dict d;
-  d["stable"] = hill.stable;
-  d["spectral_radius"] = hill.spectral_radius;
-  d["multipliers"] = multipliers;
-  d["exponents"] = exponents;
-  d["pencil_size"] = hill.pencil_size;
-  d["seconds"] = hill.seconds;
-  d["failure"] = hill.failure;
-  return d;
+  return stabilityDict(hill);
 }
 
 py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<double> to, std::optional<double> given_step,
@@ -240,101 +184,69 @@ py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<doubl
   return d;
 }
 
-py::dict simulate(const PyModel& m, std::optional<double> omega, double step, int periods, double theta,
-                  double periodic_tolerance, double restitution, const std::optional<Eigen::VectorXd>& initial) {
-  const HbModel model = withSettings(m.scene.model, omega, std::nullopt, std::nullopt);
-  TimeOptions options;
-  options.step = step;
-  options.max_periods = periods;
-  options.theta = theta;
-  options.periodic_tolerance = periodic_tolerance;
-  options.restitution = restitution;
-  options.validate();
-  Eigen::VectorXd start;
-  if (initial) {
-    const Eigen::Index full_size = static_cast<Eigen::Index>(model.basis.size()) *
-                                   (model.structure.dofs() + model.lawComponents());
-    if (initial->size() != full_size || !initial->allFinite())
-      throwInputError("initial", "(" + std::to_string(initial->size()) + " values)",
-                      "must be a finite full coefficient vector of " + std::to_string(full_size) + " values");
-    start = *initial;
-  }
-  TimeReference reference;
-  {
-    py::gil_scoped_release unlocked;
-    reference = integrateToSteadyState(model, options, start);
-  }
-  return referenceDict(model, reference);
+app::TimeSettings timeSettings(const py::dict& a) {
+  app::TimeSettings t;
+  t.step = a["step"].cast<std::optional<double>>();
+  t.periods = a["periods"].cast<std::optional<int>>();
+  t.theta = a["theta"].cast<std::optional<double>>();
+  t.periodic_tolerance = a["periodic_tolerance"].cast<std::optional<double>>();
+  t.max_seconds = a["max_seconds"].cast<double>();
+  t.restitution = a["restitution"].cast<double>();
+  return t;
 }
 
-// The exact periodic orbit by shooting (Coulomb 1D, Jenkins on one DOF and
-// Signorini laws in closed form; cubic, planar Coulomb and Stribeck by the smooth-phase flow),
-// started from the harmonic-balance solution at the same ω, with its Floquet
-// multipliers and one period sampled on N instants.
-py::dict shoot(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
-               std::optional<int> samples, const std::string& solver_name, double restitution, double tolerance,
-               int max_iterations, double time_limit) {
-  const HbModel model = withSettings(m.scene.model, omega, harmonics, samples);
-  orbits::ShootingOptions options;
-  options.tolerance = tolerance;
-  options.max_iterations = max_iterations;
-  options.time_limit = time_limit;
-  options.validate();
-  // time_limit bounds the whole call: the harmonic-balance start, then shooting with what is left.
-  const Deadline deadline(time_limit);
-  const std::unique_ptr<orbits::Flow> flow_owner = orbits::makeFlow(model, restitution);  // rejects other laws first
-  const orbits::Flow& flow = *flow_owner;
-  auto solver = makeSolver(solver_name);
-  auto hb = makeHbSystem(model, true, LinearAlgebra::kAuto, deadline);
-  py::dict d;
-  orbits::ShootingResult orbit;
-  orbits::FlowSamples sampled;
-  bool sampled_ok = false;
-  SolverResult start;
+// eqhb.simulate: the reference with the scene's [time_reference] defaults,
+// from rest, from `initial` or (from_hb) from the harmonic-balance solution.
+py::dict simulate(const PyModel& m, const py::dict& args) {
+  const app::SceneSettings scene = sceneArgs(args).of(m);
+  app::SimulateOptions o;
+  o.time = timeSettings(args);
+  o.from_hb = args["from_hb"].cast<bool>();
+  if (o.from_hb) o.hb = hbArgs(args).options();
+  if (!args["initial"].is_none()) {
+    if (o.from_hb) throwInputError("initial", "(vector)", "give initial or from_hb, not both");
+    o.initial = args["initial"].cast<Eigen::VectorXd>();
+  }
+  std::optional<app::Simulation> simulation;
   {
     py::gil_scoped_release unlocked;
-    SolverOptions start_options;
-    if (deadline.limited()) start_options.time_limit = std::max(deadline.remaining(), 1e-3);
-    start = solver->solve(*hb, Eigen::VectorXd::Zero(hb->size()), start_options);
-    if (start.termination == Termination::kTimeLimit)
-      throw TimeLimitReached("time limit of " + formatNumber(time_limit) +
-                             " s reached during the harmonic-balance start of shooting");
-    const Eigen::VectorXd full = hb->fullCoefficients(start.solution);
-    if (deadline.limited()) options.time_limit = std::max(deadline.remaining(), 1e-3);
-    orbit = orbits::shootFromHarmonicBalance(flow, model, full, options);
-    const double t0 = orbit.start_time;
-    for (int i = 0; i < model.samples; ++i) sampled.times.push_back(t0 + flow.period() * i / model.samples);
-    sampled_ok = flow.integrate(orbit.state, t0, flow.period(), false, &sampled).ok;
+    simulation = app::simulate(scene, o);
   }
-  d["converged"] = orbit.converged;
-  d["failure"] = orbit.failure;
-  d["from_hb"] = resultDict(start);
-  d["omega"] = model.omega;
-  d["period"] = flow.period();
-  d["restitution"] = restitution;
-  d["iterations"] = orbit.iterations;
-  d["flow_evaluations"] = orbit.flow_evaluations;
-  d["period_residual"] = orbit.period_residual;
-  d["start_time"] = orbit.start_time;
-  d["state"] = python::toArray(orbit.state);
-  d["monodromy"] = python::toArray(orbit.monodromy);
-  py::array_t<std::complex<double>> multipliers(orbit.multipliers.size());
-  std::copy(orbit.multipliers.data(), orbit.multipliers.data() + orbit.multipliers.size(),
-            multipliers.mutable_data());
-  // Floquet multipliers belong to an orbit: None when none was found.
-  d["multipliers"] = orbit.converged ? py::object(multipliers) : py::none();
-  d["spectral_radius"] = orbit.converged ? py::object(py::float_(orbit.spectral_radius)) : py::none();
-  d["stable"] = orbit.converged ? py::object(py::bool_(orbit.stable)) : py::none();
-  d["events"] = orbit.events;
-  d["max_abs_x"] = python::toArray(orbit.max_abs);
-  d["seconds"] = orbit.seconds;
-  if (sampled_ok) {
-    d["t"] = py::array_t<double>(sampled.times.size(), sampled.times.data());
-    d["x"] = python::toArray(Eigen::MatrixXd(sampled.displacement.transpose()));
-    d["v"] = python::toArray(Eigen::MatrixXd(sampled.velocity.transpose()));
-    d["lambda"] = python::toArray(Eigen::MatrixXd(sampled.force.transpose()));
+  return simulationDict(*simulation);
+}
+
+// eqhb.compare: a harmonic-balance solve against the reference started from it.
+py::dict compare(const PyModel& m, const py::dict& args) {
+  const app::SceneSettings scene = sceneArgs(args).of(m);
+  app::CompareOptions o;
+  o.time = timeSettings(args);
+  o.from_rest = args["from_rest"].cast<bool>();
+  o.hb = hbArgs(args).options();
+  std::optional<app::Comparison> comparison;
+  {
+    py::gil_scoped_release unlocked;
+    comparison = app::compare(scene, o);
   }
-  return d;
+  return comparisonDict(*comparison);
+}
+
+// eqhb.shoot: the exact periodic orbit from the harmonic-balance solve of
+// the scene, as `eqhb shoot` (app::shoot), with one period sampled.
+py::dict shoot(const PyModel& m, const py::dict& args) {
+  const app::SceneSettings scene = sceneArgs(args).of(m);
+  app::ShootOptions o;
+  o.hb = hbArgs(args).options();
+  o.from_hb = args["from_hb"].cast<std::optional<int>>();
+  o.restitution = args["restitution"].cast<double>();
+  o.tolerance = args["shooting_tolerance"].cast<double>();
+  o.max_iterations = args["shooting_max_iterations"].cast<int>();
+  o.trajectory = true;
+  std::optional<app::Orbit> orbit;
+  {
+    py::gil_scoped_release unlocked;
+    orbit = app::shoot(scene, o);
+  }
+  return orbitDict(*orbit);
 }
 
 py::list lawList(const HbModel& model) {
@@ -371,12 +283,12 @@ PYBIND11_MODULE(_eqhb, m) {
   py::class_<PyModel>(m, "Model", "A structure with its laws, loads and harmonic-balance settings.")
       .def_static("from_scene",
                   [](const std::string& path, const std::vector<std::string>& overrides) {
-                    return PyModel{loadScene(path, overrides)};
+                    return modelFromScene(path, overrides);
                   },
                   py::arg("path"), py::arg("overrides") = std::vector<std::string>{},
                   "Loads a scene file; overrides are \"path=value\" strings as for `eqhb --set`.")
       .def_static("_from_text",
-                  [](const std::string& text, const std::string& source) { return PyModel{parseScene(text, source)}; },
+                  &modelFromText,
                   py::arg("text"), py::arg("source"))
       .def_static("_from_arrays", &modelFromArrays, py::arg("text"), py::arg("mass"), py::arg("damping"),
                   py::arg("stiffness"))
@@ -405,19 +317,14 @@ PYBIND11_MODULE(_eqhb, m) {
                ", omega = " + formatNumber(model.omega) + ">";
       });
 
-  m.def("_solve", &solve, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),
-        py::arg("solver"), py::arg("system"), py::arg("tolerance"), py::arg("max_iterations"),
-        py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"), py::arg("initial"),
-        py::arg("cold_start"), py::arg("fallback"));
+  m.def("_solve", &solve, py::arg("model"), py::arg("args"));
   m.def("_sweep", &sweep, py::arg("model"), py::arg("start"), py::arg("stop"), py::arg("step"), py::arg("method"),
         py::arg("harmonics"), py::arg("samples"), py::arg("solver"), py::arg("system"), py::arg("tolerance"),
         py::arg("max_iterations"), py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"),
         py::arg("max_points"), py::arg("fallback"));
   m.def("_stability", &stability, py::arg("model"), py::arg("full"), py::arg("omega"), py::arg("harmonics"),
         py::arg("samples"));
-  m.def("_shoot", &shoot, py::arg("model"), py::arg("omega"), py::arg("harmonics"), py::arg("samples"),
-        py::arg("solver"), py::arg("restitution"), py::arg("tolerance"), py::arg("max_iterations"),
-        py::arg("time_limit"));
-  m.def("_simulate", &simulate, py::arg("model"), py::arg("omega"), py::arg("step"), py::arg("periods"),
-        py::arg("theta"), py::arg("periodic_tolerance"), py::arg("restitution"), py::arg("initial"));
+  m.def("_shoot", &shoot, py::arg("model"), py::arg("args"));
+  m.def("_simulate", &simulate, py::arg("model"), py::arg("args"));
+  m.def("_compare", &compare, py::arg("model"), py::arg("args"));
 }

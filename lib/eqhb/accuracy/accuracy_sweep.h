@@ -36,7 +36,7 @@ struct AccurateCurve {
   double seconds = 0.0;         // the first ladder, the sweep and every point's ladder
 };
 
-// Throws InputError naming --accuracy, --max-harmonics or --harmonics (the
+// Throws InputError naming accuracy, max_harmonics or harmonics (the
 // first H, start_harmonics) as chooseHarmonics does, before any solve.
 // `candidates`: the scene's model and its variants (ρ scaled) that the first
 // frequency's ladder chooses from (chooseDiscretisation); the curve keeps the

@@ -13,12 +13,12 @@ namespace {
 
 void checkLadderArguments(double tolerance, int start_harmonics, int max_harmonics) {
   if (!std::isfinite(tolerance) || tolerance <= 0.0 || tolerance >= 1.0)
-    throwInputError("--accuracy", formatNumber(tolerance), "must be a relative error in (0, 1)");
+    throwInputError("accuracy", formatNumber(tolerance), "must be a relative error in (0, 1)");
   if (max_harmonics < 1 || max_harmonics > 100000)
-    throwInputError("--max-harmonics", std::to_string(max_harmonics), "must be in [1, 100000]");
+    throwInputError("max_harmonics", std::to_string(max_harmonics), "must be in [1, 100000]");
   if (start_harmonics < 1 || start_harmonics > max_harmonics)
-    throwInputError("--harmonics", std::to_string(start_harmonics),
-                    "the first H tried must be in [1, --max-harmonics = " + std::to_string(max_harmonics) + "]");
+    throwInputError("harmonics", std::to_string(start_harmonics),
+                    "the first H tried must be in [1, max_harmonics = " + std::to_string(max_harmonics) + "]");
 }
 
 // From a converged candidate (out.model, out.full, out.result, the last rung
@@ -29,7 +29,7 @@ void climbLadder(double tolerance, int max_harmonics, Solver& solver, const Solv
   const int first = out.model.basis.count();
   if (2 * first > max_harmonics) {
     out.failure = "the error estimate at H = " + std::to_string(first) +
-                  " needs a solve at 2H, above --max-harmonics = " + std::to_string(max_harmonics);
+                  " needs a solve at 2H, above max_harmonics = " + std::to_string(max_harmonics);
     return;
   }
   while (true) {
@@ -53,7 +53,7 @@ void climbLadder(double tolerance, int max_harmonics, Solver& solver, const Solv
     if (4 * h > max_harmonics) {
       // The reported solution stays the last one with an estimate.
       out.failure = "estimate " + formatNumber(out.estimate.max_abs) + " at H = " + std::to_string(h) +
-                    "; the next rung needs a solve at H = " + std::to_string(4 * h) + ", above --max-harmonics = " +
+                    "; the next rung needs a solve at H = " + std::to_string(4 * h) + ", above max_harmonics = " +
                     std::to_string(max_harmonics);
       return;
     }
@@ -109,7 +109,7 @@ AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, doub
       for (size_t k = 0; k < count; ++k)
         if (live[k])
           state[k].failure = "the error estimate at H = " + std::to_string(h) +
-                             " needs a solve at 2H, above --max-harmonics = " + std::to_string(max_harmonics);
+                             " needs a solve at 2H, above max_harmonics = " + std::to_string(max_harmonics);
       return finish(std::find(live.begin(), live.end(), true) - live.begin());
     }
     size_t best = count;
@@ -139,7 +139,7 @@ AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, doub
       // The reported solution stays the last one with an estimate.
       state[best].failure = "estimate " + formatNumber(state[best].estimate.max_abs) + " at H = " +
                             std::to_string(h) + "; the next rung needs a solve at H = " + std::to_string(4 * h) +
-                            ", above --max-harmonics = " + std::to_string(max_harmonics);
+                            ", above max_harmonics = " + std::to_string(max_harmonics);
       return finish(best);
     }
     for (size_t k = 0; k < count; ++k) {

@@ -51,7 +51,7 @@ AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, doub
 
 // One candidate: chooseDiscretisation({model}).
 // tolerance in (0, 1), 1 <= start_harmonics <= max_harmonics; throws
-// InputError naming --accuracy or --max-harmonics otherwise.
+// InputError naming accuracy or max_harmonics otherwise.
 AccuracyChoice chooseHarmonics(const HbModel& model, double tolerance, int start_harmonics, int max_harmonics,
                                Solver& solver, const SolverOptions& options, bool condensed);
 

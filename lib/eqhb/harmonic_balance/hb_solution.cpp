@@ -24,20 +24,35 @@ ChannelSummary channel(FourierTransform& transform, double omega, std::string la
 }
 }  // namespace
 
+std::string dofLabel(int dof) { return "x" + std::to_string(dof + 1); }
+
+std::string lawComponentLabel(const HbModel& model, int law, int component) {
+  std::string label = "law" + std::to_string(law + 1) + ".lambda";
+  if (model.laws[law].law->dimension() > 1) label += std::to_string(component + 1);
+  return label;
+}
+
+std::vector<std::string> lawComponentLabels(const HbModel& model) {
+  std::vector<std::string> labels(model.lawComponents());
+  for (size_t l = 0; l < model.laws.size(); ++l)
+    for (int a = 0; a < model.laws[l].law->dimension(); ++a)
+      labels[model.componentIndex(static_cast<int>(l), a)] = lawComponentLabel(model, static_cast<int>(l), a);
+  return labels;
+}
+
 HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full) {
   FourierTransform transform(model.basis, model.samples);
   const int nb = model.basis.size();
   HbSolution solution;
   for (int i = 0; i < model.structure.dofs(); ++i)
-    solution.displacements.push_back(channel(transform, model.omega, "x" + std::to_string(i + 1),
+    solution.displacements.push_back(channel(transform, model.omega, dofLabel(i),
                                               full.segment(i * nb, nb)));
   const int base = model.structure.dofs() * nb;
   for (size_t l = 0; l < model.laws.size(); ++l)
     for (int a = 0; a < model.laws[l].law->dimension(); ++a) {
       const int q = model.componentIndex(static_cast<int>(l), a);
-      std::string label = "law" + std::to_string(l + 1) + ".lambda";
-      if (model.laws[l].law->dimension() > 1) label += std::to_string(a + 1);
-      solution.forces.push_back(channel(transform, model.omega, label, full.segment(base + q * nb, nb)));
+      solution.forces.push_back(channel(transform, model.omega, lawComponentLabel(model, static_cast<int>(l), a),
+                                        full.segment(base + q * nb, nb)));
     }
   return solution;
 }

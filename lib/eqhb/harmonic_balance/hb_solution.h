@@ -24,6 +24,14 @@ struct HbSolution {
   std::vector<ChannelSummary> forces;         // one per law component
 };
 
+// The one labelling of a solution's channels, in every output: DOF i
+// (0-based) is "x<i+1>"; component a of law l is "law<l+1>.lambda", with the
+// component's number after it for a law of more than one ("law2.lambda1").
+std::string dofLabel(int dof);
+std::string lawComponentLabel(const HbModel& model, int law, int component);
+// Every law component's label, in the order of the λ channels.
+std::vector<std::string> lawComponentLabels(const HbModel& model);
+
 // full = [x_1..x_n, λ_1..λ_L] coefficients (FullSystem layout).
 HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full);
 

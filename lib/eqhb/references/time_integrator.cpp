@@ -225,7 +225,7 @@ std::vector<ChannelError> compareWithReference(const HbModel& model, const Eigen
   std::vector<ChannelError> errors;
   for (int i = 0; i < n; ++i) {
     ChannelError e;
-    e.label = "x" + std::to_string(i + 1);
+    e.label = dofLabel(i);
     fill(e, reference.displacement.col(i), hb_full.data() + i * nb, reference.coefficients.data() + i * nb, x_floor,
          x_peak_floor, x_amplitude_floor);
     transform.differentiate(hb_full.data() + i * nb, model.omega, rate_coefficients.data());
@@ -234,9 +234,10 @@ std::vector<ChannelError> compareWithReference(const HbModel& model, const Eigen
     e.relative_l2_rate = (hb - ref_rate).norm() / std::max(ref_rate.norm(), v_floor);
     errors.push_back(e);
   }
+  const std::vector<std::string> labels = lawComponentLabels(model);
   for (int q = 0; q < components; ++q) {
     ChannelError e;
-    e.label = "lambda" + std::to_string(q + 1);
+    e.label = labels[q];
     fill(e, reference.force.col(q), hb_full.data() + (n + q) * nb, reference.coefficients.data() + (n + q) * nb,
          f_floor, f_peak_floor, f_amplitude_floor);
     errors.push_back(e);

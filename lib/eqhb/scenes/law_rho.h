@@ -16,6 +16,10 @@ namespace eqhb {
 // InputError as loadScene does.
 std::vector<std::optional<RhoSetting>> lawRhos(const std::string& path, const std::vector<std::string>& overrides = {});
 
+// The same for a scene document held as text (parseScene's `text` and `source_name`).
+std::vector<std::optional<RhoSetting>> lawRhosOfText(const std::string& text, const std::string& source,
+                                                     const std::vector<std::string>& overrides = {});
+
 // The override that sets law `l`'s ρ to `setting` times `factor` (its rho,
 // or its rho_factor when scale-free).
 std::string scaledRhoOverride(int l, const RhoSetting& setting, double factor);

@@ -776,13 +776,14 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   return parseScene(readSceneText(path), path, overrides);
 }
 
-std::vector<std::optional<RhoSetting>> lawRhos(const std::string& path, const std::vector<std::string>& overrides) {
-  // Validated as a whole first: the document below is then well formed.
-  const Scene scene = loadScene(path, overrides);
-  const std::string text = readSceneText(path);
+namespace {
+// Each law's ρ in the document `text` with `overrides`, which loads as a
+// scene of `laws` laws.
+std::vector<std::optional<RhoSetting>> documentRhos(const std::string& text, const std::string& source,
+                                                    const std::vector<std::string>& overrides, size_t laws) {
   toml::value root;
   std::istringstream in(text);
-  root = toml::parse(in, path);
+  root = toml::parse(in, source);
   for (const auto& assignment : overrides) applyOverride(root, assignment);
   std::vector<std::optional<RhoSetting>> out;
   if (!root.is_table() || root.as_table().count("law") == 0) return out;
@@ -799,8 +800,21 @@ std::vector<std::optional<RhoSetting>> lawRhos(const std::string& path, const st
     }
     out.push_back(rho);
   }
-  if (out.size() != scene.model.laws.size()) throw std::logic_error("lawRhos: laws miscounted");
+  if (out.size() != laws) throw std::logic_error("lawRhos: laws miscounted");
   return out;
+}
+}  // namespace
+
+std::vector<std::optional<RhoSetting>> lawRhos(const std::string& path, const std::vector<std::string>& overrides) {
+  // Validated as a whole first: the document below is then well formed.
+  const Scene scene = loadScene(path, overrides);
+  return documentRhos(readSceneText(path), path, overrides, scene.model.laws.size());
+}
+
+std::vector<std::optional<RhoSetting>> lawRhosOfText(const std::string& text, const std::string& source,
+                                                     const std::vector<std::string>& overrides) {
+  const Scene scene = parseScene(text, source, overrides);
+  return documentRhos(text, source, overrides, scene.model.laws.size());
 }
 
 std::string scaledRhoOverride(int l, const RhoSetting& setting, double factor) {

@@ -1,0 +1,83 @@
+#include "eqhb/output/solution_text.h"
+
+#include "eqhb/output/solution_json.h"
+
+namespace eqhb::output {
+
+namespace {
+
+void writeColdStart(std::ostream& out, const ColdStartReport& cold) {
+  if (!cold.used) return;
+  out << "cold start: coarse harmonic balance at H = " << cold.harmonics << ", N = " << cold.samples << ", "
+      << (cold.coarse.converged() ? "converged" : "NOT converged (started from zero)") << " in "
+      << cold.coarse.iterations << " iterations, " << cold.coarse.residual_evaluations << " residual and "
+      << cold.coarse.jacobian_evaluations << " Jacobian evaluations\n";
+  if (cold.retried_from_zero)
+    out << "  the solve from it stopped (" << terminationName(cold.first_attempt.termination) << " after "
+        << cold.first_attempt.iterations << " iterations); solved again from zero (above)\n";
+}
+
+void writeLinearAlgebra(std::ostream& out, const app::Solution& s) {
+  const app::LinearAlgebraReport& la = s.linear_algebra;
+  out << "linear algebra: " << (la.sparse_solver ? "sparse" : "dense");
+  if (la.condensation)
+    out << ", A_k factored " << (la.sparse_factors ? "sparse (UMFPACK)" : "dense") << " (" << la.factor_mib
+        << " MiB of factors)";
+  out << "; set-up " << s.run.setup_seconds << " s, peak RSS " << la.peak_rss_mib << " MiB\n";
+  if (s.run.times.size() > 1)
+    out << "median time over " << s.run.times.size() << " solves: " << s.run.medianSeconds() << " s\n";
+}
+
+void writeStability(std::ostream& out, const HillResult& hill) {
+  if (!hill.failure.empty()) {
+    out << "stability: not computed (" << hill.failure << ")\n";
+    return;
+  }
+  out << "stability: " << (hill.stable ? "stable" : "UNSTABLE") << ", spectral radius " << hill.spectral_radius
+      << " (Hill, " << hill.pencil_size << " unknowns, " << hill.seconds << " s); leading multipliers:";
+  for (size_t i = 0; i < hill.exponents.size() && i < 8; ++i) {
+    const auto& e = hill.exponents[i];
+    out << " " << e.multiplier.real() << (e.multiplier.imag() < 0 ? "" : "+") << e.multiplier.imag() << "i";
+  }
+  out << "\n";
+}
+
+}  // namespace
+
+void writeSolutionText(std::ostream& out, const app::Solution& s) {
+  const app::HbRun& run = s.run;
+  const HbModel& model = s.model();
+  out << run.scene.name << " at omega = " << model.omega << ", H = " << model.basis.count() << " ("
+      << HarmonicSet::kindName(model.basis.kind()) << "), N = " << model.samples << ", "
+      << (run.system->condensed() ? "condensed" : "full") << " system of " << run.system->size() << " unknowns\n"
+      << run.result.summary() << "\n";
+  writeColdStart(out, run.cold_start);
+  if (!run.fallback.attempts.empty())
+    out << "fallback: " << describeFallbacks(run.fallback)
+        << (run.fallback.taken.empty() ? "; none converged" : "; the result above is " + run.fallback.taken + "'s")
+        << "\n";
+  writeLinearAlgebra(out, s);
+  for (const auto* channels : {&s.summary.displacements, &s.summary.forces})
+    for (const auto& c : *channels) out << "  max|" << c.label << "| = " << c.max_abs << "\n";
+  if (const auto& e = s.error_estimate)
+    out << "estimated relative error of max|x|: " << e->max_abs << " (solve at H = " << e->refined_harmonics
+        << (e->available ? "" : ", which did NOT converge") << ")\n";
+  if (const auto& r = s.refinement)
+    out << "refined by shooting: " << (r->converged ? "exact periodic orbit" : "NOT converged: " + r->failure)
+        << ", period residual " << r->orbit.period_residual << " after " << r->orbit.iterations << " Newton steps, "
+        << r->seconds << " s (max|x| above: the orbit's; coefficients: its truncation on H = " << r->basis.count()
+        << ")\n";
+  if (const auto& a = s.accuracy)
+    out << "--accuracy " << a->tolerance << ": " << (a->choice.reached ? "reached" : "NOT reached") << " at H = "
+        << model.basis.count() << ", N = " << model.samples
+        << ", rho = " << rhoJson(a->candidates.scene_rho, a->rhoFactor()).dump() << " in " << a->choice.seconds
+        << " s of solves\n";
+  for (const auto& report : s.invariants) {
+    out << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";
+    for (const auto& [name, value] : report.violations) out << " " << name << " " << value;
+    out << "\n";
+  }
+  if (s.stability) writeStability(out, *s.stability);
+}
+
+}  // namespace eqhb::output

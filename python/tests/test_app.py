@@ -1,0 +1,160 @@
+"""eqhb.solve, shoot, simulate and compare run what the eqhb command runs
+(the application layer): on the same scene and options they return what
+`eqhb solve/shoot/simulate/compare --json` prints, with the same labels."""
+import json
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import eqhb
+
+PROBLEMS = pathlib.Path(os.environ.get("EQHB_PROBLEMS_DIR", pathlib.Path(__file__).parents[2] / "problems"))
+SCENE = PROBLEMS / "friction-1d.toml"
+
+
+def cli_json(*args, expect=(0,)):
+    """`eqhb ARGS --json` as a dict (exit code checked)."""
+    path = os.environ.get("EQHB_CLI")
+    if not path:
+        pytest.skip("EQHB_CLI is not set: built without the eqhb command (tests/CMakeLists.txt sets it)")
+    run = subprocess.run([path, *map(str, args), "--json", "--quiet"], capture_output=True, text=True)
+    assert run.returncode in expect, run.stderr
+    return json.loads(run.stdout)
+
+
+def max_abs(result):
+    return [d["max_abs"] for d in result["dofs"]]
+
+
+# Keys that measure the run (time, memory), not its answer.
+TIMES = {"seconds", "seconds_min", "seconds_max", "setup_seconds", "peak_rss_mib", "seconds_per_orbit"}
+
+
+def same_answer(cli, py, path=""):
+    """Every key of the command's JSON is in Python's dict with the same value
+    (numbers to 1e-9; times and memory excepted)."""
+    for key, value in cli.items():
+        where = f"{path}.{key}"
+        assert key in py, f"{where} missing from the Python result"
+        if key in TIMES:
+            continue
+        mine = py[key]
+        if isinstance(value, dict):
+            same_answer(value, mine, where)
+        elif isinstance(value, list) and value and isinstance(value[0], dict):
+            assert len(value) == len(mine), where
+            for i, (a, b) in enumerate(zip(value, mine)):
+                same_answer(a, b, f"{where}[{i}]")
+        elif isinstance(value, list) and value and not isinstance(value[0], str):
+            # Arrays: numbers, or complex numbers as [re, im] pairs.
+            expected = np.asarray(value, dtype=float)
+            mine = np.asarray(mine)
+            if np.iscomplexobj(mine):
+                expected = expected[:, 0] + 1j * expected[:, 1]
+            np.testing.assert_allclose(mine, expected, rtol=1e-9, atol=1e-12, err_msg=where)
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            assert mine == pytest.approx(value, rel=1e-9, abs=1e-12), where
+        else:
+            assert mine == value, where
+
+
+def test_solve_with_stability_and_error_estimate_is_eqhb_solve():
+    cli = cli_json("solve", SCENE, "--omega", 0.4, "--stability", "--error-estimate")
+    py = eqhb.solve(eqhb.load_scene(SCENE), 0.4, stability=True, error_estimate=True)
+    assert "stability" in py and "error_estimate" in py
+    stability = cli.pop("stability")
+    same_answer(cli, py)
+    assert py["stability"]["spectral_radius"] == pytest.approx(stability["spectral_radius"], rel=1e-9)
+    assert py["stability"]["stable"] == stability["stable"]
+    multipliers = [complex(re, im) for re, im in stability["multipliers"]]
+    np.testing.assert_allclose(py["stability"]["multipliers"], multipliers, rtol=1e-9, atol=1e-12)
+    assert py["solution"]["max_abs_x"].tolist() == pytest.approx(max_abs(cli), rel=1e-12)
+
+
+def test_accuracy_target_chooses_what_eqhb_solve_chooses():
+    cli = cli_json("solve", SCENE, "--omega", 0.4, "--accuracy", 0.02, "--max-harmonics", 40)
+    py = eqhb.solve(eqhb.load_scene(SCENE), 0.4, accuracy=0.02, max_harmonics=40)
+    assert py["accuracy"]["reached"] and py["harmonics"] > 1 and "error_estimate" in py
+    same_answer(cli, py)
+    with pytest.raises(eqhb.InputError, match="accuracy = 2"):
+        eqhb.solve(eqhb.load_scene(SCENE), 0.4, accuracy=2.0)
+    with pytest.raises(eqhb.InputError, match="max_harmonics = 0"):
+        eqhb.solve(eqhb.load_scene(SCENE), 0.4, accuracy=0.01, max_harmonics=0)
+
+
+def test_refine_by_shooting_is_eqhb_solve_refine():
+    cli = cli_json("solve", SCENE, "--omega", 0.308, "--refine", "shoot", "--refine-harmonics", 15)
+    py = eqhb.solve(eqhb.load_scene(SCENE), 0.308, refine="shoot", refine_harmonics=15)
+    assert py["refinement"]["converged"] and py["refinement"]["harmonics"] == 15
+    assert len(py["solution"]["harmonics"]) == 15
+    # max|x| reported is the exact orbit's, not the harmonic balance's.
+    assert py["solution"]["max_abs_x"].tolist() == pytest.approx(py["refinement"]["max_abs"], rel=1e-12)
+    same_answer(cli, py)
+    with pytest.raises(eqhb.InputError, match="refine_harmonics = 15: needs refine"):
+        eqhb.solve(eqhb.load_scene(SCENE), 0.308, refine_harmonics=15)
+
+
+def test_starts_and_repeats_are_eqhb_solves():
+    model = eqhb.load_scene(SCENE)
+    seeded = eqhb.solve(model, 0.4, harmonics=20, from_harmonics=5)
+    assert seeded["cold_start"] == {"kind": "from-harmonics"}
+    same_answer(cli_json("solve", SCENE, "--omega", 0.4, "--harmonics", 20, "--from-harmonics", 5), seeded)
+    zero = eqhb.solve(model, 0.4, cold_start="zero", repeat=3)
+    assert zero["cold_start"] == {"kind": "zero"} and zero["repeats"] == 3
+    same_answer(cli_json("solve", SCENE, "--omega", 0.4, "--cold-start", "zero", "--repeat", 3), zero)
+    dense = eqhb.solve(model, 0.4, linear_algebra="dense", form="projection", rho=0.5)
+    same_answer(cli_json("solve", SCENE, "--omega", 0.4, "--linear-algebra", "dense", "--form", "projection",
+                         "--rho", 0.5), dense)
+    with pytest.raises(eqhb.InputError, match="from_harmonics = 20"):
+        eqhb.solve(model, 0.4, harmonics=20, from_harmonics=20)
+    with pytest.raises(eqhb.InputError, match="repeat = 0"):
+        eqhb.solve(model, 0.4, repeat=0)
+
+
+def test_shoot_starts_from_the_solve_that_eqhb_shoot_starts_from():
+    cli = cli_json("shoot", SCENE, "--omega", 0.308, "--trajectory")
+    py = eqhb.shoot(eqhb.load_scene(SCENE), 0.308)
+    # The start is a solve of the scene (coarse start, fallbacks), not a solve from zero.
+    assert py["from_hb"]["cold_start"]["kind"] == "coarse"
+    trajectory = cli.pop("trajectory")
+    same_answer(cli, py)
+    np.testing.assert_allclose(py["x"][1], trajectory["x2"], rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(py["lambda"][0], trajectory["law1.lambda"], rtol=1e-9, atol=1e-9)
+    assert py["lambda_labels"] == ["law1.lambda"]
+
+
+def test_a_planar_law_is_labelled_alike_in_solve_and_shoot():
+    scene = PROBLEMS / "friction-2d.toml"
+    solve = cli_json("solve", scene, "--harmonics", 5, "--trajectory")
+    shoot = cli_json("shoot", scene, "--harmonics", 5, "--trajectory", expect=(0, 1))
+    labels = ["law1.lambda1", "law1.lambda2"]
+    assert all(label in solve["trajectory"] for label in labels)
+    if shoot["converged"]:
+        assert all(label in shoot["trajectory"] for label in labels)
+    assert eqhb.solve(eqhb.load_scene(scene), harmonics=5)["solution"]["lambda_labels"] == labels
+
+
+def test_simulate_takes_the_scene_time_defaults_as_eqhb_simulate():
+    scene = PROBLEMS / "stribeck.toml"  # [time_reference] step = 1e-3
+    cli = cli_json("simulate", scene, "--periods", 3, expect=(0, 1))
+    py = eqhb.simulate(eqhb.load_scene(scene), periods=3)
+    assert py["step"] == pytest.approx(cli["step"], rel=1e-15) and py["step"] > 5e-4
+    same_answer(cli, py)
+    assert [f["label"] for f in py["law_forces"]] == ["law1.lambda"]
+    from_hb = eqhb.simulate(eqhb.load_scene(SCENE), 0.4, step=0.02, periods=20, from_hb=True)
+    same_answer(cli_json("simulate", SCENE, "--omega", 0.4, "--step", 0.02, "--periods", 20, "--from-hb",
+                         expect=(0, 1)), from_hb)
+    assert from_hb["from_hb"]["converged"]
+
+
+def test_compare_is_eqhb_compare():
+    cli = cli_json("compare", SCENE, "--omega", 0.4, "--step", 0.02, "--periods", 200, expect=(0, 1))
+    py = eqhb.compare(eqhb.load_scene(SCENE), 0.4, step=0.02, periods=200)
+    same_answer(cli, py)
+    assert [e["channel"] for e in py["errors"]] == ["x1", "x2", "law1.lambda"]
+    # The errors sample the solution on the reference's instants.
+    assert py["solution"]["max_abs_x"].tolist() == pytest.approx(
+        [e["max_abs_hb"] for e in py["errors"][:2]], rel=1e-4)
