@@ -109,12 +109,13 @@ void setRatiosToDogleg(std::vector<Case>& cases) {
 }
 
 namespace {
-// A case's verdict in a table: a wrong answer is a failure, and says so.
+// A case's verdict in a table: a converged answer that disagrees with the
+// references is a failure, and says so.
 std::string verdictCell(const Case& c) {
   switch (verdictOf(c)) {
     case Verdict::kSolved: return "yes";
     case Verdict::kUnchecked: return "converged (no reference)";
-    case Verdict::kWrongAnswer: return "**no** (wrong answer)";
+    case Verdict::kDisagrees: return "**no** (disagrees with the references)";
     case Verdict::kFailed: break;
   }
   return "**no** (" + c.termination + ")";

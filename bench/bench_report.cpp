@@ -64,10 +64,11 @@ nlohmann::json writeCaseData(const std::string& out, const std::vector<Case>& ca
 }
 
 // Most formulations solved first, then the lowest median time over the
-// solved cases; a backend's wrong answers are named beside it.
+// solved cases; a backend's converged answers that disagree with the
+// references are named beside it.
 Advice adviseBackends(const std::vector<Case>& cases) {
   struct Score {
-    int solved = 0, wrong = 0, unchecked = 0;
+    int solved = 0, disagreeing = 0, unchecked = 0;
     std::vector<double> times;
   };
   std::ostringstream advice, in_short;
@@ -78,14 +79,14 @@ Advice adviseBackends(const std::vector<Case>& cases) {
     Score& s = score[c.scene][c.solver];
     const Verdict v = verdictOf(c);
     s.solved += v == Verdict::kSolved;
-    s.wrong += v == Verdict::kWrongAnswer;
+    s.disagreeing += v == Verdict::kDisagrees;
     s.unchecked += v == Verdict::kUnchecked;
     if (v == Verdict::kSolved) s.times.push_back(c.median_seconds);
   }
   for (const Case& c : cases)
     if (c.study == "scenes" && c.solver == "dogleg") ++total[c.scene];
   for (const auto& [scene, by_solver] : score) {
-    std::string best, wrong, unchecked;
+    std::string best, wrong, unchecked;  // wrong: the backends whose converged answers disagree
     int best_ok = -1;
     double best_time = 0.0, slowest = 0.0;
     for (const auto& [solver, s] : by_solver) {
@@ -96,14 +97,14 @@ Advice adviseBackends(const std::vector<Case>& cases) {
         best_ok = s.solved;
         best_time = t;
       }
-      if (s.wrong > 0) wrong += (wrong.empty() ? "" : ", ") + solver + " " + std::to_string(s.wrong);
+      if (s.disagreeing > 0) wrong += (wrong.empty() ? "" : ", ") + solver + " " + std::to_string(s.disagreeing);
       if (s.unchecked > 0) unchecked += (unchecked.empty() ? "" : ", ") + solver + " " + std::to_string(s.unchecked);
     }
     if (best_ok == 0) {
       const std::string why = !unchecked.empty() ? "the scene has no reference to check the answers against "
                                                    "(converged: " + unchecked + ")"
                                                  : "no backend solved a formulation";
-      advice << "- **" << scene << "**: " << why << (wrong.empty() ? "" : "; wrong answers: " + wrong) << "\n";
+      advice << "- **" << scene << "**: " << why << (wrong.empty() ? "" : "; converged but disagreeing with the references: " + wrong) << "\n";
       in_short << "| " << scene << " | " << (unchecked.empty() ? "none" : "unchecked") << " | 0/" << total[scene]
                << " | - |\n";
       continue;
@@ -111,7 +112,7 @@ Advice adviseBackends(const std::vector<Case>& cases) {
     advice << "- **" << scene << "**: " << best << " (solved " << best_ok << " of " << total[scene]
            << " formulations, median " << number(best_time) << " s; the slowest solving backend's median is "
            << number(slowest / best_time) << "x"
-           << (wrong.empty() ? "" : "; converged to wrong answers, counted as failures: " + wrong) << ")\n";
+           << (wrong.empty() ? "" : "; converged but disagreeing with the references, counted as failures: " + wrong) << ")\n";
     in_short << "| " << scene << " | " << best << " | " << best_ok << "/" << total[scene] << " | "
              << number(best_time) << " |\n";
   }
@@ -125,8 +126,8 @@ std::string defaultAndFallback(const std::vector<Case>& cases) {
   std::ostringstream text;
   if (choice.default_backend.empty() || choice.cases == 0) return "No scene case could be checked against a reference.\n\n";
   text << "**Default: " << choice.default_backend << "**, solving " << choice.default_solved << " of "
-       << choice.cases << " scene cases that have a reference (" << choice.default_wrong_answers
-       << " wrong answers). ";
+       << choice.cases << " scene cases that have a reference (" << choice.default_disagreements
+       << " converged answers that disagree with the references). ";
   if (choice.fallback_backend.empty())
     text << "No other backend solves a case it does not.";
   else

@@ -14,13 +14,13 @@ Verdict verdictOf(const Case& c) {
   if (!has_reference && !has_high) return Verdict::kUnchecked;
   const bool agrees = (has_reference && c.error_reference <= kAgreementTolerance) ||
                       (has_high && c.error_high_h <= kAgreementTolerance);
-  return agrees ? Verdict::kSolved : Verdict::kWrongAnswer;
+  return agrees ? Verdict::kSolved : Verdict::kDisagrees;
 }
 
 const char* verdictName(Verdict verdict) {
   switch (verdict) {
     case Verdict::kSolved: return "solved";
-    case Verdict::kWrongAnswer: return "wrong_answer";
+    case Verdict::kDisagrees: return "disagrees";
     case Verdict::kUnchecked: return "unchecked";
     case Verdict::kFailed: return "failed";
   }
@@ -33,8 +33,8 @@ std::string verdictRule() {
           "and its answer is within "
        << kAgreementTolerance
        << " relative L2 error of the displacements (worst DOF) of the scene's time-domain reference or of its "
-          "4x-H solution; a converged answer that agrees with neither is a wrong answer (another solution branch "
-          "or a spurious root) and counts as a failure";
+          "4x-H solution; a converged answer that agrees with neither (a spurious root, another solution branch, "
+          "or too few harmonics for the law) counts as a failure";
   return rule.str();
 }
 
@@ -46,7 +46,7 @@ CaseKey keyOf(const Case& c) { return {c.scene, c.form, c.system, c.harmonics}; 
 
 struct BackendScore {
   std::set<CaseKey> solved;
-  int wrong_answers = 0;
+  int disagreements = 0;
   double log_time_sum = 0.0;
 };
 
@@ -63,8 +63,8 @@ DefaultChoice chooseDefault(const std::vector<Case>& cases) {
       score.solved.insert(keyOf(c));
       score.log_time_sum += std::log(std::max(c.median_seconds, 1e-9));
     }
-    if (v == Verdict::kWrongAnswer) ++score.wrong_answers;
-    if (v == Verdict::kSolved || v == Verdict::kWrongAnswer) checked.insert(keyOf(c));
+    if (v == Verdict::kDisagrees) ++score.disagreements;
+    if (v == Verdict::kSolved || v == Verdict::kDisagrees) checked.insert(keyOf(c));
   }
   // Cases with a reference: those some backend's answer could be checked on,
   // plus failures on scenes that have references (a failure is checked too).
@@ -89,7 +89,7 @@ DefaultChoice chooseDefault(const std::vector<Case>& cases) {
   }
   if (best == nullptr) return choice;
   choice.default_solved = static_cast<int>(best->solved.size());
-  choice.default_wrong_answers = best->wrong_answers;
+  choice.default_disagreements = best->disagreements;
   size_t most_rescued = 0;
   for (const auto& [name, score] : scores) {
     if (&score == best) continue;

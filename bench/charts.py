@@ -44,7 +44,7 @@ def number(text):
 
 def solved(row):
     """A case solved its problem: converged and agrees with a reference (the
-    verdict eqhb-bench writes); a converged wrong answer is a failure. Older
+    verdict eqhb-bench writes); a converged answer that disagrees is a failure. Older
     files without a verdict fall back on convergence."""
     return row.get("verdict", "solved" if row["converged"] == "true" else "failed") == "solved"
 

@@ -21,9 +21,9 @@ Case converged(const std::string& solver, const std::string& system, double erro
   return c;
 }
 
-TEST(CaseVerdict, AConvergedAnswerFarFromBothReferencesIsAWrongAnswer) {
+TEST(CaseVerdict, AConvergedAnswerFarFromBothReferencesIsDisagreeing) {
   // The damper's ipopt-square answer: converged, 37 away from the time reference.
-  EXPECT_EQ(verdictOf(converged("ipopt-square", "full", 37.0, 12.0)), Verdict::kWrongAnswer);
+  EXPECT_EQ(verdictOf(converged("ipopt-square", "full", 37.0, 12.0)), Verdict::kDisagrees);
   EXPECT_EQ(verdictOf(converged("dogleg", "full", 0.02, 0.5)), Verdict::kSolved);
   EXPECT_EQ(verdictOf(converged("dogleg", "full", NAN, 0.05)), Verdict::kSolved);
   EXPECT_EQ(verdictOf(converged("dogleg", "full", NAN, NAN)), Verdict::kUnchecked);
@@ -32,7 +32,7 @@ TEST(CaseVerdict, AConvergedAnswerFarFromBothReferencesIsAWrongAnswer) {
   EXPECT_EQ(verdictOf(failed), Verdict::kFailed);
 }
 
-TEST(CaseVerdict, TheDefaultSolvesMostAndAWrongAnswerDoesNotCount) {
+TEST(CaseVerdict, TheDefaultSolvesMostAndDisagreeingDoesNotCount) {
   // fast: converges everywhere, but half its answers are wrong; slow: solves
   // every case; rescue: solves the one case slow misses... none here.
   std::vector<Case> cases = {
@@ -56,7 +56,7 @@ TEST(CaseVerdict, TheDefaultSolvesMostAndAWrongAnswerDoesNotCount) {
   cases.push_back(missed);
   choice = chooseDefault(cases);
   EXPECT_EQ(choice.default_backend, "fast");  // 2 solved each; fast is faster
-  EXPECT_EQ(choice.default_wrong_answers, 1);
+  EXPECT_EQ(choice.default_disagreements, 1);
   EXPECT_EQ(choice.fallback_backend, "slow");
   EXPECT_EQ(choice.either_solved, 3);
   EXPECT_EQ(choice.cases, 3);
