@@ -133,7 +133,14 @@ def sweep(eqhb, scene, backend, method, timeout, span):
         row.update({"converged": 0, "asked": asked, "points": 0, "complete": False, "fallbacks": 0})
         row.setdefault("stop_reason", last_line(err) or "no JSON output")
         return row, []
+    # "points" holds the converged points, "failed" the grid points of a
+    # sequential sweep that did not converge: merged back in grid order, so
+    # that no interpolation bridges a failed point (an arclength curve, whose
+    # ω turns at folds, has none).
     points = data.get("points", [])
+    failed = [dict(f, converged=False) for f in data.get("failed", [])]
+    if failed:
+        points = sorted(points + failed, key=lambda p: p["omega"], reverse=data.get("from", 0) > data.get("to", 0))
     converged = sum(1 for p in points if p.get("converged"))
     asked = len(points)
     if method == "sequential":

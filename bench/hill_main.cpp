@@ -177,8 +177,8 @@ void curveTables(std::ostream& md, bool quick) {
     std::vector<double> hill_ms, solve_ms, ratio;
     for (size_t i = 0; i < curve.points.size(); ++i) {
       const CurvePoint& p = curve.points[i];
-      if (p.stable < 0) continue;
-      unstable += p.stable == 0;
+      if (!p.stable) continue;
+      unstable += !*p.stable;
       hill_ms.push_back(1e3 * stability.points[i].seconds);
       solve_ms.push_back(1e3 * p.seconds);
       ratio.push_back(stability.points[i].seconds / std::max(p.seconds, 1e-9));
@@ -191,7 +191,7 @@ void curveTables(std::ostream& md, bool quick) {
         continue;
       }
       ++checked;
-      agree += (p.stable == 1) == orbit.stable;
+      agree += *p.stable == orbit.stable;
     }
     std::map<std::string, int> kinds;
     for (const auto& b : stability.bifurcations) ++kinds[b.kind];

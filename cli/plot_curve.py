@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Frequency-response chart of an `eqhb sweep` CSV: max|x| per DOF vs omega,
-folds marked, failed points shown; with a `stable` column (sweep --stability)
+folds marked, failed points (the companion CSV.failed.csv) shown; with a `stable` column (sweep --stability)
 stable branches solid, unstable ones dashed, bifurcations marked by kind.
 Usage: plot_curve.py CSV PREFIX [TITLE] [--log-amplitude]"""
 import argparse
 import csv
+import os
 
 import matplotlib
 
@@ -61,6 +62,8 @@ def main():
     parser.add_argument("--log-amplitude", action="store_true", help="logarithmic amplitude axis")
     args = parser.parse_args()
     rows = list(csv.DictReader(open(args.csv)))
+    failed_csv = (args.csv[:-4] if args.csv.endswith(".csv") else args.csv) + ".failed.csv"
+    failed = [float(r["omega"]) for r in csv.DictReader(open(failed_csv))] if os.path.exists(failed_csv) else []
     if not rows:
         parser.exit(1, f"{args.csv}: no points to plot\n")
     dofs = sorted(k for k in rows[0] if k.startswith("max_abs_x"))
@@ -76,7 +79,6 @@ def main():
         folds = [(float(r["omega"]), float(r[key])) for r in rows if r["fold"] == "true" and r["converged"] == "true"]
         if folds:
             ax.plot([p[0] for p in folds], [p[1] for p in folds], "kx", ms=8)
-    failed = [float(r["omega"]) for r in rows if r["converged"] != "true"]
     if args.log_amplitude:
         ax.set_yscale("log")
     if failed:

@@ -14,6 +14,8 @@
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
+#include "eqhb/output/curve_json.h"
+#include "eqhb/output/curve_writers.h"
 #include "eqhb/stability/curve_stability.h"
 #include "flag_names.h"
 #include "terminal/progress.h"
@@ -58,81 +60,6 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
 
 namespace {
 
-// `model`: the curve's discretisation (with --accuracy, points may carry more harmonics).
-nlohmann::json curveJson(const Scene& scene, const HbModel& model, const Solver& solver,
-                         const ContinuationOptions& options, bool arclength, const Curve& curve,
-                         const CurveStability* stability) {
-  nlohmann::json points = nlohmann::json::array();
-  for (const CurvePoint& p : curve.points) {
-    nlohmann::json point = {{"omega", p.omega},
-                            {"converged", p.converged},
-                            {"termination", p.termination},
-                            {"iterations", p.iterations},
-                            {"residual_evaluations", p.residual_evaluations},
-                            {"jacobian_evaluations", p.jacobian_evaluations},
-                            {"residual_norm", p.residual_norm},
-                            {"seconds", p.seconds},
-                            {"fold", p.fold},
-                            {"energy", p.energy},
-                            {"max_abs", p.max_abs},
-                            {"first_harmonic", p.first_harmonic}};
-    if (!p.fallback.empty()) point["fallback"] = p.fallback;
-    if (!std::isnan(p.error_estimate)) point["error_estimate"] = p.error_estimate;
-    if (p.accuracy_met >= 0) {
-      point["harmonics"] = p.harmonics;
-      point["samples"] = p.samples;
-      point["accuracy_met"] = p.accuracy_met == 1;
-      point["accuracy_seconds"] = p.accuracy_seconds;
-      if (!p.accuracy_failure.empty()) point["accuracy_failure"] = p.accuracy_failure;
-    }
-    if (stability) {
-      const size_t i = points.size();
-      point["stable"] = p.stable >= 0 ? nlohmann::json(p.stable == 1) : nlohmann::json(nullptr);
-      if (!p.bifurcation.empty()) point["bifurcation"] = p.bifurcation;
-      if (p.stable >= 0) {
-        // The leading multipliers (largest modulus first, at most four).
-        const nlohmann::json all = stabilityJson(stability->points[i]);
-        nlohmann::json leading = nlohmann::json::array();
-        for (size_t j = 0; j < all["multipliers"].size() && j < 4; ++j) leading.push_back(all["multipliers"][j]);
-        point["spectral_radius"] = all["spectral_radius"];
-        point["multipliers"] = leading;
-      }
-    }
-    if (p.full.size() > 0) {
-      const HbModel at = pointModel(model, p);
-      const nlohmann::json channels = solutionJson(at, summarize(at, p.full));
-      point["dofs"] = channels["dofs"];
-      point["laws"] = channels["laws"];
-    }
-    points.push_back(point);
-  }
-  nlohmann::json out = {{"scene", scene.name},
-          {"solver", solver.name()},
-          {"method", arclength ? "arclength" : "sequential"},
-          {"from", options.from},
-          {"to", options.to},
-          {"step", options.step},
-          {"system", options.condensed ? "condensed" : "full"},
-          {"harmonics", model.basis.count()},
-          {"harmonic_set", HarmonicSet::kindName(model.basis.kind())},
-          {"samples", model.samples},
-          {"complete", curve.complete},
-          {"stop_reason", curve.stop_reason},
-          {"folds", curve.fold_omegas},
-          {"failed_points", curve.failed_points},
-          {"seconds", curve.seconds},
-          {"points", points}};
-  if (stability) {
-    nlohmann::json bifurcations = nlohmann::json::array();
-    for (const auto& b : stability->bifurcations)
-      bifurcations.push_back({{"omega", b.omega}, {"kind", b.kind}, {"point", b.point}});
-    out["bifurcations"] = bifurcations;
-    out["stability_seconds"] = stability->seconds;
-    out["solve_seconds"] = stability->solve_seconds;
-  }
-  return out;
-}
-
 // Each converged point's error estimate (NaN where the solve at 2H fails).
 void addErrorEstimates(const HbModel& model, Solver& solver, const SolverOptions& options, bool condensed,
                        Curve* curve) {
@@ -141,7 +68,7 @@ void addErrorEstimates(const HbModel& model, Solver& solver, const SolverOptions
     HbModel at = model;
     at.omega = p.omega;
     const ErrorEstimate e = estimateError(at, p.full, solver, options, condensed);
-    p.error_estimate = e.available ? e.max_abs : NAN;
+    if (e.available) p.error_estimate = e.max_abs;
   }
 }
 
@@ -222,8 +149,8 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     Progress checked = [&](const CurvePoint& p, int index) {
       if (verbose)
         line.message("eqhb: point " + std::to_string(index + 1) + " omega = " + formatNumber(p.omega) + ": H = " +
-                     std::to_string(p.harmonics) + ", estimate " + formatNumber(p.error_estimate) +
-                     (p.accuracy_met == 1 ? "" : " (NOT met)"));
+                     std::to_string(p.harmonics) + ", estimate " + formatNumber(p.error_estimate.value_or(NAN)) +
+                     (p.accuracy && p.accuracy->met ? "" : " (NOT met)"));
     };
     rho = rhoCandidates(s.scene);
     accurate = sweepToAccuracy(rho.models, *s.accuracy.tolerance, start, s.accuracy.max_harmonics, *solver,
@@ -240,9 +167,32 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   std::optional<CurveStability> stability;
   if (s.stability) stability = analyseCurveStability(scene.model, curve);
 
+  CurveRun run;
+  run.scene = scene.name;
+  run.solver = solver->name();
+  run.arclength = w.arclength;
+  run.from = options.from;
+  run.to = options.to;
+  run.step = options.step;
+  run.condensed = options.condensed;
+  run.model = &curve_model;
+  run.stability = stability ? &*stability : nullptr;
+  if (!curve.complete) run.advice = rhoScaleAdvice(curve_model);
+  run.error_estimate = s.accuracy.error_estimate;
+  if (accurate) {
+    double worst = 0.0;
+    for (const auto& p : curve.points)
+      if (p.converged && p.error_estimate) worst = std::max(worst, *p.error_estimate);
+    std::ostringstream line;
+    line << "--accuracy " << accurate->tolerance << ": H = " << curve_model.basis.count()
+         << ", rho = " << rhoJson(rho.scene_rho, rho.factors[accurate->first.candidate]).dump()
+         << " chosen at omega = " << options.from << ", raised up to H = " << accurate->highest_harmonics
+         << "; largest estimate " << worst << "; not met at " << accurate->not_met.size() << " point(s); "
+         << accurate->seconds << " s in all";
+    run.accuracy = line.str();
+  }
   if (w.json) {
-    nlohmann::json out =
-        curveJson(scene, curve_model, *solver, options, w.arclength, curve, stability ? &*stability : nullptr);
+    nlohmann::json out = curveJson(curve, run);
     if (accurate) {
       out["rho"] = rhoJson(rho.scene_rho, rho.factors[accurate->first.candidate]);
       out["accuracy"] = {{"tolerance", accurate->tolerance},
@@ -255,57 +205,7 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     std::cout << out.dump(2) << "\n";
   }
   // With --json, stdout is the JSON object alone; the summary goes to stderr.
-  std::ostream& summary = w.json ? std::cerr : std::cout;
-  const CurvePoint* peak = nullptr;
-  for (const auto& p : curve.points)
-    if (p.converged && (!peak || p.max_abs[dofs - 1] > peak->max_abs[dofs - 1])) peak = &p;
-  summary << scene.name << ": " << (w.arclength ? "arclength" : "sequential") << " sweep " << options.from
-          << " -> " << options.to << " with " << solver->name() << ", H = " << curve_model.basis.count() << ": "
-          << curve.points.size() << " points, " << curve.failed_points << " failed, " << curve.seconds << " s\n"
-          << "  stop: " << curve.stop_reason << "\n";
-  if (!curve.complete)
-    for (const std::string& advice : rhoScaleAdvice(curve_model)) summary << "  " << advice << "\n";
-  if (peak)
-    summary << "  peak: omega = " << peak->omega << ", max|x" << dofs << "| = " << peak->max_abs[dofs - 1] << "\n";
-  if (!curve.fold_omegas.empty()) {
-    summary << "  folds at omega =";
-    for (double f : curve.fold_omegas) summary << " " << f;
-    summary << "\n";
-  } else if (w.arclength) {
-    summary << "  no fold\n";
-  }
-  if (accurate) {
-    double worst = 0.0;
-    for (const auto& p : curve.points)
-      if (p.converged && !std::isnan(p.error_estimate)) worst = std::max(worst, p.error_estimate);
-    summary << "  --accuracy " << accurate->tolerance << ": H = " << curve_model.basis.count()
-            << ", rho = " << rhoJson(rho.scene_rho, rho.factors[accurate->first.candidate]).dump()
-            << " chosen at omega = " << options.from << ", raised up to H = " << accurate->highest_harmonics
-            << "; largest estimate " << worst << "; not met at " << accurate->not_met.size() << " point(s); "
-            << accurate->seconds << " s in all\n";
-  } else if (s.accuracy.error_estimate) {
-    double worst = 0.0;
-    int missing = 0;
-    for (const auto& p : curve.points)
-      if (p.converged) {
-        if (std::isnan(p.error_estimate)) ++missing;
-        else worst = std::max(worst, p.error_estimate);
-      }
-    summary << "  largest estimated relative error of max|x|: " << worst
-            << (missing ? " (" + std::to_string(missing) + " points without an estimate: the solve at 2H failed)" : "")
-            << "\n";
-  }
-  if (stability) {
-    int stable = 0, analysed = 0;
-    for (const auto& p : curve.points) {
-      analysed += p.stable >= 0;
-      stable += p.stable == 1;
-    }
-    summary << "  stability (Hill): " << stable << " of " << analysed << " points stable, " << stability->seconds
-            << " s (" << (stability->solve_seconds > 0 ? 100.0 * stability->seconds / stability->solve_seconds : 0.0)
-            << " % of the solve time)\n";
-    for (const auto& b : stability->bifurcations) summary << "  " << b.kind << " at omega = " << b.omega << "\n";
-  }
+  writeCurveSummary(w.json ? std::cerr : std::cout, curve, run);
   if (!w.out.empty()) writeCurveCsv(w.out, curve, dofs);
   if (!w.chart.empty()) {
     const std::string csv = w.out.empty() ? w.chart + ".csv" : w.out;
@@ -321,12 +221,12 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
     if (accurate->not_met.size() > 10) where << ", ... (" << accurate->not_met.size() << " points)";
     const CurvePoint* first_miss = nullptr;
     for (const auto& p : curve.points)
-      if (p.accuracy_met == 0) {
+      if (p.accuracy && !p.accuracy->met) {
         first_miss = &p;
         break;
       }
     std::cerr << "eqhb: --accuracy " << accurate->tolerance << " not met at omega = " << where.str();
-    if (first_miss) std::cerr << " (at omega = " << first_miss->omega << ": " << withFlagNames(first_miss->accuracy_failure) << ")";
+    if (first_miss) std::cerr << " (at omega = " << first_miss->omega << ": " << withFlagNames(first_miss->accuracy->failure) << ")";
     std::cerr << "\n";
     return 1;
   }

@@ -55,8 +55,9 @@ TEST(AccuracySweep, RaisesHExactlyWhereTheCurvesHMissesTheTolerance) {
   int raised = 0;
   for (const CurvePoint& p : a.curve.points) {
     ASSERT_TRUE(p.converged) << p.omega;
-    EXPECT_EQ(p.accuracy_met, 1) << p.omega;
-    EXPECT_LE(p.error_estimate, tolerance) << p.omega;
+    ASSERT_TRUE(p.accuracy && p.error_estimate) << p.omega;
+    EXPECT_TRUE(p.accuracy->met) << p.omega;
+    EXPECT_LE(*p.error_estimate, tolerance) << p.omega;
     // H is the curve's times a power of two, and N follows it.
     ASSERT_GE(p.harmonics, curve_h);
     EXPECT_EQ(p.harmonics % curve_h, 0);
@@ -86,9 +87,10 @@ TEST(AccuracySweep, NamesThePointsWhereTheLargestHIsNotEnough) {
     for (const CurvePoint& p : a.curve.points)
       if (p.omega == omega) {
         found = true;
-        EXPECT_EQ(p.accuracy_met, 0);
-        EXPECT_GT(p.error_estimate, 5e-3);
-        EXPECT_NE(p.accuracy_failure.find("max_harmonics"), std::string::npos) << p.accuracy_failure;
+        ASSERT_TRUE(p.accuracy && p.error_estimate) << p.omega;
+        EXPECT_FALSE(p.accuracy->met);
+        EXPECT_GT(*p.error_estimate, 5e-3);
+        EXPECT_NE(p.accuracy->failure.find("max_harmonics"), std::string::npos) << p.accuracy->failure;
       }
     EXPECT_TRUE(found) << omega;
   }
@@ -106,7 +108,7 @@ TEST(AccuracySweep, TheCurveStartsFromTheFirstLaddersSolution) {
   ASSERT_TRUE(a.first.reached) << a.first.failure;
   EXPECT_EQ(a.curve.failed_points, 0);
   ASSERT_EQ(a.curve.points.size(), 3u);
-  for (const CurvePoint& p : a.curve.points) EXPECT_EQ(p.accuracy_met, 1) << p.omega;
+  for (const CurvePoint& p : a.curve.points) EXPECT_TRUE(p.accuracy && p.accuracy->met) << p.omega;
   EXPECT_TRUE(a.not_met.empty());
 }
 

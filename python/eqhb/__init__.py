@@ -136,11 +136,14 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     """A frequency-response curve by continuation in omega ("sequential" on a
     grid of `step`, by default a hundredth of the range, or "arclength",
     which passes turning points, from a scaled step of 0.01). Returns a
-    dict of arrays over the points: omega, converged, max_abs (points x dofs),
-    first_harmonic, energy, fold, x_cos/x_sin (points x dofs x harmonics), and
-    folds, stop_reason, complete, failed_points, seconds; "fallback" per
-    point names the step that converged a point that failed from the
-    previous one (see solve)."""
+    dict of arrays over the converged points: omega, converged, max_abs
+    (points x dofs), first_harmonic, energy, fold, x_cos/x_sin (points x
+    dofs x harmonics), and folds, stop_reason, complete, failed_points,
+    seconds; "fallback" per point names the step that converged a point that
+    failed from the previous one (see solve). The grid points that did not
+    converge are in "failed", a list of dicts (omega, termination,
+    iterations, residual_evaluations, jacobian_evaluations, residual_norm,
+    seconds), never rows of NaN."""
     return _sweep(_model(model), _real(start, "start", True), _real(stop, "stop", True), _real(step, "step", True),
                   _text(method, "method"), _integer(harmonics, "harmonics", True), _integer(samples, "samples", True),
                   _text(solver, "solver"), _text(system, "system"), _real(tolerance, "tolerance"),

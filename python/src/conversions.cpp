@@ -112,7 +112,8 @@ py::dict resultDict(const SolverResult& r) {
 }
 
 py::dict curveDict(const HbModel& model, const Curve& curve) {
-  const Eigen::Index points = static_cast<Eigen::Index>(curve.points.size());
+  const CurveParts parts = splitCurve(curve);
+  const Eigen::Index points = static_cast<Eigen::Index>(parts.converged.size());
   const int dofs = model.structure.dofs();
   const int h = static_cast<int>(model.basis.harmonics().size());
   Eigen::VectorXd omega(points), residual(points), seconds(points), energy(points);
@@ -128,7 +129,7 @@ py::dict curveDict(const HbModel& model, const Curve& curve) {
   py::list terminations, fallbacks;
   const int nb = model.basis.size();
   for (Eigen::Index p = 0; p < points; ++p) {
-    const CurvePoint& c = curve.points[p];
+    const CurvePoint& c = *parts.converged[p];
     omega[p] = c.omega;
     residual[p] = c.residual_norm;
     seconds[p] = c.seconds;
@@ -140,15 +141,26 @@ py::dict curveDict(const HbModel& model, const Curve& curve) {
     terminations.append(c.termination);
     fallbacks.append(c.fallback);
     for (int i = 0; i < dofs; ++i) {
-      max_abs(p, i) = i < static_cast<int>(c.max_abs.size()) ? c.max_abs[i] : NAN;
-      first(p, i) = i < static_cast<int>(c.first_harmonic.size()) ? c.first_harmonic[i] : NAN;
+      max_abs(p, i) = c.max_abs[i];
+      first(p, i) = c.first_harmonic[i];
       for (int j = 0; j < h; ++j) {
         const int o = i * nb + model.basis.offset(j);
-        const bool known = c.full.size() >= (i + 1) * nb;
-        cos_view(p, i, j) = known ? c.full[o] : NAN;
-        sin_view(p, i, j) = known && model.basis.harmonics()[j] != 0 ? c.full[o + 1] : (known ? 0.0 : NAN);
+        cos_view(p, i, j) = c.full[o];
+        sin_view(p, i, j) = model.basis.harmonics()[j] != 0 ? c.full[o + 1] : 0.0;
       }
     }
+  }
+  py::list failed;
+  for (const CurvePoint* c : parts.failed) {
+    py::dict f;
+    f["omega"] = c->omega;
+    f["termination"] = c->termination;
+    f["iterations"] = c->iterations;
+    f["residual_evaluations"] = c->residual_evaluations;
+    f["jacobian_evaluations"] = c->jacobian_evaluations;
+    f["residual_norm"] = c->residual_norm;
+    f["seconds"] = c->seconds;
+    failed.append(f);
   }
   py::dict d;
   d["omega"] = toArray(omega);
@@ -166,6 +178,7 @@ py::dict curveDict(const HbModel& model, const Curve& curve) {
   d["harmonics"] = py::array_t<int>(model.basis.harmonics().size(), model.basis.harmonics().data());
   d["x_cos"] = x_cos;
   d["x_sin"] = x_sin;
+  d["failed"] = failed;  // the points that did not converge (output/curve_writers.h: kFailedPointFields)
   d["folds"] = curve.fold_omegas;
   d["complete"] = curve.complete;
   d["stop_reason"] = curve.stop_reason;

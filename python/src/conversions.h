@@ -13,6 +13,7 @@
 #include "eqhb/app/simulate.h"
 #include "eqhb/app/solution.h"
 #include "eqhb/continuation/continuation.h"
+#include "eqhb/output/curve_writers.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/solvers/solver.h"
@@ -51,6 +52,8 @@ py::dict simulationDict(const app::Simulation& simulation);
 py::dict comparisonDict(const app::Comparison& comparison);
 // The solver's report: converged, termination, counts, norms, time.
 py::dict resultDict(const SolverResult& result);
+// The curve's converged points as arrays (one row each) and its failed
+// points as a list of dicts, "failed" (output/curve_writers.h).
 py::dict curveDict(const HbModel& model, const Curve& curve);
 py::dict referenceDict(const HbModel& model, const TimeReference& reference);
 

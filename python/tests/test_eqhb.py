@@ -209,9 +209,18 @@ def test_a_sweep_point_lost_past_a_fold_is_found_by_the_fallback_chain():
     plain = eqhb.sweep(duffing, fallback="none")
     assert not plain["complete"] and plain["failed_points"] > 0
     rescued = eqhb.sweep(duffing)
-    assert rescued["complete"] and rescued["failed_points"] == 0
+    assert rescued["complete"] and rescued["failed_points"] == 0 and rescued["failed"] == []
     assert "cold" in rescued["fallback"]
-    assert all(step == "" for step, ok in zip(rescued["fallback"], plain["converged"]) if ok)
+    # The lost points are listed apart, not as NaN rows: the arrays hold the
+    # converged points, and with the failed ones they make the whole grid.
+    failed = plain["failed"]
+    assert len(failed) == plain["failed_points"]
+    assert plain["converged"].all() and np.isfinite(plain["max_abs"]).all() and np.isfinite(plain["x_cos"]).all()
+    assert all(f["termination"] and f["termination"] != "converged" and f["iterations"] > 0 for f in failed)
+    np.testing.assert_allclose(np.sort(np.concatenate([plain["omega"], [f["omega"] for f in failed]])),
+                               rescued["omega"], atol=1e-12)
+    kept = np.isin(rescued["omega"], plain["omega"])
+    assert all(step == "" for step in np.asarray(rescued["fallback"])[kept])
 
 
 def test_a_failed_solve_reports_each_fallback_attempt():

@@ -25,11 +25,10 @@ void takeChoice(const AccuracyChoice& c, double tolerance, CurvePoint* p) {
   p->converged = true;
   p->harmonics = c.model.basis.count();
   p->samples = c.model.samples;
-  p->accuracy_seconds = c.seconds;
   const bool estimated = c.estimate.refined_harmonics > 0 && c.estimate.available;
-  p->error_estimate = estimated ? c.estimate.max_abs : NAN;
-  p->accuracy_met = c.reached && c.estimate.max_abs <= tolerance ? 1 : 0;
-  p->accuracy_failure = c.failure;
+  if (estimated) p->error_estimate = c.estimate.max_abs;
+  else p->error_estimate.reset();
+  p->accuracy = PointAccuracy{c.reached && c.estimate.max_abs <= tolerance, c.failure, c.seconds};
 }
 
 }  // namespace
@@ -75,7 +74,7 @@ AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tol
                                                 solver_options, options.condensed);
       takeChoice(c, tolerance, &p);
     }
-    if (!p.accuracy_met) out.not_met.push_back(p.omega);
+    if (!p.accuracy->met) out.not_met.push_back(p.omega);
     out.highest_harmonics = std::max(out.highest_harmonics, p.harmonics);
     if (check_progress) check_progress(p, static_cast<int>(i));
   }

@@ -25,7 +25,7 @@ namespace eqhb {
 
 struct AccurateCurve {
   // Per point: harmonics and samples of its discretisation, error_estimate,
-  // accuracy_met, accuracy_seconds, and max|x|, first harmonic, energy and
+  // accuracy (met, failure, seconds), and max|x|, first harmonic, energy and
   // coefficients (`full`) of the chosen solution.
   Curve curve;
   AccuracyChoice first;      // the ladder at the first frequency

@@ -305,7 +305,7 @@ class ArclengthSweep {
     CurvePoint p = describePoint(model_, system_->fullCoefficients(point.z));
     addSolverCounts(r, &p);
     p.fallback = fallback;
-    p.tangent_omega = tangent_omega;
+    if (!std::isnan(tangent_omega)) p.tangent_omega = tangent_omega;
     curve_.points.push_back(p);
     const int index = static_cast<int>(curve_.points.size()) - 1;
     if (!std::isnan(tangent_omega)) {

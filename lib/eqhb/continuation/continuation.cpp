@@ -1,12 +1,10 @@
 #include "eqhb/continuation/continuation.h"
 
 #include <chrono>
-#include <fstream>
 #include <cmath>
 #include <memory>
 
 #include "eqhb/error.h"
-#include "eqhb/io_error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
@@ -71,42 +69,6 @@ bool trySetOmega(HbSystem& system, double omega, std::string* why) {
 }
 
 }  // namespace
-
-void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
-  std::ofstream out(path);
-  if (!out) throwIoError(path, "cannot create the curve file");
-  out << "omega,converged,termination,iterations,residual_evaluations,jacobian_evaluations,seconds";
-  for (int i = 1; i <= dofs; ++i) out << ",max_abs_x" << i;
-  for (int i = 1; i <= dofs; ++i) out << ",first_harmonic_x" << i;
-  bool with_stability = false;
-  for (const auto& p : curve.points) with_stability = with_stability || p.stable >= 0;
-  bool with_estimate = false;
-  for (const auto& p : curve.points) with_estimate = with_estimate || !std::isnan(p.error_estimate);
-  bool with_accuracy = false;
-  for (const auto& p : curve.points) with_accuracy = with_accuracy || p.accuracy_met >= 0;
-  bool with_fallback = false;
-  for (const auto& p : curve.points) with_fallback = with_fallback || !p.fallback.empty();
-  out << ",energy,fold" << (with_stability ? ",stable,bifurcation" : "") << (with_estimate ? ",error_estimate" : "")
-      << (with_accuracy ? ",harmonics,samples,accuracy_met,accuracy_seconds" : "")
-      << (with_fallback ? ",fallback" : "") << "\n";
-  out.precision(10);
-  for (const auto& p : curve.points) {
-    out << p.omega << "," << (p.converged ? "true" : "false") << "," << p.termination << "," << p.iterations << ","
-        << p.residual_evaluations << "," << p.jacobian_evaluations << "," << p.seconds;
-    for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.max_abs[i] : NAN);
-    for (int i = 0; i < dofs; ++i) out << "," << (p.converged ? p.first_harmonic[i] : NAN);
-    out << "," << (p.converged ? p.energy : NAN) << "," << (p.fold ? "true" : "false");
-    if (with_stability) out << "," << (p.stable >= 0 ? std::to_string(p.stable) : "") << "," << p.bifurcation;
-    if (with_estimate) out << "," << p.error_estimate;
-    if (with_accuracy)
-      out << "," << p.harmonics << "," << p.samples << ","
-          << (p.accuracy_met >= 0 ? std::to_string(p.accuracy_met) : "") << "," << p.accuracy_seconds;
-    if (with_fallback) out << "," << p.fallback;
-    out << "\n";
-  }
-  out.close();
-  if (!out) throwIoError(path, "cannot write the curve file");
-}
 
 CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full) {
   CurvePoint p;

@@ -28,6 +28,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,18 @@
 
 namespace eqhb {
 
+// A point's check against an accuracy target (sweep --accuracy): whether
+// its estimate met the tolerance, why not, and the time of the solves that
+// checked and refined it.
+struct PointAccuracy {
+  bool met = false;
+  std::string failure;
+  double seconds = 0.0;
+};
+
+// One point of a continuation run. A point that did not converge keeps its
+// ω, termination and counts only; the writers (output/curve_model.h) list
+// such points apart from the curve.
 struct CurvePoint {
   double omega = 0.0;
   bool converged = false;
@@ -49,17 +62,13 @@ struct CurvePoint {
   double energy = 0.0;                 // period mean of ½ẋᵀMẋ + ½xᵀKx
   bool fold = false;                   // a turning point lies just before this point
   std::string fallback;                // the fallback step that converged it; empty: none needed
-  double tangent_omega = NAN;          // arclength: ω-component of the unit tangent here
-  int stable = -1;                     // Hill stability: 1, 0, or −1 (not computed)
+  std::optional<double> tangent_omega; // arclength: ω-component of the unit tangent here
+  std::optional<bool> stable;          // Hill stability, where it was computed
   std::string bifurcation;             // stability analysis: kind, between the previous point and this
-  double error_estimate = NAN;         // estimated relative error of max|x| (sweep --error-estimate)
-  // sweep --accuracy: the point's own discretisation (0: the curve's), whether
-  // its estimate met the tolerance (1, 0; −1 not asked), why not, and the
-  // time of the solves that checked and refined it.
+  std::optional<double> error_estimate;  // estimated relative error of max|x|, where estimated
+  // The point's own discretisation (0: the curve's), raised by an accuracy target.
   int harmonics = 0, samples = 0;
-  int accuracy_met = -1;
-  std::string accuracy_failure;
-  double accuracy_seconds = 0.0;
+  std::optional<PointAccuracy> accuracy;  // set by an accuracy target (accuracy_sweep.h)
   Eigen::VectorXd full;                // [x; λ] coefficients
 };
 
@@ -108,13 +117,6 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
                       const ContinuationOptions& options, const Progress& progress = nullptr);
 Curve sweepArclength(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
                      const ContinuationOptions& options, const Progress& progress = nullptr);
-
-// The curve as CSV: ω, converged, termination, counts, time, max|x_i|,
-// first-harmonic amplitude of x_i, energy, fold, and when stability was
-// computed for some point: stable (1/0, empty if not computed) and
-// bifurcation; error_estimate when estimated; harmonics, samples,
-// accuracy_met and accuracy_seconds when an accuracy target was set. Throws InputError if the file cannot be written.
-void writeCurveCsv(const std::string& path, const Curve& curve, int dofs);
 
 // Adds a solve's counts and time to the point's and sets its termination,
 // convergence and residual norm from it.

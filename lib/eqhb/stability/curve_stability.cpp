@@ -11,8 +11,8 @@ namespace {
 bool turnsBetween(const Curve& curve, int lo, int hi) {
   double first = NAN;
   for (int i = std::max(lo, 0); i <= std::min(hi, static_cast<int>(curve.points.size()) - 1); ++i) {
-    const double t = curve.points[i].tangent_omega;
-    if (std::isnan(t)) continue;
+    if (!curve.points[i].tangent_omega) continue;
+    const double t = *curve.points[i].tangent_omega;
     if (std::isnan(first)) first = t;
     else if ((t >= 0.0) != (first >= 0.0)) return true;
   }
@@ -30,18 +30,18 @@ CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const H
   for (size_t i = 0; i < curve.points.size(); ++i) {
     CurvePoint& p = curve.points[i];
     out.solve_seconds += p.seconds;
-    has_tangents = has_tangents || !std::isnan(p.tangent_omega);
-    p.stable = -1;
+    has_tangents = has_tangents || p.tangent_omega.has_value();
+    p.stable.reset();
     p.bifurcation.clear();
     if (!p.converged || p.full.size() == 0) continue;
     out.points[i] = hill.analyse(p.omega, p.full);
-    if (out.points[i].failure.empty()) p.stable = out.points[i].stable ? 1 : 0;
+    if (out.points[i].failure.empty()) p.stable = out.points[i].stable;
   }
   std::vector<double> folds;
   int previous = -1;
   for (int i = 0; i < static_cast<int>(curve.points.size()); ++i) {
     curve.points[i].fold = false;
-    if (curve.points[i].stable < 0) continue;
+    if (!curve.points[i].stable) continue;
     if (previous >= 0) {
       std::string kind = bifurcationKind(out.points[previous], out.points[i], options.unit_tolerance);
       if (kind == "fold" && has_tangents && !turnsBetween(curve, previous - 1, i + 1)) kind = "branch-point";

@@ -1,0 +1,103 @@
+#include "eqhb/output/curve_json.h"
+
+#include "eqhb/accuracy/accuracy_sweep.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/output/solution_json.h"
+
+namespace eqhb {
+
+namespace {
+
+nlohmann::json pointJson(const CurvePoint& p, const CurveRun& run, const HillResult* hill) {
+  nlohmann::json point = {{"omega", p.omega},
+                          {"converged", p.converged},
+                          {"termination", p.termination},
+                          {"iterations", p.iterations},
+                          {"residual_evaluations", p.residual_evaluations},
+                          {"jacobian_evaluations", p.jacobian_evaluations},
+                          {"residual_norm", p.residual_norm},
+                          {"seconds", p.seconds},
+                          {"fold", p.fold},
+                          {"energy", p.energy},
+                          {"max_abs", p.max_abs},
+                          {"first_harmonic", p.first_harmonic}};
+  if (!p.fallback.empty()) point["fallback"] = p.fallback;
+  if (p.error_estimate) point["error_estimate"] = *p.error_estimate;
+  if (p.accuracy) {
+    point["harmonics"] = p.harmonics;
+    point["samples"] = p.samples;
+    point["accuracy_met"] = p.accuracy->met;
+    point["accuracy_seconds"] = p.accuracy->seconds;
+    if (!p.accuracy->failure.empty()) point["accuracy_failure"] = p.accuracy->failure;
+  }
+  if (run.stability) {
+    point["stable"] = p.stable ? nlohmann::json(*p.stable) : nlohmann::json(nullptr);
+    if (!p.bifurcation.empty()) point["bifurcation"] = p.bifurcation;
+    if (p.stable) {
+      // The leading multipliers (largest modulus first, at most four).
+      const nlohmann::json all = output::stabilityJson(*hill);
+      nlohmann::json leading = nlohmann::json::array();
+      for (size_t j = 0; j < all["multipliers"].size() && j < 4; ++j) leading.push_back(all["multipliers"][j]);
+      point["spectral_radius"] = all["spectral_radius"];
+      point["multipliers"] = leading;
+    }
+  }
+  if (p.full.size() > 0) {
+    const HbModel at = pointModel(*run.model, p);
+    const nlohmann::json channels = output::channelsJson(at, summarize(at, p.full));
+    point["dofs"] = channels["dofs"];
+    point["laws"] = channels["laws"];
+  }
+  return point;
+}
+
+nlohmann::json failedJson(const CurvePoint& p) {
+  return {{"omega", p.omega},
+          {"termination", p.termination},
+          {"iterations", p.iterations},
+          {"residual_evaluations", p.residual_evaluations},
+          {"jacobian_evaluations", p.jacobian_evaluations},
+          {"residual_norm", p.residual_norm},
+          {"seconds", p.seconds}};
+}
+
+}  // namespace
+
+nlohmann::json curveJson(const Curve& curve, const CurveRun& run) {
+  const CurveParts parts = splitCurve(curve);
+  nlohmann::json points = nlohmann::json::array(), failed = nlohmann::json::array();
+  for (size_t i = 0; i < curve.points.size(); ++i) {
+    const CurvePoint& p = curve.points[i];
+    if (p.converged) points.push_back(pointJson(p, run, run.stability ? &run.stability->points[i] : nullptr));
+    else failed.push_back(failedJson(p));
+  }
+  const HbModel& model = *run.model;
+  nlohmann::json out = {{"scene", run.scene},
+                        {"solver", run.solver},
+                        {"method", run.arclength ? "arclength" : "sequential"},
+                        {"from", run.from},
+                        {"to", run.to},
+                        {"step", run.step},
+                        {"system", run.condensed ? "condensed" : "full"},
+                        {"harmonics", model.basis.count()},
+                        {"harmonic_set", HarmonicSet::kindName(model.basis.kind())},
+                        {"samples", model.samples},
+                        {"complete", curve.complete},
+                        {"stop_reason", curve.stop_reason},
+                        {"folds", curve.fold_omegas},
+                        {"failed_points", curve.failed_points},
+                        {"seconds", curve.seconds},
+                        {"points", points},
+                        {"failed", failed}};
+  if (run.stability) {
+    nlohmann::json bifurcations = nlohmann::json::array();
+    for (const auto& b : run.stability->bifurcations)
+      bifurcations.push_back({{"omega", b.omega}, {"kind", b.kind}, {"point", parts.curve_index[b.point]}});
+    out["bifurcations"] = bifurcations;
+    out["stability_seconds"] = run.stability->seconds;
+    out["solve_seconds"] = run.stability->solve_seconds;
+  }
+  return out;
+}
+
+}  // namespace eqhb
