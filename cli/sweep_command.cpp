@@ -58,22 +58,6 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
                 "amplitudes and Fourier coefficients of every DOF and law force");
 }
 
-namespace {
-
-// Each converged point's error estimate (NaN where the solve at 2H fails).
-void addErrorEstimates(const HbModel& model, Solver& solver, const SolverOptions& options, bool condensed,
-                       Curve* curve) {
-  for (CurvePoint& p : curve->points) {
-    if (!p.converged) continue;
-    HbModel at = model;
-    at.omega = p.omega;
-    const ErrorEstimate e = estimateError(at, p.full, solver, options, condensed);
-    if (e.available) p.error_estimate = e.max_abs;
-  }
-}
-
-}  // namespace
-
 int runSweep(const SolveArguments& s, const SweepArguments& w) {
   const Scene scene = loadSceneWith(s.scene);
   ContinuationOptions options;
@@ -95,8 +79,8 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   if (w.min_step) positive("--min-step", *w.min_step);
   if (w.max_step) positive("--max-step", *w.max_step);
   options.step = step;
-  options.min_step = w.min_step ? *w.min_step : std::min(1e-6, step);
-  options.max_step = w.max_step ? *w.max_step : std::max(0.1, step);
+  options.min_step = w.min_step ? *w.min_step : ContinuationOptions::defaultMinStep(step);
+  options.max_step = w.max_step ? *w.max_step : ContinuationOptions::defaultMaxStep(step);
   if (options.min_step > options.max_step)
     throwInputError(w.min_step ? "--min-step" : "--max-step",
                     formatNumber(w.min_step ? options.min_step : options.max_step),
@@ -163,7 +147,7 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   const HbModel& curve_model = accurate ? accurate->model : scene.model;
   line.finish(std::to_string(curve.points.size()) + " points, " + std::to_string(curve.failed_points) + " failed");
   if (s.accuracy.error_estimate && !accurate)
-    addErrorEstimates(scene.model, *solver, solver_options, options.condensed, &curve);
+    estimateCurveErrors(scene.model, *solver, solver_options, options.condensed, &curve);
   std::optional<CurveStability> stability;
   if (s.stability) stability = analyseCurveStability(scene.model, curve);
 

@@ -162,8 +162,8 @@ py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<doubl
   const double step = given_step ? *given_step
                                  : ContinuationOptions::defaultStep(options.from, options.to, method == "arclength");
   options.step = step;
-  options.min_step = std::min(1e-6, step);
-  options.max_step = std::max(1.0, step);
+  options.min_step = ContinuationOptions::defaultMinStep(step);
+  options.max_step = ContinuationOptions::defaultMaxStep(step);  // as `eqhb sweep`
   options.max_points = max_points;
   options.condensed = condensedSystem(system);
   options.validate();

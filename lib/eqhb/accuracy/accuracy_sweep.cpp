@@ -16,6 +16,18 @@ HbModel pointModel(const HbModel& curve_model, const CurvePoint& point) {
   return m;
 }
 
+void estimateCurveErrors(const HbModel& model, Solver& solver, const SolverOptions& options, bool condensed,
+                         Curve* curve) {
+  for (CurvePoint& p : curve->points) {
+    if (!p.converged) continue;
+    HbModel at = model;
+    at.omega = p.omega;
+    const ErrorEstimate e = estimateError(at, p.full, solver, options, condensed);
+    if (e.available) p.error_estimate = e.max_abs;
+    else p.error_estimate.reset();
+  }
+}
+
 namespace {
 
 // The point as the ladder left it: the chosen solution's description, the

@@ -46,6 +46,11 @@ AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tol
                               const ContinuationOptions& options, bool arclength,
                               const Progress& sweep_progress = nullptr, const Progress& check_progress = nullptr);
 
+// Each converged point's error estimate (estimateError at the point's ω on
+// `model`); a point whose solve at 2H fails gets none.
+void estimateCurveErrors(const HbModel& model, Solver& solver, const SolverOptions& options, bool condensed,
+                         Curve* curve);
+
 // The model of one point of such a curve: `curve_model` at the point's ω
 // and on its harmonics (doublings of the curve's H, N following H).
 HbModel pointModel(const HbModel& curve_model, const CurvePoint& point);

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -101,6 +102,10 @@ struct ContinuationOptions {
   // 2.6 rad/s on a cantilever's 110 -> 370 rad/s), an arclength start of
   // 0.01 in the scaled unknowns.
   static double defaultStep(double from, double to, bool arclength);
+  // The step bounds when none is given: min(10⁻⁶, step) and max(0.1, step)
+  // (0.1: a tenth of the range in ω or a 10 % change of the response).
+  static double defaultMinStep(double step) { return std::min(1e-6, step); }
+  static double defaultMaxStep(double step) { return std::max(0.1, step); }
   // Throws InputError naming the field.
   void validate() const;
   // Points of the sequential grid, floor(|to − from| / step) + 1, as a
