@@ -41,8 +41,10 @@ run_csv() {
   shift
   grep -qE "$only" <<<"$name" || return 0
   run "$name" "$@" --out "$out/$name.csv"
-  [ -f "$out/$name.csv" ] && /usr/bin/python3 "$strip" --csv <"$out/$name.csv" >"$out/$name.csv.tmp" &&
-    mv "$out/$name.csv.tmp" "$out/$name.csv"
+  # The curve, and the points that failed (written apart when there are any).
+  for csv in "$out/$name.csv" "$out/$name.failed.csv"; do
+    [ -f "$csv" ] && /usr/bin/python3 "$strip" --csv <"$csv" >"$csv.tmp" && mv "$csv.tmp" "$csv"
+  done
 }
 
 scenes=()
