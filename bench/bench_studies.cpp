@@ -5,6 +5,7 @@
 
 #include "bench_progress.h"
 #include "eqhb/backends/registry.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/scenes/scene.h"
 
 namespace fs = std::filesystem;
@@ -24,8 +25,8 @@ bool isBuilt(const std::vector<std::string>& built, const std::string& name) {
 
 // The forms of the scene's first law ({""} where it has none).
 std::vector<std::string> firstLawForms(const Scene& base) {
-  if (!base.model.laws.empty() && !lawForms(base.model.laws[0].law->type()).empty())
-    return lawForms(base.model.laws[0].law->type());
+  if (!base.model.laws.empty() && !lawEntry(*base.model.laws[0].law).forms.empty())
+    return lawEntry(*base.model.laws[0].law).forms;
   return {""};
 }
 

@@ -8,6 +8,7 @@
 #include "eqhb/accuracy/error_estimate.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/continuation.h"
+#include "eqhb/laws/law_registry.h"
 #include "report_number.h"
 
 namespace eqhb::bench {
@@ -28,7 +29,7 @@ std::string errorEstimateTable(const HbModel& scene_model, const Eigen::VectorXd
   options.residual_tolerance = 1e-10;
   options.max_iterations = 400;
   // The dogleg solves contact on the full system (as the tables above).
-  const bool condensed = scene_model.laws[0].law->type() != "signorini";
+  const bool condensed = suitsCondensedSystem(scene_model.laws);
   std::ostringstream md;
   md << "| H | N | converged (H, 2H) | estimate max\\|x\\| | true max\\|x\\| error | estimate ÷ true | "
         "estimate coefficients |\n|---|---|---|---|---|---|---|\n";

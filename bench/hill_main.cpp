@@ -18,6 +18,7 @@
 
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/continuation.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
@@ -34,7 +35,11 @@ std::string number(double x, int digits = 3) { return bench::reportNumber(x, dig
 
 std::string problem(const std::string& name) { return std::string(EQHB_PROBLEMS_DIR) + "/" + name; }
 
-bool isContact(const HbModel& model) { return model.laws[0].law->type() == "signorini"; }
+// A law that hits a rigid wall: the restitution matters.
+bool hasWall(const HbModel& model) {
+  const auto site = piecewiseLinearSite(*model.laws[0].law);
+  return site && site->contact;
+}
 
 // Harmonic balance at H by continuation in H from 5 (the full system for
 // contact, which the own dogleg solves there; condensed otherwise).
@@ -47,7 +52,7 @@ Eigen::VectorXd harmonicBalance(HbModel& model, int harmonics, bool* converged) 
   options.max_iterations = 400;
   Eigen::VectorXd full;
   const SolverResult r =
-      solveByHarmonicContinuation(model, *solver, options, std::min(harmonics, 5), !isContact(model), &full);
+      solveByHarmonicContinuation(model, *solver, options, std::min(harmonics, 5), suitsCondensedSystem(model.laws), &full);
   *converged = r.converged();
   return full;
 }
@@ -108,7 +113,7 @@ void convergenceTable(std::ostream& md, bool quick) {
     const Eigen::VectorXd hb = harmonicBalance(reference_model, harmonics.back(), &ok);
     const auto orbit = shoot(reference_model, c.restitution, hb);
     md << "### " << c.file.substr(0, c.file.size() - 5) << ", ω = " << c.omega
-       << (isContact(model) ? ", e = " + number(c.restitution) : "") << "\n\n";
+       << (hasWall(model) ? ", e = " + number(c.restitution) : "") << "\n\n";
     if (orbit.converged) {
       std::vector<Complex> exact(orbit.multipliers.data(), orbit.multipliers.data() + orbit.multipliers.size());
       md << "Exact (shooting): " << multipliersText(exact) << "; radius " << number(orbit.spectral_radius, 5)

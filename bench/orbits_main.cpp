@@ -14,6 +14,7 @@
 
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/continuation.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/references/time_integrator.h"
@@ -42,8 +43,9 @@ Eigen::VectorXd harmonicBalance(HbModel model, int harmonics, bool* converged) {
   options.residual_tolerance = 1e-10;
   options.max_iterations = 400;
   Eigen::VectorXd full;
-  const bool contact = model.laws[0].law->type() == "signorini";  // the own dogleg solves contact on the full system
-  const SolverResult r = solveByHarmonicContinuation(model, *solver, options, std::min(harmonics, 5), !contact, &full);
+  // The own dogleg solves contact on the full system.
+  const bool condensed = suitsCondensedSystem(model.laws);
+  const SolverResult r = solveByHarmonicContinuation(model, *solver, options, std::min(harmonics, 5), condensed, &full);
   *converged = r.converged();
   return full;
 }
@@ -167,7 +169,8 @@ int main(int argc, char** argv) {
     const Eigen::VectorXd hb = harmonicBalance(model, model.basis.count(), &hb_ok);
     const bench::ExactOrbit exact = bench::exactOrbit(model, c.restitution, hb);
     const auto& o = exact.orbit;
-    md << "## " << scene.name << ", ω = " << c.omega << (model.laws[0].law->type() == "signorini" ? ", e = " + number(c.restitution) : "")
+    const auto wall = piecewiseLinearSite(*model.laws[0].law);  // impacts: the restitution matters
+    md << "## " << scene.name << ", ω = " << c.omega << (wall && wall->contact ? ", e = " + number(c.restitution) : "")
        << "\n\n"
        << "exact orbit: " << (o.converged ? "converged" : "NOT converged (" + o.failure + ")") << ", period residual "
        << number(o.period_residual) << ", " << o.iterations << " Newton steps, " << number(o.seconds_per_orbit * 1e3)

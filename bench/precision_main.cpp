@@ -16,6 +16,7 @@
 #include "eqhb/accuracy/error_estimate.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/continuation.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/scenes/scene.h"
 #include "precision_study.h"
 #include "report_number.h"
@@ -37,7 +38,7 @@ ExactOrbit referenceOrbit(const PrecisionScene& c) {
   options.residual_tolerance = 1e-10;
   options.max_iterations = 400;
   Eigen::VectorXd full;
-  const bool condensed = model.laws[0].law->type() != "signorini";
+  const bool condensed = suitsCondensedSystem(model.laws);
   solveByHarmonicContinuation(model, *solver, options, std::min(5, model.basis.count()), condensed, &full);
   return exactOrbit(model, c.restitution, full);
 }
@@ -139,7 +140,7 @@ int main(int argc, char** argv) {
                         {"rate_max_abs", std::isnan(fit.max_abs) ? nlohmann::json(nullptr) : nlohmann::json(fit.max_abs)},
                         {"points", point_list}});
       // The rates table: the curves on the own dogleg and the scene's system.
-      if (curve.backend != "dogleg" || (curve.condensed != (model.laws[0].law->type() != "signorini"))) continue;
+      if (curve.backend != "dogleg" || (curve.condensed != suitsCondensedSystem(model.laws))) continue;
       const PrecisionPoint& last = points.back();
       rates << "| " << scene.label() << " | " << (curve.form.empty() ? "–" : curve.form) << " | "
             << rhoPolicyName(curve.rho) << " | "

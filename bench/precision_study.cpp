@@ -12,7 +12,7 @@
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
-#include "eqhb/laws/signorini.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/orbits/orbit_refinement.h"
 #include "eqhb/scenes/scene.h"
 #include "report_number.h"
@@ -31,7 +31,7 @@ bool exactForm(const std::string& form) {
   return false;
 }
 
-bool takesRho(const HbModel& model) { return lawTakesRho(model.laws[0].law->type()); }
+bool takesRho(const HbModel& model) { return lawEntry(*model.laws[0].law).takesRho(); }
 
 Scene load(const PrecisionScene& scene, const std::string& form, std::optional<double> rho) {
   std::vector<std::string> overrides = {"harmonic_balance.omega=" + reportNumber(scene.omega, 17)};
@@ -52,10 +52,12 @@ double balancedRho(const HbModel& model, const Eigen::VectorXd& full) {
   for (const auto& attached : model.laws)
     for (int dof : attached.dofs) {
       const auto& x = solution.displacements[dof];
-      const auto* contact = dynamic_cast<const Signorini*>(attached.law.get());
-      other = std::max(other, contact ? contact->gap() + x.max_abs : x.max_abs_rate);
+      const auto site = piecewiseLinearSite(*attached.law);
+      const bool contact = site && site->contact;  // a wall: ρ weighs a gap
+      other = std::max(other, contact ? site->gap + x.max_abs : x.max_abs_rate);
     }
-  const bool contact = dynamic_cast<const Signorini*>(model.laws[0].law.get()) != nullptr;
+  const auto first = piecewiseLinearSite(*model.laws[0].law);
+  const bool contact = first && first->contact;
   return contact ? force / other : other / force;
 }
 
@@ -109,9 +111,8 @@ std::string PrecisionCurve::name() const {
 }
 
 std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<std::string>& backends) {
-  const std::string type = model.laws[0].law->type();
   std::vector<std::string> forms;
-  for (const auto& f : lawForms(type))
+  for (const auto& f : lawEntry(*model.laws[0].law).forms)
     if (exactForm(f)) forms.push_back(f);
   if (forms.empty()) forms.push_back("");
   const std::vector<RhoPolicy> policies = takesRho(model)
@@ -120,7 +121,7 @@ std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<st
   const RhoPolicy base_policy = policies.front();
   // The own dogleg solves contact on the full system (the condensed one
   // stalls on the min form); friction and smooth laws on the condensed one.
-  const bool base_condensed = type != "signorini";
+  const bool base_condensed = suitsCondensedSystem(model.laws);
   std::vector<PrecisionCurve> curves;
   for (const auto& form : forms)
     for (RhoPolicy rho : policies) curves.push_back({form, rho, base_condensed, "dogleg", false});

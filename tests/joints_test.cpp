@@ -1,6 +1,6 @@
-// Joint laws (contact-friction, Jenkins): pointwise weak partials and
-// assembled Jacobians (full and condensed) against finite differences; the
-// blocked-normal reduction to the Coulomb laws; zero sets; bad input.
+// Joint laws (contact-friction, Jenkins): the blocked-normal reduction to the
+// Coulomb laws; zero sets; bad input (their conformance checks are those of
+// every registered law, law_registry_test.cpp).
 #include <gtest/gtest.h>
 
 #include <map>
@@ -21,11 +21,6 @@
 namespace eqhb {
 namespace {
 
-struct JointCase {
-  std::string label;
-  std::shared_ptr<Law> law;
-};
-
 std::shared_ptr<Law> contactFriction(int m, NormalForm normal, FrictionForm friction,
                                      std::optional<double> k_t = std::nullopt) {
   ContactFrictionParameters p;
@@ -40,35 +35,6 @@ std::shared_ptr<Law> contactFriction(int m, NormalForm normal, FrictionForm fric
   p.rho = 0.8;
   return std::make_shared<ContactFriction>(p);
 }
-
-std::vector<JointCase> allJoints() {
-  return {
-      {"cf1_min_minmax", contactFriction(1, NormalForm::kMin, FrictionForm::kMinMax)},
-      {"cf1_fb_projection", contactFriction(1, NormalForm::kFischerBurmeister, FrictionForm::kProjection)},
-      {"cf1_compliant_max", contactFriction(1, NormalForm::kCompliant, FrictionForm::kMax)},
-      {"cf2_min_projection", contactFriction(2, NormalForm::kMin, FrictionForm::kProjection)},
-      {"cf2_fb_max", contactFriction(2, NormalForm::kFischerBurmeister, FrictionForm::kMax)},
-      {"cf2_compliant_projection_kt", contactFriction(2, NormalForm::kCompliant, FrictionForm::kProjection, 2.5)},
-      {"cf1_min_minmax_kt", contactFriction(1, NormalForm::kMin, FrictionForm::kMinMax, 1.5)},
-      {"jenkins1_minmax", std::make_shared<Jenkins>(1, 1.2, 2.0, FrictionForm::kMinMax, 0.9)},
-      {"jenkins1_projection", std::make_shared<Jenkins>(1, 1.2, 2.0, FrictionForm::kProjection, 0.9)},
-      {"jenkins2_max", std::make_shared<Jenkins>(2, 1.2, 2.0, FrictionForm::kMax, 0.9)},
-      {"jenkins2_projection", std::make_shared<Jenkins>(2, 1.2, 2.0, FrictionForm::kProjection, 0.9)},
-  };
-}
-
-class JointTest : public ::testing::TestWithParam<JointCase> {};
-
-TEST_P(JointTest, PointwisePartialsMatchFiniteDifferences) {
-  test::expectPointwisePartialsMatch(*GetParam().law, GetParam().label, 5, 400);
-}
-
-TEST_P(JointTest, AssembledJacobiansMatchFiniteDifferences) {
-  test::expectAssembledJacobiansMatch(GetParam().law, GetParam().label, 19);
-}
-
-INSTANTIATE_TEST_SUITE_P(AllJoints, JointTest, ::testing::ValuesIn(allJoints()),
-                         [](const auto& info) { return info.param.label; });
 
 // The blocked-normal reduction (spec §5): a Coulomb model and the same model
 // with one more DOF, the normal one, decoupled and pressed on the wall at

@@ -1,6 +1,6 @@
-// Checks every law must pass, shared by the suites of the basic laws and of
-// the joint laws: pointwise partials of ψ and the assembled weak Jacobians
-// (full and condensed) against central differences.
+// Checks every law must pass (tests/law_registry_test.cpp runs them on every
+// example of every registered law): pointwise partials of ψ and the assembled
+// weak Jacobians (full and condensed) against central differences.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -12,9 +12,38 @@
 
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/law.h"
+#include "eqhb/laws/law_registry.h"
+#include "eqhb/scenes/scene.h"
 #include "test_support.h"
 
 namespace eqhb::test {
+
+// A law built from one example of its registry entry.
+struct LawCase {
+  std::string label, type;
+  std::shared_ptr<Law> law;
+};
+
+// The scene of one registered example: the law on the last DOFs of a 3-DOF
+// chain. `extra` lines are added to its table.
+inline std::string exampleScene(const LawEntry& entry, const LawExample& example, const std::string& extra = "") {
+  std::string dofs;
+  for (int a = 0; a < example.dofs; ++a) dofs += (a ? ", " : "") + std::to_string(3 - example.dofs + a + 1);
+  return "name = \"" + example.label + "\"\n[structure]\ntype = \"chain\"\ndofs = 3\nm = 1.0\nk = 1.0\nd = 0.05\n"
+         "[[law]]\ntype = \"" + entry.type + "\"\ndofs = [" + dofs + "]\n" + example.keys + "\n" + extra +
+         "\n[harmonic_balance]\nharmonics = 3\nset = \"all\"\nsamples = 64\nomega = 0.8\n";
+}
+
+// Every example of every registered law, built by its parser.
+inline std::vector<LawCase> registeredExamples() {
+  std::vector<LawCase> cases;
+  for (const LawEntry& entry : lawRegistry())
+    for (const LawExample& example : entry.examples) {
+      const Scene scene = parseScene(exampleScene(entry, example), example.label);
+      cases.push_back({example.label, entry.type, scene.model.laws.at(0).law});
+    }
+  return cases;
+}
 
 // ∂ψ/∂(displacement, velocity, force, force rate), whichever the law uses,
 // at `samples` random points in [-2, 2]; the partials are checked column by

@@ -9,6 +9,7 @@
 
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/backends/registry.h"
 #include "test_support.h"
@@ -39,7 +40,7 @@ std::vector<std::pair<std::string, Scene>> everySceneAndForm() {
     }
     std::set<std::string> forms;
     for (const auto& attached : scene.model.laws)
-      for (const auto& form : lawForms(attached.law->type())) forms.insert(form);
+      for (const auto& form : lawEntry(*attached.law).forms) forms.insert(form);
     if (forms.empty()) all.emplace_back(file, scene);
     for (const auto& form : forms) {
       Scene variant = loadScene(test::problem(file), lawOverrides(scene.model, "form", form));

@@ -6,9 +6,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "eqhb/error.h"
-#include "eqhb/laws/coulomb_1d.h"
-#include "eqhb/laws/joints/jenkins.h"
-#include "eqhb/laws/signorini.h"
+#include "eqhb/laws/law_registry.h"
 
 namespace eqhb::orbits {
 
@@ -54,18 +52,11 @@ double locateZero(const Eigen::RowVectorXd& c, const Eigen::MatrixXd& generator,
   return hi;
 }
 
-const Jenkins* isJenkins1D(const Law* law) {
-  const auto* jenkins = dynamic_cast<const Jenkins*>(law);
-  return jenkins && jenkins->dimension() == 1 ? jenkins : nullptr;
-}
-
 }  // namespace
 
 bool PiecewiseLinearFlow::supports(const HbModel& model) {
   for (const auto& attached : model.laws)
-    if (!dynamic_cast<const Coulomb1D*>(attached.law.get()) && !dynamic_cast<const Signorini*>(attached.law.get()) &&
-        !isJenkins1D(attached.law.get()))
-      return false;
+    if (!piecewiseLinearSite(*attached.law)) return false;
   return true;
 }
 
@@ -106,15 +97,12 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
     const Law* law = model.laws[l].law.get();
     LawSite site;
     site.dof = model.laws[l].dofs[0];
-    if (const auto* friction = dynamic_cast<const Coulomb1D*>(law)) {
-      site.limit = friction->muN();
-    } else if (const auto* contact = dynamic_cast<const Signorini*>(law)) {
-      site.contact = true;
-      site.gap = contact->gap();
-    } else if (const Jenkins* jenkins = isJenkins1D(law)) {
-      site.limit = jenkins->muN();
-      site.stiffness = jenkins->stiffness();
-      site.slider = m_++;
+    if (const auto capability = piecewiseLinearSite(*law)) {  // the law's registry entry
+      site.contact = capability->contact;
+      site.limit = capability->limit;
+      site.gap = capability->gap;
+      site.stiffness = capability->stiffness;
+      if (site.stiffness > 0.0) site.slider = m_++;
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
                       "exact orbits handle coulomb-1d, jenkins on 1 DOF, signorini (closed form), cubic, coulomb-2d, stribeck "

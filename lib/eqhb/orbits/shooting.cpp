@@ -7,8 +7,7 @@
 #include <limits>
 
 #include "eqhb/error.h"
-#include "eqhb/laws/joints/jenkins.h"
-#include "eqhb/laws/signorini.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/solvers/deadline.h"
 
 namespace eqhb::orbits {
@@ -168,12 +167,12 @@ Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full,
   };
   std::vector<double> sliders;  // w = x + r/k_t of each Jenkins law on one DOF
   for (size_t l = 0; l < model.laws.size(); ++l) {
-    const auto* jenkins = dynamic_cast<const Jenkins*>(model.laws[l].law.get());
-    if (!jenkins || jenkins->dimension() != 1) continue;
+    const auto slider = piecewiseLinearSite(*model.laws[l].law);  // an elastic slider: k_t > 0
+    if (!slider || !(slider->stiffness > 0.0)) continue;
     double x = 0.0, r = 0.0, rate = 0.0;
     synthesize(model.laws[l].dofs[0] * nb, x, rate);
     synthesize((n + model.componentIndex(static_cast<int>(l), 0)) * nb, r, rate);
-    sliders.push_back(x + r / jenkins->stiffness());
+    sliders.push_back(x + r / slider->stiffness);
   }
   Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n + static_cast<int>(sliders.size()));
   for (int i = 0; i < n; ++i) synthesize(i * nb, y[i], y[n + i]);
@@ -190,14 +189,15 @@ double quietStartTime(const HbModel& model, const Eigen::VectorXd& full) {
   std::vector<double> score(samples, 1.0);
   for (const auto& attached : model.laws) {
     const int dof = attached.dofs[0];
-    const auto* contact = dynamic_cast<const Signorini*>(attached.law.get());
+    auto contact = piecewiseLinearSite(*attached.law);  // a rigid wall
+    if (contact && !contact->contact) contact.reset();
     if (!attached.law->usesVelocity() && !contact) continue;  // smooth in x: no event
     std::vector<double> distance(samples);
     double largest = 0.0;
     for (int s = 0; s < samples; ++s) {
       double speed = 0.0;  // sliding speed, in the plane for 2D friction
       for (int dof_k : attached.dofs) speed = std::hypot(speed, states[s][n + dof_k]);
-      distance[s] = contact ? std::max(0.0, contact->gap() - states[s][dof]) : speed;
+      distance[s] = contact ? std::max(0.0, contact->gap - states[s][dof]) : speed;
       largest = std::max(largest, distance[s]);
     }
     if (largest > 0.0)

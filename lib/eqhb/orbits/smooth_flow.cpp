@@ -5,10 +5,7 @@
 #include <limits>
 
 #include "eqhb/error.h"
-#include "eqhb/laws/coulomb_1d.h"
-#include "eqhb/laws/coulomb_2d.h"
-#include "eqhb/laws/cubic_stiffness.h"
-#include "eqhb/laws/stribeck.h"
+#include "eqhb/laws/law_registry.h"
 
 namespace eqhb::orbits {
 
@@ -32,12 +29,8 @@ constexpr double kRestSpeed = 1e-14;
 
 bool SmoothFlow::supports(const HbModel& model) {
   if (model.laws.empty()) return false;
-  for (const auto& attached : model.laws) {
-    const Law* law = attached.law.get();
-    if (!dynamic_cast<const CubicStiffness*>(law) && !dynamic_cast<const Coulomb2D*>(law) &&
-        !dynamic_cast<const Stribeck*>(law) && !dynamic_cast<const Coulomb1D*>(law))
-      return false;
-  }
+  for (const auto& attached : model.laws)
+    if (!smoothFlowSite(*attached.law)) return false;
   return true;
 }
 
@@ -66,21 +59,15 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
     const Law* law = model.laws[l].law.get();
     Site site;
     site.dof = model.laws[l].dofs[0];
-    if (const auto* cubic = dynamic_cast<const CubicStiffness*>(law)) {
-      site.kind = Kind::kCubic;
-      site.coefficient = cubic->epsilon();
-    } else if (const auto* planar = dynamic_cast<const Coulomb2D*>(law)) {
-      site.kind = Kind::kPlanar;
-      site.second_dof = model.laws[l].dofs[1];
-      site.coefficient = planar->muN();
-    } else if (const auto* coulomb = dynamic_cast<const Coulomb1D*>(law)) {
-      site.kind = Kind::kStribeck;  // constant limit μN: no drop
-      site.coefficient = coulomb->muN();
-    } else if (const auto* stribeck = dynamic_cast<const Stribeck*>(law)) {
-      site.kind = Kind::kStribeck;
-      site.coefficient = stribeck->dynamicLimit();
-      site.drop = stribeck->staticLimit() - stribeck->dynamicLimit();
-      site.v_s = stribeck->slidingVelocity();
+    if (const auto capability = smoothFlowSite(*law)) {  // the law's registry entry
+      using Declared = SmoothFlowSite::Kind;
+      site.kind = capability->kind == Declared::kCubic    ? Kind::kCubic
+                  : capability->kind == Declared::kPlanar ? Kind::kPlanar
+                                                          : Kind::kStribeck;
+      if (site.kind == Kind::kPlanar) site.second_dof = model.laws[l].dofs[1];
+      site.coefficient = capability->coefficient;
+      site.drop = capability->drop;
+      site.v_s = capability->v_s;
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
                       "exact orbits handle coulomb-1d, signorini (closed form), cubic, coulomb-2d, stribeck "

@@ -13,14 +13,8 @@
 #include <sstream>
 #include <toml.hpp>
 
-#include "eqhb/laws/coulomb_1d.h"
-#include "eqhb/laws/coulomb_2d.h"
-#include "eqhb/laws/cubic_stiffness.h"
 #include "eqhb/error.h"
-#include "eqhb/laws/joints/contact_friction.h"
-#include "eqhb/laws/joints/jenkins.h"
-#include "eqhb/laws/signorini.h"
-#include "eqhb/laws/stribeck.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/structures/beam.h"
 #include "eqhb/structures/market_structure_sizes.h"
@@ -346,58 +340,28 @@ const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
   return v.as_array();
 }
 
-// contact-friction: dofs = [normal, tangential (, tangential)]; see scene.h.
-// A law's ρ: `rho` in the problem's units, or, without it, scale-free
-// (rho_factor, 1 by default, times the ρ a system makes from the structure's
-// compliance at the law: LawScales).
-RhoSetting readRho(TableReader& t, const std::string& field) {
-  if (t.has("rho") && t.has("rho_factor"))
-    t.fail(field + ".rho_factor", formatNumber(t.number("rho_factor")), "give rho or rho_factor, not both");
-  const char* key = t.has("rho") ? "rho" : "rho_factor";
-  const double x = t.number(key, 1.0);
-  if (!(x > 0.0)) t.fail(field + "." + key, formatNumber(x), "must be > 0");
-  return t.has("rho") ? RhoSetting(x) : RhoSetting::scaleFree(x);
-}
+// A law's table as its registered parser reads it (laws/law_table.h).
+class SceneLawTable : public LawTable {
+ public:
+  SceneLawTable(TableReader& reader, const std::string& field, const LawEntry& entry, std::vector<int> dofs,
+                std::string dofs_text)
+      : LawTable(field, entry.type, entry.forms, std::move(dofs)), reader_(reader), dofs_text_(std::move(dofs_text)) {}
+  bool has(const std::string& key) const override { return reader_.has(key); }
+  double number(const std::string& key, std::optional<double> fallback) override {
+    return reader_.number(key, fallback);
+  }
+  std::string text(const std::string& key, std::optional<std::string> fallback) override {
+    return reader_.text(key, std::move(fallback));
+  }
+  std::string dofsText() const override { return dofs_text_; }
+  [[noreturn]] void fail(const std::string& field, const std::string& value, const std::string& rule) const override {
+    reader_.fail(field, value, rule);
+  }
 
-std::shared_ptr<Law> readContactFriction(TableReader& t, const std::string& field, const std::vector<int>& dofs,
-                                         const std::string& normal_form) {
-  if (dofs.size() != 2 && dofs.size() != 3)
-    t.fail(field + ".dofs", std::to_string(dofs.size()) + " DOF(s)",
-           "a contact-friction law acts on [normal, tangential] or [normal, tangential, tangential]");
-  for (size_t a = 1; a < dofs.size(); ++a)
-    if (dofs[a] == dofs[0])
-      t.fail(field + ".dofs", std::to_string(dofs[0] + 1), "the normal DOF is also a tangential DOF");
-  ContactFrictionParameters p;
-  p.tangential = static_cast<int>(dofs.size()) - 1;
-  auto non_negative = [&](const char* key, std::optional<double> fallback, const char* what) {
-    const double x = t.number(key, fallback);
-    if (x < 0.0) t.fail(field + "." + key, formatNumber(x), std::string(what) + " must be >= 0");
-    return x;
-  };
-  auto positive_optional = [&](const char* key, const char* what) -> std::optional<double> {
-    if (!t.has(key)) return std::nullopt;
-    const double x = t.number(key);
-    if (!(x > 0.0)) t.fail(field + "." + key, formatNumber(x), std::string(what) + " must be > 0");
-    return x;
-  };
-  p.mu = non_negative("mu", std::nullopt, "friction coefficient");
-  p.preload = non_negative("preload", std::nullopt, "normal preload N0");
-  p.gap = t.number("gap", 0.0);
-  p.rho = readRho(t, field);
-  p.normal = parseNormalForm(normal_form, field + ".form");
-  p.normal_stiffness = positive_optional("k_n", "contact stiffness");
-  if (p.normal == NormalForm::kCompliant && !p.normal_stiffness)
-    t.fail(field + ".k_n", "(missing)", "form = \"compliant\" needs a contact stiffness k_n > 0");
-  if (p.normal != NormalForm::kCompliant && p.normal_stiffness)
-    t.fail(field + ".k_n", formatNumber(*p.normal_stiffness),
-           "a contact stiffness is only used by form = \"compliant\"");
-  p.tangential_stiffness = positive_optional("k_t", "tangential stiffness");
-  const std::string friction = t.text("friction_form", std::string("projection"));
-  p.friction = parseFrictionForm(friction, field + ".friction_form");
-  if (p.friction == FrictionForm::kMinMax && p.tangential != 1)
-    t.fail(field + ".friction_form", "\"minmax\"", "the minmax form has one tangential DOF; use max or projection");
-  return std::make_shared<ContactFriction>(p);
-}
+ private:
+  TableReader& reader_;
+  std::string dofs_text_;
+};
 
 AttachedLaw readLaw(const toml::value& value, const std::string& field, const std::string& source,
                     int dofs, int nodes) {
@@ -423,69 +387,10 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
                  std::to_string(count) + ", numbered from 1)");
     attached.dofs.push_back(by_node ? beamTransverseDof(static_cast<int>(number)) : static_cast<int>(number) - 1);
   }
-  // Positive-parameter reader with the field in the message.
-  auto positive = [&](const char* key, std::optional<double> fallback) {
-    const double x = t.number(key, fallback);
-    if (!(x > 0.0)) t.fail(field + "." + key, formatNumber(x), "must be > 0");
-    return x;
-  };
-  auto form = [&](const std::string& fallback) {
-    const std::string name = t.text("form", fallback);
-    const auto& known = lawForms(type);
-    if (std::find(known.begin(), known.end(), name) == known.end()) {
-      std::string list;
-      for (const auto& f : known) list += (list.empty() ? "" : ", ") + f;
-      t.fail(field + ".form", "\"" + name + "\"", "a " + type + " law has forms " + list);
-    }
-    return name;
-  };
-  if (type == "coulomb-1d") {
-    const double mu_n = t.number("muN");
-    if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
-    const RhoSetting rho = readRho(t, field);
-    const double beta = positive("beta", 100.0);
-    attached.law = std::make_shared<Coulomb1D>(mu_n, parseCoulombForm(form("minmax")), rho, beta);
-  } else if (type == "coulomb-2d") {
-    const double mu_n = t.number("muN");
-    if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
-    const RhoSetting rho = readRho(t, field);
-    const double epsilon = positive("epsilon", 1e-4);
-    const double alpha = positive("alpha", 100.0);
-    attached.law = std::make_shared<Coulomb2D>(mu_n, parseCoulomb2DForm(form("max")), rho, epsilon, alpha);
-  } else if (type == "signorini") {
-    const double gap = t.number("gap");
-    const RhoSetting rho = readRho(t, field);
-    attached.law = std::make_shared<Signorini>(gap, parseSignoriniForm(form("min")), rho);
-  } else if (type == "stribeck") {
-    const double dynamic = t.number("muN_dynamic");
-    if (dynamic < 0.0) t.fail(field + ".muN_dynamic", formatNumber(dynamic), "friction limit must be >= 0");
-    const double stat = t.number("muN_static");
-    if (stat < dynamic)
-      t.fail(field + ".muN_static", formatNumber(stat), "must be >= muN_dynamic = " + formatNumber(dynamic));
-    const double v_s = positive("v_s", std::nullopt);
-    const RhoSetting rho = readRho(t, field);
-    form("minmax");
-    attached.law = std::make_shared<Stribeck>(dynamic, stat, v_s, rho);
-  } else if (type == "cubic") {
-    attached.law = std::make_shared<CubicStiffness>(t.number("epsilon"));
-  } else if (type == "contact-friction") {
-    attached.law = readContactFriction(t, field, attached.dofs, t.text("form", std::string("min")));
-  } else if (type == "jenkins") {
-    const double mu_n = t.number("muN");
-    if (mu_n < 0.0) t.fail(field + ".muN", formatNumber(mu_n), "friction limit must be >= 0");
-    const double k_t = positive("k_t", std::nullopt);
-    const RhoSetting rho = readRho(t, field);
-    const int m = static_cast<int>(attached.dofs.size());
-    if (m != 1 && m != 2) t.fail(field + ".dofs", describe(list), "a jenkins law acts on 1 or 2 DOFs");
-    const std::string name = form(m == 1 ? "minmax" : "max");
-    if (name == "minmax" && m != 1)
-      t.fail(field + ".form", "\"minmax\"", "the minmax form is one-dimensional; use max or projection");
-    attached.law = std::make_shared<Jenkins>(m, mu_n, k_t, parseFrictionForm(name, field + ".form"), rho);
-  } else {
-    t.fail(field + ".type", "\"" + type + "\"",
-           "unknown law (known: coulomb-1d, coulomb-2d, signorini, stribeck, cubic, contact-friction, "
-           "jenkins)");
-  }
+  const LawEntry* entry = findLaw(type);
+  if (!entry) t.fail(field + ".type", "\"" + type + "\"", "unknown law (known: " + knownLawTypes() + ")");
+  SceneLawTable table(t, field, *entry, attached.dofs, describe(list));
+  attached.law = entry->parse(table);
   if (static_cast<int>(attached.dofs.size()) != attached.law->dimension())
     t.fail(field + ".dofs", describe(list),
            "a " + type + " law acts on exactly " + std::to_string(attached.law->dimension()) +
@@ -707,29 +612,11 @@ Scene buildScene(toml::value root, const std::string& source,
 
 }  // namespace
 
-const std::vector<std::string>& lawForms(const std::string& type) {
-  static const std::map<std::string, std::vector<std::string>> forms = {
-      {"coulomb-1d", {"minmax", "projection", "tanh", "piecewise"}},
-      {"coulomb-2d", {"max", "projection", "smoothed", "tanh"}},
-      {"signorini", {"min", "fischer-burmeister", "sign-square"}},
-      {"stribeck", {"minmax"}},
-      {"cubic", {}},
-      {"contact-friction", {"min", "fischer-burmeister"}},  // and "compliant", which needs k_n
-      {"jenkins", {"minmax", "projection", "max"}}};
-  static const std::vector<std::string> none;
-  const auto it = forms.find(type);
-  return it == forms.end() ? none : it->second;
-}
-
-bool lawTakesRho(const std::string& type) { return type != "cubic"; }
-
 std::vector<std::string> lawOverrides(const HbModel& model, const std::string& key, const std::string& value) {
   std::vector<std::string> out;
   for (size_t l = 0; l < model.laws.size(); ++l) {
-    const std::string type = model.laws[l].law->type();
-    const auto& forms = lawForms(type);
-    const bool takes = key == "form" ? std::find(forms.begin(), forms.end(), value) != forms.end()
-                                     : key == "rho" && lawTakesRho(type);
+    const LawEntry& entry = lawEntry(*model.laws[l].law);
+    const bool takes = key == "form" ? entry.hasForm(value) : key == "rho" && entry.takesRho();
     if (!takes) continue;
     const std::string quoted = key == "form" ? "\"" + value + "\"" : value;
     out.push_back("law[" + std::to_string(l) + "]." + key + "=" + quoted);
@@ -793,7 +680,7 @@ std::vector<std::optional<RhoSetting>> documentRhos(const std::string& text, con
   for (const auto& law : root.at("law").as_array()) {
     const std::string type = toml::find<std::string>(law, "type");
     std::optional<RhoSetting> rho;
-    if (lawTakesRho(type)) {
+    if (findLaw(type)->takesRho()) {
       const auto& table = law.as_table();
       if (table.count("rho")) rho = RhoSetting(number(law.at("rho")));
       else rho = RhoSetting::scaleFree(table.count("rho_factor") ? number(law.at("rho_factor")) : 1.0);

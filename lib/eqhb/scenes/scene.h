@@ -10,22 +10,9 @@
 //                                              T = tridiag(−1, 2, −1) with T_nn = 1
 //   [structure] type = "matrices"              mass, damping, stiffness (arrays of rows)
 //   [[forcing]] dof, harmonic (1), cos (0), sin (0)
-//   [[law]]     type, dofs (one per component) and, by type (defaults in brackets):
-//     coulomb-1d  muN >= 0, form = minmax|projection|tanh|piecewise [minmax],
-//                 rho > 0 [1], beta > 0 [100] (slope of the regularised forms)
-//     coulomb-2d  two dofs, muN >= 0, form = max|projection|smoothed|tanh [max],
-//                 rho [1], epsilon > 0 [1e-4] (smoothed), alpha > 0 [100] (tanh)
-//     signorini   gap g0 (wall at x = g0, approached from below),
-//                 form = min|fischer-burmeister|sign-square [min], rho [1]
-//     stribeck    muN_dynamic >= 0, muN_static >= muN_dynamic, v_s > 0, rho [1]
-//     cubic       epsilon (force −ε x³ as the DAE f + ε x³ = 0)
-//     contact-friction  dofs = [normal, tangential(, tangential)], mu >= 0,
-//                 preload N0 >= 0, gap g0 [0], form = min|fischer-burmeister|
-//                 compliant [min] (compliant needs k_n > 0), friction_form =
-//                 projection|max|minmax (minmax: one tangential DOF) [projection],
-//                 k_t > 0 (optional: elastic friction), rho [1]; needs set = "all"
-//     jenkins     1 or 2 dofs, muN >= 0, k_t > 0, form = minmax|projection|max
-//                 [minmax in 1D, max in 2D], rho [1]
+//   [[law]]     type, dofs (one per component) and the keys of its type: each
+//               law's entry in laws/registry/ declares them (LawEntry::parameters,
+//               with defaults, ranges and docs; laws/law_registry.h)
 //   [harmonic_balance] harmonics, set = odd|all, samples, omega
 //   [sweep]     from, to  (optional)
 //   [time_reference]  step > 0, theta in [0.5, 1], periods >= 1,
@@ -64,12 +51,9 @@ struct Scene {
 
 // Throws InputError with the file name and the field.
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
-// The forms a law type accepts, in scene files and for --form.
-const std::vector<std::string>& lawForms(const std::string& type);
-// Whether a law type has the scaling ρ.
-bool lawTakesRho(const std::string& type);
 // Overrides "law[i].KEY=VALUE" for every law of the model that takes them:
-// KEY "form" (laws having that form) or "rho" (laws having ρ).
+// KEY "form" (laws having that form) or "rho" (laws having ρ), as the law
+// registry (laws/law_registry.h) declares them.
 std::vector<std::string> lawOverrides(const HbModel& model, const std::string& key, const std::string& value);
 
 Scene parseScene(const std::string& text, const std::string& source_name,

@@ -1,0 +1,30 @@
+// Optional capabilities of a law, which callers query through the registry
+// (law_registry.h) instead of asking for its concrete type: what the exact
+// integrators of orbits/ need to know of a law they can integrate in closed
+// form or by smooth phases.
+#pragma once
+
+namespace eqhb {
+
+// A law that SmoothFlow (orbits/smooth_flow.h) integrates by smooth phases
+// with stick/slip events: a cubic spring, a planar Coulomb slider on two
+// DOFs, or a Stribeck (or Coulomb: no drop) slider on one DOF.
+struct SmoothFlowSite {
+  enum class Kind { kCubic, kPlanar, kStribeck };
+  Kind kind = Kind::kCubic;
+  double coefficient = 0.0;  // ε (cubic), μN (planar), μ_d N (Stribeck)
+  double drop = 0.0;         // Stribeck: (μ_s − μ_d) N
+  double v_s = 1.0;          // Stribeck: the decay velocity
+};
+
+// A law on one DOF that PiecewiseLinearFlow (orbits/piecewise_linear_flow.h)
+// integrates in closed form between events: a Coulomb slider with limit μN
+// (optionally behind a spring k_t, Jenkins), or a rigid wall at x = g0.
+struct PiecewiseLinearSite {
+  bool contact = false;
+  double limit = 0.0;      // μN (friction)
+  double gap = 0.0;        // g0 (contact)
+  double stiffness = 0.0;  // k_t of an elastic slider (Jenkins); 0: rigid
+};
+
+}  // namespace eqhb

@@ -1,0 +1,68 @@
+#include "eqhb/laws/law_registry.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace eqhb {
+
+// One function per law, each in its own file under laws/registry/.
+LawEntry coulomb1DEntry();
+LawEntry coulomb2DEntry();
+LawEntry signoriniEntry();
+LawEntry stribeckEntry();
+LawEntry cubicEntry();
+LawEntry contactFrictionEntry();
+LawEntry jenkinsEntry();
+
+const std::vector<LawEntry>& lawRegistry() {
+  static const std::vector<LawEntry> entries = {coulomb1DEntry(), coulomb2DEntry(),       signoriniEntry(),
+                                                stribeckEntry(),  cubicEntry(),           contactFrictionEntry(),
+                                                jenkinsEntry()};
+  return entries;
+}
+
+bool LawEntry::takesRho() const {
+  return std::any_of(parameters.begin(), parameters.end(), [](const LawParameter& p) { return p.key == "rho"; });
+}
+
+bool LawEntry::hasForm(const std::string& form) const {
+  return std::find(forms.begin(), forms.end(), form) != forms.end();
+}
+
+const LawEntry* findLaw(const std::string& type) {
+  for (const LawEntry& entry : lawRegistry())
+    if (entry.type == type) return &entry;
+  return nullptr;
+}
+
+const LawEntry& lawEntry(const Law& law) {
+  const LawEntry* entry = findLaw(law.type());
+  if (!entry) throw std::logic_error("law type " + law.type() + " is not registered (law_registry.cpp)");
+  return *entry;
+}
+
+std::string knownLawTypes() {
+  std::string list;
+  for (const LawEntry& entry : lawRegistry()) list += (list.empty() ? "" : ", ") + entry.type;
+  return list;
+}
+
+// A law built in code without an entry has no capability and no preference.
+std::optional<SmoothFlowSite> smoothFlowSite(const Law& law) {
+  const LawEntry* entry = findLaw(law.type());
+  return entry && entry->smooth_flow ? entry->smooth_flow(law) : std::nullopt;
+}
+
+std::optional<PiecewiseLinearSite> piecewiseLinearSite(const Law& law) {
+  const LawEntry* entry = findLaw(law.type());
+  return entry && entry->piecewise_linear_flow ? entry->piecewise_linear_flow(law) : std::nullopt;
+}
+
+bool suitsCondensedSystem(const std::vector<AttachedLaw>& laws) {
+  return std::none_of(laws.begin(), laws.end(), [](const AttachedLaw& a) {
+    const LawEntry* entry = findLaw(a.law->type());
+    return entry && entry->system == LawSystem::kFull;
+  });
+}
+
+}  // namespace eqhb

@@ -1,0 +1,86 @@
+// The law registry: every law type is declared once, in its own entry file
+// (laws/registry/*_entry.cpp), with its scene name, forms, parameters, parser,
+// the system that suits it, conformance examples and optional capabilities.
+// The scene reader, the command line, the tests, the orbit integrators and the
+// bench find laws here by name and ask for capabilities instead of casting.
+//
+// Adding a law: its class (laws/*.h, *.cpp), its entry file returning a
+// LawEntry, and one line in lawRegistry() (law_registry.cpp); see
+// docs/extending.md.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eqhb/laws/law.h"
+#include "eqhb/laws/law_capabilities.h"
+#include "eqhb/laws/law_table.h"
+
+namespace eqhb {
+
+// One key of the law's scene table.
+struct LawParameter {
+  std::string key;
+  std::string fallback;  // the default as written in a scene; empty: required
+  std::string range;     // the valid values, as the parser checks them
+  std::string doc;       // one line
+};
+
+// The system a law is best solved on by default where a caller chooses
+// (bench tables, studies): the condensed one (unknowns: the law forces) or
+// the full one (displacements and forces).
+enum class LawSystem { kCondensed, kFull };
+
+// A parameter set the conformance tests (tests/law_registry_test.cpp) build
+// the law from, through its parser: `keys` are the TOML lines of its table
+// besides type and dofs; the law acts on `dofs` DOFs.
+struct LawExample {
+  std::string label;
+  int dofs = 1;
+  std::string keys;
+};
+
+struct LawEntry {
+  // The scene's `type` and Law::type() of the one class the entry builds
+  // (capabilities take a law of that type to be of that class).
+  std::string type;
+  std::string summary;  // one line
+  // The forms `form` accepts (empty: none); the overrides of --form set a
+  // form on the laws that list it.
+  std::vector<std::string> forms;
+  std::vector<LawParameter> parameters;  // every key the parser reads
+  // Scene table → law, with InputErrors naming the field; the DOF count is
+  // checked against Law::dimension() by the caller.
+  std::function<std::shared_ptr<Law>(LawTable&)> parse;
+  LawSystem system = LawSystem::kCondensed;
+  std::vector<LawExample> examples;
+  // Optional capabilities (law_capabilities.h); empty when the law has none,
+  // nullopt for an instance that has not (a Jenkins law on two DOFs).
+  std::function<std::optional<SmoothFlowSite>(const Law&)> smooth_flow;
+  std::function<std::optional<PiecewiseLinearSite>(const Law&)> piecewise_linear_flow;
+
+  // Has the scaling ρ (a `rho` parameter).
+  bool takesRho() const;
+  bool hasForm(const std::string& form) const;
+};
+
+// Every law, in the order they are listed to users.
+const std::vector<LawEntry>& lawRegistry();
+// The entry of a type; nullptr for an unknown name.
+const LawEntry* findLaw(const std::string& type);
+// The entry of a law instance (std::logic_error for a law never registered).
+const LawEntry& lawEntry(const Law& law);
+// "coulomb-1d, coulomb-2d, ...": the known types, for messages.
+std::string knownLawTypes();
+
+// Capability queries on an instance (none for a law built in code whose
+// type is not registered).
+std::optional<SmoothFlowSite> smoothFlowSite(const Law& law);
+std::optional<PiecewiseLinearSite> piecewiseLinearSite(const Law& law);
+// Whether every law is best solved on the condensed system (LawSystem).
+bool suitsCondensedSystem(const std::vector<AttachedLaw>& laws);
+
+}  // namespace eqhb

@@ -1,0 +1,36 @@
+// coulomb-2d: isotropic Coulomb friction in a plane of two DOFs (laws/coulomb_2d.h).
+#include "eqhb/laws/coulomb_2d.h"
+#include "eqhb/laws/registry/entry_support.h"
+
+namespace eqhb {
+
+LawEntry coulomb2DEntry() {
+  LawEntry e;
+  e.type = "coulomb-2d";
+  e.summary = "isotropic Coulomb friction on two DOFs (a plane)";
+  e.forms = {"max", "projection", "smoothed", "tanh"};
+  e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
+                          {"form", "max", "max|projection|smoothed|tanh", "smoothed, tanh: regularised"},
+                          {"epsilon", "1e-4", "> 0", "velocity of the smoothed form's rounding"},
+                          {"alpha", "100", "> 0", "slope of the tanh form"}});
+  e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
+    const double mu_n = t.frictionLimit("muN");
+    const RhoSetting rho = t.rho();
+    const double epsilon = t.positive("epsilon", 1e-4);
+    const double alpha = t.positive("alpha", 100.0);
+    return std::make_shared<Coulomb2D>(mu_n, parseCoulomb2DForm(t.form("max")), rho, epsilon, alpha);
+  };
+  e.examples = {{"coulomb2d-max", 2, "muN = 1.5\nform = \"max\"\nrho = 0.7"},
+                {"coulomb2d-projection", 2, "muN = 1.5\nform = \"projection\"\nrho = 0.7"},
+                {"coulomb2d-smoothed", 2, "muN = 1.5\nform = \"smoothed\"\nrho = 0.7\nepsilon = 0.3"},
+                {"coulomb2d-tanh", 2, "muN = 1.5\nform = \"tanh\"\nrho = 0.7\nalpha = 2.0"}};
+  e.smooth_flow = [](const Law& law) -> std::optional<SmoothFlowSite> {
+    SmoothFlowSite site;
+    site.kind = SmoothFlowSite::Kind::kPlanar;
+    site.coefficient = static_cast<const Coulomb2D&>(law).muN();
+    return site;
+  };
+  return e;
+}
+
+}  // namespace eqhb

@@ -1,0 +1,42 @@
+// jenkins: a Coulomb slider behind a spring k_t, on 1 or 2 DOFs (laws/joints/jenkins.h).
+#include "eqhb/laws/joints/jenkins.h"
+#include "eqhb/laws/registry/entry_support.h"
+
+namespace eqhb {
+
+LawEntry jenkinsEntry() {
+  LawEntry e;
+  e.type = "jenkins";
+  e.summary = "elastic dry friction (a spring k_t in series with a Coulomb slider) on 1 or 2 DOFs";
+  e.forms = {"minmax", "projection", "max"};
+  e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
+                          {"k_t", "", "> 0", "tangential stiffness"},
+                          {"form", "minmax (1 DOF), max (2)", "minmax|projection|max", "minmax: one DOF"}});
+  e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
+    const double mu_n = t.frictionLimit("muN");
+    const double k_t = t.positive("k_t", std::nullopt);
+    const RhoSetting rho = t.rho();
+    const int m = static_cast<int>(t.dofs().size());
+    if (m != 1 && m != 2) t.fail(t.path("dofs"), t.dofsText(), "a jenkins law acts on 1 or 2 DOFs");
+    const std::string name = t.form(m == 1 ? "minmax" : "max");
+    if (name == "minmax" && m != 1)
+      t.fail(t.path("form"), "\"minmax\"", "the minmax form is one-dimensional; use max or projection");
+    return std::make_shared<Jenkins>(m, mu_n, k_t, parseFrictionForm(name, t.path("form")), rho);
+  };
+  e.examples = {{"jenkins1_minmax", 1, "muN = 1.2\nk_t = 2.0\nform = \"minmax\"\nrho = 0.9"},
+                {"jenkins1_projection", 1, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"},
+                {"jenkins2_max", 2, "muN = 1.2\nk_t = 2.0\nform = \"max\"\nrho = 0.9"},
+                {"jenkins2_projection", 2, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"}};
+  // On one DOF: a slider behind a spring, closed form between events.
+  e.piecewise_linear_flow = [](const Law& law) -> std::optional<PiecewiseLinearSite> {
+    const auto& jenkins = static_cast<const Jenkins&>(law);
+    if (jenkins.dimension() != 1) return std::nullopt;
+    PiecewiseLinearSite site;
+    site.limit = jenkins.muN();
+    site.stiffness = jenkins.stiffness();
+    return site;
+  };
+  return e;
+}
+
+}  // namespace eqhb
