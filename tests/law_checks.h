@@ -23,6 +23,8 @@ struct LawCase {
   std::string label, type;
   std::shared_ptr<Law> law;
 };
+// Test names and failures show the example's label, not its bytes.
+inline void PrintTo(const LawCase& c, std::ostream* out) { *out << c.label; }
 
 // The scene of one registered example: the law on the last DOFs of a 3-DOF
 // chain. `extra` lines are added to its table.

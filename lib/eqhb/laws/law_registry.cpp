@@ -13,11 +13,12 @@ LawEntry stribeckEntry();
 LawEntry cubicEntry();
 LawEntry contactFrictionEntry();
 LawEntry jenkinsEntry();
+LawEntry penaltyContactEntry();
 
 const std::vector<LawEntry>& lawRegistry() {
   static const std::vector<LawEntry> entries = {coulomb1DEntry(), coulomb2DEntry(),       signoriniEntry(),
                                                 stribeckEntry(),  cubicEntry(),           contactFrictionEntry(),
-                                                jenkinsEntry()};
+                                                jenkinsEntry(),   penaltyContactEntry()};
   return entries;
 }
 
