@@ -1,7 +1,8 @@
 #include "eqhb/backends/dogleg/powell_dogleg.h"
-#include "eqhb/backends/dogleg/trust_radius.h"
 
+#include "eqhb/backends/dogleg/dense_dogleg_strategy.h"
 #include "eqhb/backends/dogleg/sparse_newton_dogleg.h"
+#include "eqhb/backends/dogleg/trust_region_loop.h"
 
 #include <cmath>
 #include <limits>
@@ -212,127 +213,8 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     return runSparseNewtonDogleg(system, z0, options, settings, result);
   if (!denseBackendAccepts(name() + " (dense QR)", system.size(), kDenseMostUnknowns, options, result))
     return;
-  const Eigen::Index n = system.size();
-  // Every vector of the iteration is made here, once.
-  Eigen::VectorXd z = z0, g(n), trial(n), g_trial(n), step(n), model_residual(n), qt_trial(n), u(n), v(n);
-  DoglegWorkspace workspace(n);
-  Eigen::MatrixXd jacobian(n, n), q(n, n), r(n, n);
-  Eigen::VectorXd diag = Eigen::VectorXd::Ones(n), qtf(n);
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr(n, n);
-  result.solution = z;
-
-  auto finish = [&](Termination t, int code, const char* message) {
-    result.termination = t;
-    result.native_code = code;
-    result.native_message = message;
-    result.solution = z;
-  };
-
-  if (!system.residual(z, g)) return finish(Termination::kEvaluationFailed, -1, "residual failed at the initial guess");
-  double g_norm = g.norm();
-  if (g_norm <= options.residual_tolerance) return finish(Termination::kConverged, 0, "initial guess within tolerance");
-
-  double radius = 0.0, z_norm = 0.0;
-  int consecutive_successes = 0, consecutive_failures = 0;
-  int slow_steps = 0, slow_jacobians = 0;
-  bool no_success_yet = true;
-
-  while (true) {
-    // ---- fresh weak Jacobian and its QR factorisation
-    if (!system.residualAndJacobian(z, g, jacobian))
-      return finish(Termination::kEvaluationFailed, -1, "Jacobian evaluation failed");
-    g_norm = g.norm();
-    qr.compute(jacobian);
-    q = qr.householderQ();
-    r = qr.matrixQR().triangularView<Eigen::Upper>();
-    // Until a step succeeds, every Jacobian restarts the scaling and the
-    // radius from scratch (MINPACK's iter == 1 block): a first model that
-    // overshot says nothing about the right radius for the next one.
-    if (settings.scale_columns) {
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const double norm = jacobian.col(j).norm();
-        const double scale = norm == 0.0 ? 1.0 : norm;
-        diag[j] = no_success_yet ? scale : std::max(diag[j], scale);
-      }
-    }
-    if (no_success_yet) {
-      z_norm = diag.cwiseProduct(z).norm();
-      radius = z_norm > 0.0 ? settings.factor * z_norm : settings.factor;
-    }
-    qtf.noalias() = q.transpose() * g;
-    bool fresh_jacobian = true;
-
-    // ---- trust-region steps on this (then Broyden-updated) model
-    while (true) {
-      if (result.iterations >= options.max_iterations)
-        return finish(Termination::kIterationLimit, 6, "iteration limit");
-      ++result.iterations;
-      doglegStep(r, diag, qtf, radius, workspace, step);
-      const double step_norm = diag.cwiseProduct(step).norm();
-      // Until a first step succeeds, the radius never exceeds the step taken
-      // (MINPACK's iter == 1 rule).
-      if (no_success_yet) radius = std::min(radius, step_norm);
-
-      trial = z + step;
-      if (!system.residual(trial, g_trial))
-        return finish(Termination::kEvaluationFailed, -1, "residual evaluation failed");
-      const double trial_norm = g_trial.norm();
-      const double actual = trial_norm < g_norm ? 1.0 - std::pow(trial_norm / g_norm, 2) : -1.0;
-      model_residual.noalias() = r * step;  // Qᵀ(g + J p) = qtf + R p
-      model_residual += qtf;
-      const double model_norm = model_residual.norm();
-      const double predicted = model_norm < g_norm ? 1.0 - std::pow(model_norm / g_norm, 2) : 0.0;
-      const double ratio = predicted > 0.0 ? actual / predicted : 0.0;
-
-      dogleg::updateTrustRadius(ratio, step_norm, radius, consecutive_successes);
-      consecutive_failures = ratio < 0.1 ? consecutive_failures + 1 : 0;
-
-      const bool accepted = ratio >= 1e-4;
-      if (accepted) {
-        no_success_yet = false;
-        z = trial;
-        g = g_trial;
-        z_norm = diag.cwiseProduct(z).norm();
-        g_norm = trial_norm;
-        result.solution = z;
-      }
-      ++slow_steps;
-      if (actual >= 1e-3) slow_steps = 0;
-      if (fresh_jacobian) ++slow_jacobians;
-      if (actual >= 0.1) slow_jacobians = 0;
-
-      if (g_norm <= options.residual_tolerance)
-        return finish(Termination::kConverged, 0, "residual within tolerance");
-      if (radius <= settings.xtol * z_norm || g_norm == 0.0)
-        return finish(Termination::kStepTolerance, 1, "trust radius below xtol relative to |D z|");
-      if (system.evaluationLimitReached())
-        return finish(Termination::kEvaluationLimit, 2, "evaluation limit");
-      if (system.timeLimitReached()) return finish(Termination::kTimeLimit, 7, "time limit");
-      if (0.1 * std::max(0.1 * radius, step_norm) <= kEpsilon * z_norm)
-        return finish(Termination::kStepTolerance, 3, "steps below machine precision");
-      if (slow_jacobians == 5)
-        return finish(Termination::kNotProgressing, 4,
-                      "no progress over the last five Jacobian evaluations");
-      if (slow_steps == 10)
-        return finish(Termination::kNotProgressing, 5, "no progress over the last ten iterations");
-
-      if (policy_ == JacobianPolicy::kEveryIteration) {
-        if (accepted) break;  // new iterate: new weak Jacobian
-        fresh_jacobian = false;
-        continue;  // same point, same exact model, smaller radius
-      }
-      if (consecutive_failures == 2) break;
-
-      // Broyden update of Q R: J⁺ = J + (g⁺ − g − J p)(D²p)ᵀ / ‖Dp‖², in
-      // the rotated frame Rᵀ-side u = (Qᵀg⁺ − Qᵀg − R p)/‖Dp‖.
-      qt_trial.noalias() = q.transpose() * g_trial;
-      u = (qt_trial - model_residual) / step_norm;
-      v = diag.cwiseProduct(diag.cwiseProduct(step)) / step_norm;
-      if (accepted) qtf = qt_trial;
-      rankOneUpdate(q, r, qtf, u, v);
-      fresh_jacobian = false;
-    }
-  }
+  dogleg::DenseDoglegStrategy strategy(system, policy_);
+  dogleg::runTrustRegionLoop(system, z0, options, settings, strategy, result);
 }
 
 }  // namespace eqhb

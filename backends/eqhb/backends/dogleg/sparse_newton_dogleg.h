@@ -4,18 +4,14 @@
 // step J p = −g comes from UMFPACK's sparse LU (Davis, "Algorithm 832:
 // UMFPACK V4.3", ACM TOMS 30(2), 2004), whose symbolic analysis is made once
 // per solve and reused by every numerical factorisation. The Cauchy step
-// needs only products with J and Jᵀ. No dense n x n matrix is formed.
+// needs only products with J and Jᵀ. No dense n x n matrix is formed. The
+// loop is trust_region_loop.h's; this file is its sparse step strategy.
 #pragma once
 
+#include "eqhb/backends/dogleg/trust_region_loop.h"
 #include "eqhb/solvers/solver.h"
 
 namespace eqhb {
-
-struct DoglegSettings {
-  double factor = 100.0;  // initial trust radius = factor · ‖D z0‖
-  double xtol = 1e-14;    // stop when radius <= xtol · ‖D z‖
-  bool scale_columns = true;
-};
 
 // Runs the sparse Newton–dogleg; fills result as Solver::run does.
 void runSparseNewtonDogleg(MonitoredSystem& system, const Eigen::VectorXd& z0,

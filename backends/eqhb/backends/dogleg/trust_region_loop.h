@@ -1,0 +1,30 @@
+// The scaled trust-region loop shared by the dense and the sparse dogleg, in
+// the class of MINPACK's hybrj (Moré, Garbow, Hillstrom, "User guide for
+// MINPACK-1", ANL-80-74, 1980): a fresh Jacobian sets the column scaling D
+// (and, until a step succeeds, the radius); steps are taken on its model by
+// a DoglegStrategy and judged by the actual/predicted reduction ratio of
+// ‖g‖²; the radius follows trust_radius.h; seven named stopping tests.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "eqhb/backends/dogleg/dogleg_strategy.h"
+#include "eqhb/solvers/solver.h"
+
+namespace eqhb {
+
+struct DoglegSettings {
+  double factor = 100.0;  // initial trust radius = factor · ‖D z0‖
+  double xtol = 1e-14;    // stop when radius <= xtol · ‖D z‖
+  bool scale_columns = true;
+};
+
+namespace dogleg {
+
+// Runs the loop from z0 with `strategy`'s models; fills result as
+// Solver::run does.
+void runTrustRegionLoop(MonitoredSystem& system, const Eigen::VectorXd& z0, const SolverOptions& options,
+                        const DoglegSettings& settings, DoglegStrategy& strategy, SolverResult& result);
+
+}  // namespace dogleg
+}  // namespace eqhb
