@@ -96,6 +96,7 @@ class PiecewiseLinearFlow : public Flow {
                        FlowSamples* samples = nullptr) const override;
 
  private:
+  class Integration;  // one call of integrate (piecewise_linear_integration.h)
   enum class Mode { kSlipPositive, kSlipNegative, kStick, kOpen, kClosed };
   struct LawSite {
     bool contact = false;

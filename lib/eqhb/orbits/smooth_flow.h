@@ -48,6 +48,8 @@ constexpr double kLocalTolerance = 1e-14;
 // A planar slide predicted to reach rest within this fraction of the time
 // scale (|t0| + T) is brought to rest.
 constexpr double kRestTime = 1e-11;
+// Speeds below this fraction of the velocity scale count as rest.
+constexpr double kRestSpeed = 1e-14;
 
 class SmoothFlow : public Flow {
  public:
@@ -62,6 +64,7 @@ class SmoothFlow : public Flow {
                        FlowSamples* samples = nullptr) const override;
 
  private:
+  class Integration;  // one call of integrate (smooth_flow_integration.h)
   enum class Kind { kCubic, kPlanar, kStribeck };
   enum class Mode { kSmooth, kSlide, kSlipPositive, kSlipNegative, kStick };
   using Modes = std::vector<Mode>;
