@@ -11,7 +11,7 @@
 #include "eqhb/backends/registry.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/coulomb_1d.h"
-#include "eqhb/laws/invariants.h"
+#include "eqhb/harmonic_balance/invariants.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/scenes/scene.h"
 #include "test_support.h"

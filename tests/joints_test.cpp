@@ -12,7 +12,7 @@
 #include "eqhb/laws/coulomb_2d.h"
 #include "eqhb/laws/joints/contact_friction.h"
 #include "eqhb/laws/joints/jenkins.h"
-#include "eqhb/laws/invariants.h"
+#include "eqhb/harmonic_balance/invariants.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"
 #include "law_checks.h"

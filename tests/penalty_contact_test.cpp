@@ -9,7 +9,7 @@
 
 #include "eqhb/backends/registry.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
-#include "eqhb/laws/invariants.h"
+#include "eqhb/harmonic_balance/invariants.h"
 #include "eqhb/laws/penalty_contact.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"

@@ -9,7 +9,7 @@
 
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
-#include "eqhb/laws/invariants.h"
+#include "eqhb/harmonic_balance/invariants.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/backends/registry.h"
 #include "test_support.h"

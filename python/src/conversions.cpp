@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "eqhb/harmonic_balance/hb_solution.h"
-#include "eqhb/laws/invariants.h"
+#include "eqhb/harmonic_balance/invariants.h"
 #include "eqhb/output/orbit_json.h"
 #include "eqhb/output/simulation_json.h"
 #include "eqhb/output/solution_json.h"

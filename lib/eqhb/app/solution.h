@@ -16,7 +16,7 @@
 #include "eqhb/continuation/fallback_chain.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
-#include "eqhb/laws/invariants.h"
+#include "eqhb/harmonic_balance/invariants.h"
 #include "eqhb/orbits/orbit_refinement.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/solvers/solver.h"

@@ -15,7 +15,7 @@
 #include "eqhb/continuation/coarse_start.h"
 #include "eqhb/continuation/fallback_chain.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
-#include "eqhb/laws/invariants.h"
+#include "eqhb/harmonic_balance/invariants.h"
 #include "eqhb/orbits/orbit_refinement.h"
 #include "eqhb/stability/hill_stability.h"
 

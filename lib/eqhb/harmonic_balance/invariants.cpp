@@ -1,4 +1,4 @@
-#include "eqhb/laws/invariants.h"
+#include "eqhb/harmonic_balance/invariants.h"
 
 #include <exception>
 
