@@ -10,7 +10,7 @@
 #include "compliant_study.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/continuation.h"
-#include "eqhb/output/curve_writers.h"
+#include "eqhb/curves/curve_writers.h"
 #include "eqhb/scenes/scene.h"
 #include "mgh/mgh_problems.h"
 

@@ -16,8 +16,16 @@ const std::pair<const char*, const char*> kFlags[] = {
     {"options", "--option"}, {"repeat", "--repeat"},
     {"form", "--form"}, {"rho", "--rho"},
     {"from_hb", "--from-hb"},
-    // Phrases, replaced wherever they occur.
+    {"from", "--from"}, {"to", "--to"}, {"step", "--step"},
+    {"min_step", "--min-step"}, {"max_step", "--max-step"}, {"stability", "--stability"},
+    {"dof", "--dof"}, {"coarse_points", "--coarse-points"}, {"max_peaks", "--max-peaks"},
+    {"vary", "--vary"}, {"lhs", "--lhs"}, {"out", "--out"}, {"threads", "--threads"},
+    // Phrases, replaced wherever they begin a word.
     {"refine = shoot", "--refine shoot"},
+    {"give from and to", "give --from and --to"}, {"differ from from", "differ from --from"},
+    {"not with accuracy", "not with --accuracy"}, {"and > from", "and > --from"},
+    {"vary ", "--vary "}, {"try system = full", "try --full"}, {"another solver", "another --solver"},
+    {"more samples", "more --samples"}, {"larger max_points", "larger --max-points"},
 };
 
 bool wordChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; }
@@ -28,8 +36,11 @@ std::string withFlagNames(const std::string& message) {
   for (const auto& [field, flag] : kFlags) {
     const std::string name = field;
     if (name.find(' ') != std::string::npos) {
-      for (size_t at = out.find(name); at != std::string::npos; at = out.find(name, at + 1))
-        out.replace(at, name.size(), flag);
+      for (size_t at = out.find(name); at != std::string::npos;) {
+        const bool starts = at == 0 || !wordChar(out[at - 1]);
+        if (starts) out.replace(at, name.size(), flag);
+        at = out.find(name, at + (starts ? std::string(flag).size() : 1));
+      }
       continue;
     }
     if (out.rfind(name + " = ", 0) == 0 || out.rfind(name + ": ", 0) == 0) out = flag + out.substr(name.size());

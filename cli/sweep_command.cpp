@@ -4,19 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <optional>
 #include <sstream>
 
-#include "eqhb/accuracy/accuracy_sweep.h"
-#include "eqhb/continuation/continuation.h"
-#include "eqhb/harmonic_balance/problem_scales.h"
+#include "eqhb/app/sweep.h"
 #include "eqhb/error.h"
-#include "eqhb/harmonic_balance/hb_solution.h"
-#include "eqhb/backends/default_path.h"
-#include "eqhb/backends/registry.h"
-#include "eqhb/output/curve_json.h"
-#include "eqhb/output/curve_writers.h"
-#include "eqhb/stability/curve_stability.h"
+#include "eqhb/curves/curve_writers.h"
+#include "eqhb/output/sweep_output.h"
 #include "flag_names.h"
 #include "terminal/progress.h"
 #include "terminal/run_program.h"
@@ -58,163 +51,128 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
                 "amplitudes and Fourier coefficients of every DOF and law force");
 }
 
-int runSweep(const SolveArguments& s, const SweepArguments& w) {
-  const Scene scene = loadSceneWith(s.scene);
-  ContinuationOptions options;
-  if (!w.from && !scene.sweep_from) throwInputError("--from", "(missing)", "the scene has no [sweep]: give --from and --to");
-  if (!w.to && !scene.sweep_to) throwInputError("--to", "(missing)", "the scene has no [sweep]: give --from and --to");
-  options.from = w.from ? *w.from : *scene.sweep_from;
-  options.to = w.to ? *w.to : *scene.sweep_to;
-  if (!(options.from > 0.0) || !std::isfinite(options.from))
-    throwInputError("--from", formatNumber(options.from), "must be finite and > 0");
-  if (!(options.to > 0.0) || !std::isfinite(options.to))
-    throwInputError("--to", formatNumber(options.to), "must be finite and > 0");
-  if (options.from == options.to)
-    throwInputError("--to", formatNumber(options.to), "must differ from --from: the range has zero width");
-  auto positive = [](const char* name, double value) {
-    if (!(value > 0.0) || !std::isfinite(value)) throwInputError(name, formatNumber(value), "must be finite and > 0");
-  };
-  const double step = w.step ? *w.step : ContinuationOptions::defaultStep(options.from, options.to, w.arclength);
-  positive("--step", step);
-  if (w.min_step) positive("--min-step", *w.min_step);
-  if (w.max_step) positive("--max-step", *w.max_step);
-  options.step = step;
-  options.min_step = w.min_step ? *w.min_step : ContinuationOptions::defaultMinStep(step);
-  options.max_step = w.max_step ? *w.max_step : ContinuationOptions::defaultMaxStep(step);
-  if (options.min_step > options.max_step)
-    throwInputError(w.min_step ? "--min-step" : "--max-step",
-                    formatNumber(w.min_step ? options.min_step : options.max_step),
-                    "--min-step = " + formatNumber(options.min_step) + " must be <= --max-step = " +
-                        formatNumber(options.max_step));
-  options.max_points = w.max_points;
-  options.condensed = !s.full;
-  // Every option checked before any count is derived from them.
-  if (w.arclength) options.validate();
-  else options.validateGrid();
-  const SolverOptions solver_options = solverOptions(s);
-  const bool with_accuracy = s.accuracy.tolerance.has_value();
-  if (with_accuracy && s.stability)
-    throwInputError("--stability", "(set)", "not with --accuracy: the points of such a curve differ in H");
-  auto solver = makeSolver(s.solver);
-  const OwnedFallbackChain fallbacks(s.fallback, s.solver, "--fallback");
-  options.fallbacks = fallbacks.chain();
-  const int dofs = scene.model.structure.dofs();
-  const int expected = w.arclength ? 0 : static_cast<int>(options.gridPoints());
-  ProgressLine line(verbosity().progress, scene.name + " sweep");
-  const bool verbose = verbosity().verbose;
-  if (verbose)
-    std::cerr << "eqhb: sweep " << scene.source << ": omega " << options.from << " -> " << options.to << ", "
-              << (w.arclength ? "arclength" : "sequential") << ", step " << options.step << ", "
-              << solver->name() << ", H = " << scene.model.basis.count() << ", N = " << scene.model.samples
-              << ", " << (options.condensed ? "condensed" : "full") << " system\n";
-  int failed = 0;
-  Progress progress = [&](const CurvePoint& p, int index) {
-    if (!p.converged) ++failed;
-    if (verbose) {
+namespace {
+
+app::SweepOptions sweepOptions(const SolveArguments& s, const SweepArguments& w) {
+  app::SweepOptions o;
+  o.solver = s.solver;
+  o.condensed = !s.full;
+  o.solver_options = solverOptions(s);
+  o.fallback = s.fallback;
+  o.from = w.from;
+  o.to = w.to;
+  o.arclength = w.arclength;
+  o.step = w.step;
+  o.min_step = w.min_step;
+  o.max_step = w.max_step;
+  o.max_points = w.max_points;
+  o.stability = s.stability;
+  o.error_estimate = s.accuracy.error_estimate;
+  o.accuracy = s.accuracy.tolerance;
+  o.max_harmonics = s.accuracy.max_harmonics;
+  return o;
+}
+
+// The progress line (and with --verbose a line per point) as the sweep runs.
+class SweepProgress {
+ public:
+  explicit SweepProgress(const app::SweepPlan& plan)
+      : plan_(plan), line_(verbosity().progress, plan.scene.name + " sweep"), verbose_(verbosity().verbose) {
+    const ContinuationOptions& c = plan.continuation;
+    if (verbose_)
+      std::cerr << "eqhb: sweep " << plan.scene.source << ": omega " << c.from << " -> " << c.to << ", "
+                << (plan.options.arclength ? "arclength" : "sequential") << ", step " << c.step << ", "
+                << plan.solver_name << ", H = " << plan.scene.model.basis.count() << ", N = "
+                << plan.scene.model.samples << ", " << (c.condensed ? "condensed" : "full") << " system\n";
+  }
+  app::SweepCallbacks callbacks() {
+    app::SweepCallbacks out;
+    out.point = [this](const CurvePoint& p, int index) { point(p, index); };
+    out.checked = [this](const CurvePoint& p, int index) { checked(p, index); };
+    return out;
+  }
+  void finish(const Curve& curve) {
+    line_.finish(std::to_string(curve.points.size()) + " points, " + std::to_string(curve.failed_points) + " failed");
+  }
+
+ private:
+  void point(const CurvePoint& p, int index) {
+    if (!p.converged) ++failed_;
+    if (verbose_) {
       std::ostringstream text;
       text << "eqhb: point " << index + 1 << " omega = " << p.omega << ": " << p.termination << ", "
            << p.iterations << " iterations, |g| = " << p.residual_norm << ", " << p.seconds << " s";
-      line.message(text.str());
+      line_.message(text.str());
     }
     // The ETA follows the distance covered in omega (exact on a grid, an
     // estimate along an arclength curve that may turn back).
-    const double fraction = std::clamp((p.omega - options.from) / (options.to - options.from), 0.0, 1.0);
+    const ContinuationOptions& c = plan_.continuation;
+    const double fraction = std::clamp((p.omega - c.from) / (c.to - c.from), 0.0, 1.0);
+    const int dofs = plan_.scene.model.structure.dofs();
+    const int expected = plan_.expectedPoints();
     char detail[96];
     std::snprintf(detail, sizeof detail, "omega = %.5f  max|x%d| = %.5g%s", p.omega, dofs,
-                  p.converged ? p.max_abs[dofs - 1] : NAN, failed ? ("  " + std::to_string(failed) + " failed").c_str() : "");
-    line.update(fraction, "point " + std::to_string(index + 1) + (expected ? "/" + std::to_string(expected) : ""),
-                detail);
-  };
-  std::optional<AccurateCurve> accurate;
-  RhoCandidates rho;
-  Curve curve;
-  if (with_accuracy) {
-    const int start = s.scene.harmonics ? *s.scene.harmonics : std::min(5, scene.model.basis.count());
-    Progress checked = [&](const CurvePoint& p, int index) {
-      if (verbose)
-        line.message("eqhb: point " + std::to_string(index + 1) + " omega = " + formatNumber(p.omega) + ": H = " +
-                     std::to_string(p.harmonics) + ", estimate " + formatNumber(p.error_estimate.value_or(NAN)) +
-                     (p.accuracy && p.accuracy->met ? "" : " (NOT met)"));
-    };
-    rho = rhoCandidates(s.scene);
-    accurate = sweepToAccuracy(rho.models, *s.accuracy.tolerance, start, s.accuracy.max_harmonics, *solver,
-                               solver_options, options, w.arclength, progress, checked);
-    curve = accurate->curve;
-  } else {
-    curve = w.arclength ? sweepArclength(scene.model, *solver, solver_options, options, progress)
-                        : sweepSequential(scene.model, *solver, solver_options, options, progress);
+                  p.converged ? p.max_abs[dofs - 1] : NAN,
+                  failed_ ? ("  " + std::to_string(failed_) + " failed").c_str() : "");
+    line_.update(fraction, "point " + std::to_string(index + 1) + (expected ? "/" + std::to_string(expected) : ""),
+                 detail);
   }
-  const HbModel& curve_model = accurate ? accurate->model : scene.model;
-  line.finish(std::to_string(curve.points.size()) + " points, " + std::to_string(curve.failed_points) + " failed");
-  if (s.accuracy.error_estimate && !accurate)
-    estimateCurveErrors(scene.model, *solver, solver_options, options.condensed, &curve);
-  std::optional<CurveStability> stability;
-  if (s.stability) stability = analyseCurveStability(scene.model, curve);
+  void checked(const CurvePoint& p, int index) {
+    if (verbose_)
+      line_.message("eqhb: point " + std::to_string(index + 1) + " omega = " + formatNumber(p.omega) + ": H = " +
+                    std::to_string(p.harmonics) + ", estimate " + formatNumber(p.error_estimate.value_or(NAN)) +
+                    (p.accuracy && p.accuracy->met ? "" : " (NOT met)"));
+  }
 
-  CurveRun run;
-  run.scene = scene.name;
-  run.solver = solver->name();
-  run.arclength = w.arclength;
-  run.from = options.from;
-  run.to = options.to;
-  run.step = options.step;
-  run.condensed = options.condensed;
-  run.model = &curve_model;
-  run.stability = stability ? &*stability : nullptr;
-  if (!curve.complete) run.advice = rhoScaleAdvice(curve_model);
-  run.error_estimate = s.accuracy.error_estimate;
-  if (accurate) {
-    double worst = 0.0;
-    for (const auto& p : curve.points)
-      if (p.converged && p.error_estimate) worst = std::max(worst, *p.error_estimate);
-    std::ostringstream line;
-    line << "--accuracy " << accurate->tolerance << ": H = " << curve_model.basis.count()
-         << ", rho = " << rhoJson(rho.scene_rho, rho.factors[accurate->first.candidate]).dump()
-         << " chosen at omega = " << options.from << ", raised up to H = " << accurate->highest_harmonics
-         << "; largest estimate " << worst << "; not met at " << accurate->not_met.size() << " point(s); "
-         << accurate->seconds << " s in all";
-    run.accuracy = line.str();
-  }
-  if (w.json) {
-    nlohmann::json out = curveJson(curve, run);
-    if (accurate) {
-      out["rho"] = rhoJson(rho.scene_rho, rho.factors[accurate->first.candidate]);
-      out["accuracy"] = {{"tolerance", accurate->tolerance},
-                         {"reached", accurate->not_met.empty() && curve.failed_points == 0 && curve.complete},
-                         {"not_met", accurate->not_met},
-                         {"highest_harmonics", accurate->highest_harmonics},
-                         {"seconds", accurate->seconds},
-                         {"first_point", accuracyJson(accurate->first, accurate->tolerance, rho.factors)}};
+  const app::SweepPlan& plan_;
+  ProgressLine line_;
+  bool verbose_;
+  int failed_ = 0;
+};
+
+void writeChart(const SweepArguments& w, const app::SweepResult& r) {
+  const std::string csv = w.out.empty() ? w.chart + ".csv" : w.out;
+  if (w.out.empty()) writeCurveCsv(csv, r.curve, r.plan.scene.model.structure.dofs());
+  std::vector<std::string> command = {python3(), findDataFile("plot_curve.py"), csv, w.chart, r.plan.scene.name};
+  if (w.log_amplitude) command.push_back("--log-amplitude");
+  if (runProgram(command) != 0)
+    throw std::runtime_error("--chart: plotting failed (needs " + command[0] + " with matplotlib)");
+}
+
+// Where an accuracy target was not met, on stderr.
+void reportAccuracyNotMet(const app::SweepResult& r) {
+  const AccurateCurve& a = *r.accurate;
+  std::ostringstream where;
+  for (size_t i = 0; i < a.not_met.size() && i < 10; ++i) where << (i ? ", " : "") << a.not_met[i];
+  if (a.not_met.size() > 10) where << ", ... (" << a.not_met.size() << " points)";
+  const CurvePoint* first_miss = nullptr;
+  for (const auto& p : r.curve.points)
+    if (p.accuracy && !p.accuracy->met) {
+      first_miss = &p;
+      break;
     }
-    std::cout << out.dump(2) << "\n";
-  }
+  std::cerr << "eqhb: --accuracy " << a.tolerance << " not met at omega = " << where.str();
+  if (first_miss)
+    std::cerr << " (at omega = " << first_miss->omega << ": " << withFlagNames(first_miss->accuracy->failure) << ")";
+  std::cerr << "\n";
+}
+
+}  // namespace
+
+int runSweep(const SolveArguments& s, const SweepArguments& w) {
+  const app::SweepPlan plan = app::planSweep(s.scene, sweepOptions(s, w));
+  SweepProgress progress(plan);
+  app::SweepResult r = app::sweep(plan, progress.callbacks());
+  progress.finish(r.curve);
+  r.curve.stop_reason = withFlagNames(r.curve.stop_reason);  // the library names options, the command flags
+  const CurveRun run = output::curveRun(r, "--accuracy");
+  if (w.json) std::cout << output::sweepJson(r).dump(2) << "\n";
   // With --json, stdout is the JSON object alone; the summary goes to stderr.
-  writeCurveSummary(w.json ? std::cerr : std::cout, curve, run);
-  if (!w.out.empty()) writeCurveCsv(w.out, curve, dofs);
-  if (!w.chart.empty()) {
-    const std::string csv = w.out.empty() ? w.chart + ".csv" : w.out;
-    if (w.out.empty()) writeCurveCsv(csv, curve, dofs);
-    std::vector<std::string> command = {python3(), findDataFile("plot_curve.py"), csv, w.chart, scene.name};
-    if (w.log_amplitude) command.push_back("--log-amplitude");
-    if (runProgram(command) != 0)
-      throw std::runtime_error("--chart: plotting failed (needs " + command[0] + " with matplotlib)");
-  }
-  if (accurate && !accurate->not_met.empty()) {
-    std::ostringstream where;
-    for (size_t i = 0; i < accurate->not_met.size() && i < 10; ++i) where << (i ? ", " : "") << accurate->not_met[i];
-    if (accurate->not_met.size() > 10) where << ", ... (" << accurate->not_met.size() << " points)";
-    const CurvePoint* first_miss = nullptr;
-    for (const auto& p : curve.points)
-      if (p.accuracy && !p.accuracy->met) {
-        first_miss = &p;
-        break;
-      }
-    std::cerr << "eqhb: --accuracy " << accurate->tolerance << " not met at omega = " << where.str();
-    if (first_miss) std::cerr << " (at omega = " << first_miss->omega << ": " << withFlagNames(first_miss->accuracy->failure) << ")";
-    std::cerr << "\n";
-    return 1;
-  }
-  return curve.complete && curve.failed_points == 0 && !curve.points.empty() ? 0 : 1;
+  writeCurveSummary(w.json ? std::cerr : std::cout, r.curve, run);
+  if (!w.out.empty()) writeCurveCsv(w.out, r.curve, plan.scene.model.structure.dofs());
+  if (!w.chart.empty()) writeChart(w, r);
+  if (r.accurate && !r.accurate->not_met.empty()) reportAccuracyNotMet(r);
+  return r.succeeded() ? 0 : 1;
 }
 
 }  // namespace eqhb::cli

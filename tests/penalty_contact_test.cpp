@@ -18,20 +18,11 @@
 namespace eqhb {
 namespace {
 
-struct Solved {
-  HbModel model;
-  SolverResult result;
-  Eigen::VectorXd full;
-};
+using Solved = test::SolvedScene;
 
 // On the condensed system, from rest.
 Solved solve(const std::string& file, const std::vector<std::string>& set = {}) {
-  Solved s;
-  s.model = loadScene(test::problem(file), set).model;
-  auto system = makeHbSystem(s.model, true);
-  s.result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
-  s.full = system->fullCoefficients(s.result.solution);
-  return s;
+  return test::solveFromRest(file, set);
 }
 
 // The coefficients of x on every DOF (the first n · basis rows of `full`).

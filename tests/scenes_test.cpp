@@ -17,23 +17,14 @@
 namespace eqhb {
 namespace {
 
-struct Solved {
-  HbModel model;
-  SolverResult result;
-  Eigen::VectorXd full;
+struct Solved : test::SolvedScene {
   std::map<std::string, double> violations;  // of law 0
 };
 
 Solved solveScene(const std::string& file, bool condensed, std::vector<std::string> set = {},
                   const std::string& solver = "dogleg") {
-  const Scene scene = loadScene(test::problem(file), set);
-  std::unique_ptr<HbSystem> system;
-  if (condensed) system = std::make_unique<CondensedSystem>(scene.model);
-  else system = std::make_unique<FullSystem>(scene.model);
   Solved s;
-  s.model = scene.model;
-  s.result = makeSolver(solver)->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
-  s.full = system->fullCoefficients(s.result.solution);
+  static_cast<test::SolvedScene&>(s) = test::solveFromRest(file, set, condensed, solver);
   const auto reports = checkInvariants(s.model, s.full);
   for (const auto& [name, value] : reports[0].violations) s.violations[name] = value;
   return s;

@@ -86,7 +86,7 @@ TEST(StudyPlan, BadSpecificationsNameTheField) {
   try {
     parseVariedParameter("law.muN=1:2:-4", true);
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--vary law.muN COUNT = -4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("vary law.muN COUNT = -4"), std::string::npos) << e.what();
   }
 }
 
@@ -273,7 +273,7 @@ TEST(StudyJournal, AJournalIsRefusedByAnotherStudyEvenWithoutPlanTxt) {
     StudyJournal journal(dir, other, studyPlanText(other, "dogleg"));
     ADD_FAILURE() << "another study took the journal";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--out = " + dir + ": holds another study: journal.csv has plan fingerprint"),
+    EXPECT_NE(std::string(e.what()).find("out = " + dir + ": holds another study: journal.csv has plan fingerprint"),
               std::string::npos)
         << e.what();
   }

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
 #include "eqhb/solvers/square_system.h"
 #include "eqhb/backends/registry.h"
 
@@ -20,6 +22,23 @@ inline bool registered(const std::string& name);
 
 inline std::string problem(const std::string& file) {
   return std::string(EQHB_PROBLEMS_DIR) + "/" + file;
+}
+
+// A shipped scene (with `set` overrides) solved from rest on the condensed or
+// full system: its model, the solver's result and [x; λ].
+struct SolvedScene {
+  HbModel model;
+  SolverResult result;
+  Eigen::VectorXd full;
+};
+inline SolvedScene solveFromRest(const std::string& file, const std::vector<std::string>& set = {},
+                                 bool condensed = true, const std::string& solver = "dogleg") {
+  SolvedScene s;
+  s.model = loadScene(problem(file), set).model;
+  const auto system = makeHbSystem(s.model, condensed);
+  s.result = makeSolver(solver)->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
+  s.full = system->fullCoefficients(s.result.solution);
+  return s;
 }
 
 // Central differences of system at z, step h.

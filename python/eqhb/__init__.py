@@ -19,10 +19,10 @@ import numbers
 import os
 
 from ._eqhb import InputError, Model, __version__, solvers
-from ._eqhb import _compare, _shoot, _simulate, _solve, _stability, _sweep
+from ._eqhb import _compare, _shoot, _simulate, _solve, _stability, _study, _sweep
 
 __all__ = ["InputError", "Model", "__version__", "compare", "load_scene", "model", "shoot", "simulate", "solve", "solvers", "stability",
-           "sweep"]
+           "study", "sweep"]
 
 
 def load_scene(path, overrides=None):
@@ -130,26 +130,83 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
                       _integer(harmonics, "harmonics", True), _integer(samples, "samples", True))
 
 
-def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmonics=None, samples=None,
+def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmonics=None, samples=None, form=None,
+          rho=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
+          time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
+          max_step=None, stability=False, error_estimate=False, accuracy=None, max_harmonics=320):
+    """A frequency-response curve by continuation in omega, as `eqhb sweep`
+    runs it ("sequential" on a grid of `step`, by default a hundredth of the
+    range, or "arclength", which passes turning points, from a scaled step
+    of 0.01). start and stop default to the model's sweep range; min_step
+    (default min(1e-6, step)) and max_step (arclength, default max(0.1,
+    step)) bound the step. Returns a dict of arrays over the converged
+    points: omega, converged, max_abs (points x dofs), first_harmonic,
+    energy, fold, x_cos/x_sin (points x dofs x harmonics), and folds,
+    stop_reason, complete, failed_points, seconds and the settings of `eqhb
+    sweep --json` (scene, solver, method, from, to, step, system,
+    harmonic_set, samples); "fallback" per point names the step that
+    converged a point that failed from the previous one (see solve). The
+    grid points that did not converge are in "failed", a list of dicts
+    (omega, termination, iterations, residual_evaluations,
+    jacobian_evaluations, residual_norm, seconds), never rows of NaN.
+
+    On the points: stability (Hill's method at every converged point:
+    per point "stable", "spectral_radius", "multipliers" (the leading four,
+    complex) and "bifurcation"; "bifurcations", a list of dicts omega, kind,
+    point; the folds confirmed by the multipliers), error_estimate (one more
+    solve at 2H per point: "error_estimate"), accuracy (a relative error in
+    (0, 1): H, and rho unless given, chosen at the first point as solve
+    does, raised per point up to max_harmonics where the estimate exceeds
+    it: per point "error_estimate", "point_harmonics", "point_samples",
+    "accuracy_met", "accuracy_seconds", "accuracy_failure", and "accuracy"
+    and "rho"). Per-point lists hold None where a point has no value.
+    form and rho apply to every law that has them."""
+    args = _scene_args(None, harmonics, samples, form, rho)
+    args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
+                         linear_algebra, "coarse", fallback))
+    args.update(start=_real(start, "start", True), stop=_real(stop, "stop", True), step=_real(step, "step", True),
+                method=_text(method, "method"), max_points=_integer(max_points, "max_points"),
+                min_step=_real(min_step, "min_step", True), max_step=_real(max_step, "max_step", True),
+                stability=_flag(stability, "stability"), error_estimate=_flag(error_estimate, "error_estimate"),
+                accuracy=_real(accuracy, "accuracy", True), max_harmonics=_integer(max_harmonics, "max_harmonics"))
+    return _sweep(_model(model), args)
+
+
+def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=None, step=0.01, dof=1,
+          coarse_points=41, max_peaks=4, threads=0, harmonics=None, samples=None, form=None, rho=None,
           solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
-          time_limit=0.0, options=None, max_points=20000, fallback="default"):
-    """A frequency-response curve by continuation in omega ("sequential" on a
-    grid of `step`, by default a hundredth of the range, or "arclength",
-    which passes turning points, from a scaled step of 0.01). Returns a
-    dict of arrays over the converged points: omega, converged, max_abs
-    (points x dofs), first_harmonic, energy, fold, x_cos/x_sin (points x
-    dofs x harmonics), and folds, stop_reason, complete, failed_points,
-    seconds; "fallback" per point names the step that converged a point that
-    failed from the previous one (see solve). The grid points that did not
-    converge are in "failed", a list of dicts (omega, termination,
-    iterations, residual_evaluations, jacobian_evaluations, residual_norm,
-    seconds), never rows of NaN."""
-    return _sweep(_model(model), _real(start, "start", True), _real(stop, "stop", True), _real(step, "step", True),
-                  _text(method, "method"), _integer(harmonics, "harmonics", True), _integer(samples, "samples", True),
-                  _text(solver, "solver"), _text(system, "system"), _real(tolerance, "tolerance"),
-                  _integer(max_iterations, "max_iterations"), _integer(max_evaluations, "max_evaluations"),
-                  _real(time_limit, "time_limit"), _options(options), _integer(max_points, "max_points"),
-                  _text(fallback, "fallback"))
+          time_limit=0.0, options=None, linear_algebra="auto"):
+    """A parameter study, as `eqhb study` runs it on threads: over a grid of
+    the scene values `vary` ("PATH=FROM:TO:COUNT" strings, PATH as for
+    load_scene's overrides, or "A,B,..." set together) or, with lhs=N, a
+    Latin hypercube of N samples ("PATH=FROM:TO", reproducible from seed),
+    each sample's resonance peak (mode="peak": the first-harmonic amplitude
+    of DOF `dof`, from 1, tracked from sample to sample, up to max_peaks
+    resonances, a cold start from a sweep of coarse_points) or frequency
+    response (mode="sweep", a grid of `step` in omega) over [start, stop]
+    (default: the model's sweep range). The model must come from a scene
+    file (load_scene): samples reload it. `out` is the study folder
+    (study.csv, study.json, journal.csv, plan.txt; a folder of the same
+    study is resumed, its samples not computed again). Returns study.json
+    as a dict (scene, mode, dof, range, parameters, samples: per sample its
+    values, status, reason, start, peak_omega, first_harmonic, max_abs,
+    peaks, solves, iterations, seconds, worker, curve) with total,
+    computed, failed, succeeded, seconds and threads of this run."""
+    if isinstance(vary, str):
+        vary = [vary]
+    args = _scene_args(None, harmonics, samples, form, rho)
+    args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
+                         linear_algebra, "coarse", "default"))
+    if not isinstance(vary, (list, tuple)):
+        raise InputError(f"vary = {vary!r}: must be a string or a list of strings")
+    args.update(vary=[_text(v, "vary") for v in vary], out=_text(out, "out"),
+                mode=_text(mode, "mode"), lhs=_integer(lhs, "lhs", True), seed=_integer(seed, "seed"),
+                start=_real(start, "start", True), stop=_real(stop, "stop", True), step=_real(step, "step"),
+                dof=_integer(dof, "dof"), coarse_points=_integer(coarse_points, "coarse_points"),
+                max_peaks=_integer(max_peaks, "max_peaks"), threads=_integer(threads, "threads"))
+    if args["seed"] < 0:
+        raise InputError(f"seed = {seed!r}: must be >= 0")
+    return _study(_model(model), args)
 
 
 def simulate(model, omega=None, *, step=None, periods=None, theta=None, periodic_tolerance=None, max_seconds=0.0,

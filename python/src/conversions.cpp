@@ -9,6 +9,7 @@
 #include "eqhb/output/orbit_json.h"
 #include "eqhb/output/simulation_json.h"
 #include "eqhb/output/solution_json.h"
+#include "eqhb/output/sweep_output.h"
 
 namespace eqhb::python {
 
@@ -127,9 +128,12 @@ py::dict curveDict(const HbModel& model, const Curve& curve) {
   auto cos_view = x_cos.mutable_unchecked<3>();
   auto sin_view = x_sin.mutable_unchecked<3>();
   py::list terminations, fallbacks;
-  const int nb = model.basis.size();
   for (Eigen::Index p = 0; p < points; ++p) {
     const CurvePoint& c = *parts.converged[p];
+    // A point raised by an accuracy target holds more harmonics: the curve's
+    // are its first ones, in blocks of its own size per DOF.
+    const int nb = c.harmonics > model.basis.count() ? HarmonicSet(model.basis.kind(), c.harmonics).size()
+                                                      : model.basis.size();
     omega[p] = c.omega;
     residual[p] = c.residual_norm;
     seconds[p] = c.seconds;
@@ -184,6 +188,44 @@ py::dict curveDict(const HbModel& model, const Curve& curve) {
   d["stop_reason"] = curve.stop_reason;
   d["failed_points"] = curve.failed_points;
   d["seconds"] = curve.seconds;
+  return d;
+}
+
+namespace {
+// The optional per-point fields of the JSON writer's points, and their names
+// in the dict (a point's H and N beside the curve's "harmonics" array).
+const std::pair<const char*, const char*> kPointFields[] = {
+    {"stable", "stable"},         {"bifurcation", "bifurcation"},   {"spectral_radius", "spectral_radius"},
+    {"multipliers", "multipliers"}, {"error_estimate", "error_estimate"}, {"harmonics", "point_harmonics"},
+    {"samples", "point_samples"}, {"accuracy_met", "accuracy_met"}, {"accuracy_seconds", "accuracy_seconds"},
+    {"accuracy_failure", "accuracy_failure"}};
+const char* const kRunFields[] = {"scene",        "solver",       "method",       "from",
+                                  "to",           "step",         "system",       "harmonic_set",
+                                  "samples",      "bifurcations", "stability_seconds", "solve_seconds",
+                                  "rho",          "accuracy"};
+
+py::object pointValue(const std::string& key, const nlohmann::json& value) {
+  if (key != "multipliers") return fromJson(value);
+  py::list out;  // [re, im] pairs as complex numbers
+  for (const auto& m : value) out.append(std::complex<double>(m[0].get<double>(), m[1].get<double>()));
+  return std::move(out);
+}
+}  // namespace
+
+py::dict sweepDict(const app::SweepResult& r) {
+  const nlohmann::json j = output::sweepJson(r);
+  py::dict d = curveDict(r.model, r.curve);
+  for (const char* key : kRunFields)
+    if (j.contains(key)) d[key] = fromJson(j[key]);
+  const nlohmann::json& points = j["points"];
+  for (const auto& [key, name] : kPointFields) {
+    bool any = false;
+    for (const auto& p : points) any = any || p.contains(key);
+    if (!any) continue;
+    py::list values;  // None where a point has no such value
+    for (const auto& p : points) values.append(p.contains(key) ? pointValue(key, p[key]) : py::none());
+    d[name] = values;
+  }
   return d;
 }
 

@@ -12,8 +12,9 @@
 #include "eqhb/app/shoot.h"
 #include "eqhb/app/simulate.h"
 #include "eqhb/app/solution.h"
+#include "eqhb/app/sweep.h"
 #include "eqhb/continuation/continuation.h"
-#include "eqhb/output/curve_writers.h"
+#include "eqhb/curves/curve_writers.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/solvers/solver.h"
@@ -55,6 +56,13 @@ py::dict resultDict(const SolverResult& result);
 // The curve's converged points as arrays (one row each) and its failed
 // points as a list of dicts, "failed" (output/curve_writers.h).
 py::dict curveDict(const HbModel& model, const Curve& curve);
+// app::sweep's result: curveDict, the run's settings of `eqhb sweep --json`
+// (and its bifurcations, rho and accuracy when computed), and per converged
+// point the JSON's optional fields as lists, None where a point has none:
+// stable, bifurcation, spectral_radius, multipliers (complex, leading four),
+// error_estimate, point_harmonics, point_samples, accuracy_met,
+// accuracy_seconds, accuracy_failure.
+py::dict sweepDict(const app::SweepResult& result);
 py::dict referenceDict(const HbModel& model, const TimeReference& reference);
 
 }  // namespace eqhb::python

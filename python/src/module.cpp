@@ -15,11 +15,14 @@
 #include "eqhb/app/shoot.h"
 #include "eqhb/app/simulate.h"
 #include "eqhb/app/solve.h"
+#include "eqhb/app/study.h"
+#include "eqhb/app/sweep.h"
 #include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/continuation/coarse_start.h"
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
+#include "eqhb/output/study_json.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
 #include "eqhb/orbits/shooting.h"
@@ -52,6 +55,14 @@ SolverOptions solverOptions(double tolerance, int max_iterations, int max_evalua
   std::string why;
   if (!options.isValid(&why)) throw InputError(why);
   return options;
+}
+
+// The solver options of a call's arguments (the package's _hb_args).
+SolverOptions solverOptions(const py::dict& a) {
+  return solverOptions(a["tolerance"].cast<double>(), a["max_iterations"].cast<int>(),
+                       a["max_evaluations"].cast<int>(), a["time_limit"].cast<double>(),
+                       a["options"].cast<std::map<std::string, std::string>>(),
+                       a["linear_algebra"].cast<std::string>());
 }
 
 bool condensedSystem(const std::string& system) {
@@ -147,40 +158,96 @@ py::dict stability(const PyModel& m, const Eigen::VectorXd& full, std::optional<
   return stabilityDict(hill);
 }
 
-py::dict sweep(const PyModel& m, std::optional<double> from, std::optional<double> to, std::optional<double> given_step,
-               const std::string& method, std::optional<int> harmonics, std::optional<int> samples,
-               const std::string& solver_name, const std::string& system, double tolerance, int max_iterations,
-               int max_evaluations, double time_limit, const std::map<std::string, std::string>& backend,
-               int max_points, const std::string& fallback) {
-  const HbModel model = withSettings(m.scene.model, std::nullopt, harmonics, samples);
+// Python names the range start and stop; the library names it from and to.
+std::string withPythonNames(const std::string& message) {
+  std::string out = message;
+  for (const auto& [field, name] :
+       {std::pair<std::string, std::string>{"from", "start"}, {"to", "stop"}, {"scene", "model"}})
+    if (out.rfind(field + " = ", 0) == 0) {
+      out = name + out.substr(field.size());
+      break;
+    }
+  const std::string phrase = "give from and to", replaced = "give start and stop";
+  for (size_t at = out.find(phrase); at != std::string::npos; at = out.find(phrase, at + 1))
+    out.replace(at, phrase.size(), replaced);
+  return out;
+}
+
+// eqhb.sweep: app::sweep with the call's settings and options, as `eqhb sweep`.
+py::dict sweep(const PyModel& m, const py::dict& args) {
+  const app::SceneSettings scene = sceneArgs(args).of(m);
+  const std::string method = args["method"].cast<std::string>();
   if (method != "sequential" && method != "arclength")
     throwInputError("method", "\"" + method + "\"", "must be \"sequential\" or \"arclength\"");
-  ContinuationOptions options;
-  if (!from && !m.scene.sweep_from) throwInputError("start", "(missing)", "the model has no sweep range: give start and stop");
-  options.from = from ? *from : *m.scene.sweep_from;
-  options.to = to ? *to : m.scene.sweep_to.value_or(options.from);
-  const double step = given_step ? *given_step
-                                 : ContinuationOptions::defaultStep(options.from, options.to, method == "arclength");
-  options.step = step;
-  options.min_step = ContinuationOptions::defaultMinStep(step);
-  options.max_step = ContinuationOptions::defaultMaxStep(step);  // as `eqhb sweep`
-  options.max_points = max_points;
-  options.condensed = condensedSystem(system);
-  options.validate();
-  const SolverOptions solver_options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend);
-  auto solver = makeSolver(solver_name);
-  const OwnedFallbackChain fallbacks(fallback, solver_name, "fallback");
-  options.fallbacks = fallbacks.chain();
-  Curve curve;
+  app::SweepOptions o;
+  o.solver = args["solver"].cast<std::string>();
+  o.condensed = condensedSystem(args["system"].cast<std::string>());
+  o.solver_options = solverOptions(args);
+  o.fallback = args["fallback"].cast<std::string>();
+  o.from = args["start"].cast<std::optional<double>>();
+  o.to = args["stop"].cast<std::optional<double>>();
+  o.arclength = method == "arclength";
+  o.step = args["step"].cast<std::optional<double>>();
+  o.min_step = args["min_step"].cast<std::optional<double>>();
+  o.max_step = args["max_step"].cast<std::optional<double>>();
+  o.max_points = args["max_points"].cast<int>();
+  o.stability = args["stability"].cast<bool>();
+  o.error_estimate = args["error_estimate"].cast<bool>();
+  o.accuracy = args["accuracy"].cast<std::optional<double>>();
+  o.max_harmonics = args["max_harmonics"].cast<int>();
+  std::optional<app::SweepPlan> plan;
+  try {
+    plan = app::planSweep(scene, o);
+  } catch (const InputError& e) {
+    throw InputError(withPythonNames(e.what()));
+  }
+  std::optional<app::SweepResult> result;
   {
     py::gil_scoped_release unlocked;
-    curve = method == "arclength" ? sweepArclength(model, *solver, solver_options, options)
-                                  : sweepSequential(model, *solver, solver_options, options);
+    result = app::sweep(*plan);
   }
-  py::dict d = curveDict(model, curve);
-  d["solver"] = solver->name();
-  d["method"] = method;
-  d["system"] = system;
+  return sweepDict(*result);
+}
+
+// eqhb.study: app::study with the call's settings and options, as `eqhb
+// study` on threads; the rows as study.json holds them, and the run's counts.
+py::dict study(const PyModel& m, const py::dict& args) {
+  const app::SceneSettings scene = sceneArgs(args).of(m);
+  app::StudyOptions o;
+  o.solver = args["solver"].cast<std::string>();
+  o.condensed = condensedSystem(args["system"].cast<std::string>());
+  o.solver_options = solverOptions(args);
+  o.vary = args["vary"].cast<std::vector<std::string>>();
+  o.lhs = args["lhs"].cast<std::optional<int>>();
+  o.seed = args["seed"].cast<unsigned long long>();
+  o.mode = args["mode"].cast<std::string>();
+  o.from = args["start"].cast<std::optional<double>>();
+  o.to = args["stop"].cast<std::optional<double>>();
+  o.step = args["step"].cast<double>();
+  o.dof = args["dof"].cast<int>();
+  o.coarse_points = args["coarse_points"].cast<int>();
+  o.max_peaks = args["max_peaks"].cast<int>();
+  o.threads = args["threads"].cast<int>();
+  o.out = args["out"].cast<std::string>();
+  std::optional<app::StudySetup> setup;
+  try {
+    setup = app::setupStudy(scene, o);
+  } catch (const InputError& e) {
+    throw InputError(withPythonNames(e.what()));
+  }
+  std::optional<app::StudyRun> run;
+  {
+    py::gil_scoped_release unlocked;
+    run = app::runStudy(*setup, o.threads);
+  }
+  output::writeStudyJson(o.out + "/study.json", *run);
+  py::dict d = fromJson(output::studyJson(*run));
+  d["total"] = run->total;
+  d["computed"] = run->computed;
+  d["failed"] = run->failed();
+  d["succeeded"] = run->succeeded();
+  d["seconds"] = run->seconds;
+  d["threads"] = run->how;
   return d;
 }
 
@@ -318,10 +385,8 @@ PYBIND11_MODULE(_eqhb, m) {
       });
 
   m.def("_solve", &solve, py::arg("model"), py::arg("args"));
-  m.def("_sweep", &sweep, py::arg("model"), py::arg("start"), py::arg("stop"), py::arg("step"), py::arg("method"),
-        py::arg("harmonics"), py::arg("samples"), py::arg("solver"), py::arg("system"), py::arg("tolerance"),
-        py::arg("max_iterations"), py::arg("max_evaluations"), py::arg("time_limit"), py::arg("options"),
-        py::arg("max_points"), py::arg("fallback"));
+  m.def("_sweep", &sweep, py::arg("model"), py::arg("args"));
+  m.def("_study", &study, py::arg("model"), py::arg("args"));
   m.def("_stability", &stability, py::arg("model"), py::arg("full"), py::arg("omega"), py::arg("harmonics"),
         py::arg("samples"));
   m.def("_shoot", &shoot, py::arg("model"), py::arg("args"));

@@ -158,3 +158,103 @@ def test_compare_is_eqhb_compare():
     # The errors sample the solution on the reference's instants.
     assert py["solution"]["max_abs_x"].tolist() == pytest.approx(
         [e["max_abs_hb"] for e in py["errors"][:2]], rel=1e-4)
+
+
+# Per-point keys of `eqhb sweep --json` and their names in Python's arrays.
+POINT_KEYS = {"omega": "omega", "max_abs": "max_abs", "first_harmonic": "first_harmonic", "energy": "energy",
+              "fold": "fold", "iterations": "iterations", "stable": "stable", "bifurcation": "bifurcation",
+              "spectral_radius": "spectral_radius", "multipliers": "multipliers",
+              "error_estimate": "error_estimate", "harmonics": "point_harmonics", "samples": "point_samples",
+              "accuracy_met": "accuracy_met", "accuracy_failure": "accuracy_failure"}
+
+
+def same_curve(cli, py):
+    """The curve's settings and every converged point's values as `eqhb sweep --json` has them."""
+    points = cli.pop("points")
+    cli.pop("harmonics")  # H; Python's "harmonics" lists the harmonics of the basis
+    for key in ("stability_seconds", "solve_seconds"):
+        cli.pop(key, None)
+    same_answer(cli, py)
+    assert len(py["omega"]) == len(points)
+    for key, name in POINT_KEYS.items():
+        given = [p.get(key) for p in points]
+        if all(v is None for v in given):
+            assert name not in py or all(v is None or v == "" for v in py[name]), name
+            continue
+        for i, (a, b) in enumerate(zip(given, py[name])):
+            where = f"points[{i}].{key}"
+            if a is None:
+                assert b is None or b == "", where
+            elif key == "multipliers":
+                np.testing.assert_allclose(b, [complex(re, im) for re, im in a], rtol=1e-9, atol=1e-12, err_msg=where)
+            elif isinstance(a, (list, float)):
+                np.testing.assert_allclose(np.asarray(b, dtype=float), a, rtol=1e-9, atol=1e-12, err_msg=where)
+            else:
+                assert b == a, where
+
+
+def test_sweep_with_stability_and_error_estimates_is_eqhb_sweep():
+    args = ("--from", 0.3, "--to", 0.4, "--step", 0.02, "--harmonics", 5)
+    cli = cli_json("sweep", SCENE, *args, "--stability", "--error-estimate")
+    py = eqhb.sweep(eqhb.load_scene(SCENE), 0.3, 0.4, step=0.02, harmonics=5, stability=True, error_estimate=True)
+    assert len(py["stable"]) == 6 and all(s in (True, False) for s in py["stable"])
+    assert all(e is not None and 0 < e < 1 for e in py["error_estimate"])
+    assert py["bifurcations"] == cli["bifurcations"]
+    same_curve(cli, py)
+
+
+def test_arclength_sweep_with_stability_finds_the_folds_eqhb_sweep_finds():
+    scene = PROBLEMS / "duffing.toml"
+    cli = cli_json("sweep", scene, "--arclength", "--harmonics", 3, "--samples", 64, "--stability",
+                   "--max-step", 0.05, "--min-step", 1e-5, expect=(0, 1))
+    py = eqhb.sweep(eqhb.load_scene(scene), method="arclength", harmonics=3, samples=64, stability=True,
+                    max_step=0.05, min_step=1e-5)
+    assert py["method"] == "arclength" and py["step"] == 0.01
+    same_curve(cli, py)
+
+
+def test_accuracy_sweep_is_eqhb_sweep_accuracy():
+    args = ("--from", 0.3, "--to", 0.4, "--step", 0.05, "--accuracy", 0.05, "--max-harmonics", 20)
+    cli = cli_json("sweep", SCENE, *args, expect=(0, 1))
+    py = eqhb.sweep(eqhb.load_scene(SCENE), 0.3, 0.4, step=0.05, accuracy=0.05, max_harmonics=20)
+    assert "accuracy" in py and "rho" in py and len(py["accuracy_met"]) == len(py["omega"])
+    same_curve(cli, py)
+    with pytest.raises(eqhb.InputError, match="stability = \\(set\\): not with accuracy"):
+        eqhb.sweep(eqhb.load_scene(SCENE), 0.3, 0.4, accuracy=0.05, stability=True)
+
+
+def test_sweep_options_are_named_as_python_names_them():
+    model = eqhb.model(np.eye(1), np.eye(1), forcing=[{"dof": 1, "cos": 1.0}])
+    with pytest.raises(eqhb.InputError, match="^start = \\(missing\\).*give start and stop"):
+        eqhb.sweep(model)
+    with pytest.raises(eqhb.InputError, match="^stop = 0.5: must differ from from"):
+        eqhb.sweep(model, 0.5, 0.5)
+    with pytest.raises(eqhb.InputError, match="^min_step = 0.5: min_step = 0.5 must be <= max_step = 0.1"):
+        eqhb.sweep(model, 0.5, 0.6, min_step=0.5, max_step=0.1, method="arclength")
+
+
+def test_study_is_eqhb_study(tmp_path):
+    args = ("--harmonics", 5, "--samples", 128, "--vary", "law.muN=0.5:3:3", "--peak", "--from", 0.3, "--to", 1.2,
+            "--threads", 1)
+    path = os.environ.get("EQHB_CLI")
+    if not path:
+        pytest.skip("EQHB_CLI is not set")
+    run = subprocess.run([path, "study", SCENE, *map(str, args), "--out", tmp_path / "cli"], capture_output=True,
+                         text=True)
+    assert run.returncode == 0, run.stderr
+    cli = json.loads((tmp_path / "cli" / "study.json").read_text())
+    py = eqhb.study(eqhb.load_scene(SCENE), "law.muN=0.5:3:3", out=str(tmp_path / "py"), mode="peak", harmonics=5,
+                    samples=128, start=0.3, stop=1.2, threads=1)
+    assert py["succeeded"] and py["total"] == py["computed"] == 3 and py["failed"] == 0
+    assert json.loads((tmp_path / "py" / "study.json").read_text())["samples"][2]["peak_omega"] == pytest.approx(
+        py["samples"][2]["peak_omega"], rel=1e-15)
+    for sample in cli["samples"] + py["samples"]:
+        sample.pop("worker")
+    same_answer(cli, py)
+    again = eqhb.study(eqhb.load_scene(SCENE), ["law.muN=0.5:3:3"], out=str(tmp_path / "py"), harmonics=5,
+                       samples=128, start=0.3, stop=1.2)
+    assert again["computed"] == 0 and again["succeeded"]
+    with pytest.raises(eqhb.InputError, match="^model = \\(in memory\\)"):
+        eqhb.study(eqhb.model(np.eye(1), np.eye(1)), "law.muN=1:2:2", out=str(tmp_path / "m"))
+    with pytest.raises(eqhb.InputError, match="^mode = \"both\""):
+        eqhb.study(eqhb.load_scene(SCENE), "law.muN=1:2:2", out=str(tmp_path / "m"), mode="both")

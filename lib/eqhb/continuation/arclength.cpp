@@ -134,9 +134,9 @@ class ArclengthSweep {
       if (!r.converged()) {
         if (step.halve()) continue;
         if (bridgeOrStop("the corrector failed (" + std::string(terminationName(r.termination)) + ") near " +
-                         at(current_.omega) + " even with the step at --min-step = " +
-                         formatNumber(options_.min_step) + ": give a smaller --min-step, or try --full or "
-                         "another --solver"))
+                         at(current_.omega) + " even with the step at min_step = " +
+                         formatNumber(options_.min_step) + ": give a smaller min_step, or try system = full or "
+                         "another solver"))
           continue;
         return;
       }
@@ -146,7 +146,7 @@ class ArclengthSweep {
         if (landOnTheEnd(s, y, y_new, step.size())) return;
         if (!step.halve())
           return stop("no solution at the end of the range next to " + at(current_.omega) +
-                           " even with the step at --min-step = " + formatNumber(options_.min_step));
+                           " even with the step at min_step = " + formatNumber(options_.min_step));
         continue;
       }
       Eigen::VectorXd t_new;
@@ -157,7 +157,7 @@ class ArclengthSweep {
       }
       if (!t_new.allFinite()) {
         if (step.halve() || bridgeOrStop("no tangent (singular bordered Jacobian) at " + at(omega_new) +
-                                          ": a bifurcation point; give a smaller --min-step to step across it"))
+                                          ": a bifurcation point; give a smaller min_step to step across it"))
           continue;
         return;
       }
@@ -169,8 +169,8 @@ class ArclengthSweep {
         // the secant, the direction the curve actually took.
         if (!kink.isKink(step.size(), turn)) {
           if (step.halve() || bridgeOrStop("the tangent turns by " + formatNumber(degrees(turn)) + " degrees at " +
-                                            at(omega_new) + " even with the step at --min-step = " +
-                                            formatNumber(options_.min_step) + ": give a smaller --min-step"))
+                                            at(omega_new) + " even with the step at min_step = " +
+                                            formatNumber(options_.min_step) + ": give a smaller min_step"))
             continue;
           return;
         }
@@ -180,7 +180,7 @@ class ArclengthSweep {
         if (heading != 0.0 && t_new[n_] * heading < 0.0) {
           if (bridgeOrStop("the curve turns back at a kink at " + at(omega_new) +
                            " (the tangent's omega-component changes sign without passing through zero: not a "
-                           "fold); try --full, more --samples or a smaller --max-step"))
+                           "fold); try system = full, more samples or a smaller max_step"))
             continue;
           return;
         }
@@ -194,7 +194,7 @@ class ArclengthSweep {
       step.accept(r.iterations, turn);
     }
     stop("max_points = " + std::to_string(options_.max_points) + " reached at " + at(current_.omega) +
-         ", before the end of the range: give a larger --max-points or --max-step");
+         ", before the end of the range: give a larger max_points or max_step");
   }
 
   // The corrector failed even at the smallest step (the curve's Jacobian

@@ -14,7 +14,7 @@ namespace eqhb {
 void ContinuationOptions::validate() const {
   if (!(from > 0.0) || !std::isfinite(from)) throwInputError("from", formatNumber(from), "must be finite and > 0");
   if (!(to > 0.0) || !std::isfinite(to)) throwInputError("to", formatNumber(to), "must be finite and > 0");
-  if (from == to) throwInputError("to", formatNumber(to), "must differ from --from");
+  if (from == to) throwInputError("to", formatNumber(to), "must differ from from");
   if (!(step > 0.0) || !std::isfinite(step)) throwInputError("step", formatNumber(step), "must be finite and > 0");
   if (!(min_step > 0.0) || !std::isfinite(min_step))
     throwInputError("min_step", formatNumber(min_step), "must be finite and > 0");

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eqhb/output/curve_writers.h"
+#include "eqhb/curves/curve_writers.h"
 
 namespace eqhb {
 

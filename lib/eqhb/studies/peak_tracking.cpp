@@ -14,15 +14,15 @@
 namespace eqhb {
 
 void PeakOptions::validate(int dofs) const {
-  if (!(from > 0.0) || !std::isfinite(from)) throwInputError("--from", formatNumber(from), "must be finite and > 0");
-  if (!(to > from) || !std::isfinite(to)) throwInputError("--to", formatNumber(to), "must be finite and > --from");
+  if (!(from > 0.0) || !std::isfinite(from)) throwInputError("from", formatNumber(from), "must be finite and > 0");
+  if (!(to > from) || !std::isfinite(to)) throwInputError("to", formatNumber(to), "must be finite and > from");
   if (dof < 1 || dof > dofs)
-    throwInputError("--dof", std::to_string(dof), "must be a DOF of the scene, 1.." + std::to_string(dofs));
-  if (coarse_points < 3) throwInputError("--coarse-points", std::to_string(coarse_points), "must be >= 3");
+    throwInputError("dof", std::to_string(dof), "must be a DOF of the scene, 1.." + std::to_string(dofs));
+  if (coarse_points < 3) throwInputError("coarse_points", std::to_string(coarse_points), "must be >= 3");
   if (!(omega_tolerance > 0.0) || omega_tolerance >= 1e-2)
     throwInputError("omega_tolerance", formatNumber(omega_tolerance), "must be in (0, 1e-2)");
   if (max_secant_steps < 2) throwInputError("max_secant_steps", std::to_string(max_secant_steps), "must be >= 2");
-  if (max_peaks < 1 || max_peaks > 100) throwInputError("--max-peaks", std::to_string(max_peaks), "must be in [1, 100]");
+  if (max_peaks < 1 || max_peaks > 100) throwInputError("max_peaks", std::to_string(max_peaks), "must be in [1, 100]");
 }
 
 namespace {

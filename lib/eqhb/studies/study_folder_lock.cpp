@@ -35,7 +35,7 @@ StudyFolderLock::StudyFolderLock(const std::string& dir) {
     ::close(fd_);
     fd_ = -1;
     if (error == EWOULDBLOCK)
-      throwInputError("--out", dir,
+      throwInputError("out", dir,
                       "is in use by another study (" + holder + " holds " + path +
                           "): wait for it to end, or give another folder");
     errno = error;

@@ -227,7 +227,7 @@ namespace {
 const std::string& createdFolder(const std::string& dir, const StudySettings& settings) {
   std::error_code error;
   std::filesystem::create_directories(dir + (settings.mode == StudyMode::kSweep ? "/curves" : ""), error);
-  if (error) throwInputError("--out", dir, "cannot create the folder (" + error.message() + ")");
+  if (error) throwInputError("out", dir, "cannot create the folder (" + error.message() + ")");
   return dir;
 }
 
@@ -247,7 +247,7 @@ StudyJournal::StudyJournal(const std::string& dir, const StudySettings& settings
   if (plan_was_there) {
     const std::string there = readFile(plan_path);
     if (there != plan_text)
-      throwInputError("--out", dir,
+      throwInputError("out", dir,
                       "holds another study (its plan.txt differs from this command's: " +
                           firstDifference(there, plan_text) +
                           "): use another folder, or delete that one to start over");
@@ -278,7 +278,7 @@ void StudyJournal::readJournal(const std::string& path, const std::string& finge
                           "is not the first line of an eqhb study journal ('" + std::string(kJournalIdentity) +
                               "…'): use another folder, or delete that one to start over");
         if (line != identity)
-          throwInputError("--out", dir_,
+          throwInputError("out", dir_,
                           "holds another study: journal.csv has plan fingerprint " +
                               line.substr(std::string(kJournalIdentity).size()) + ", this command's is " +
                               fingerprint +

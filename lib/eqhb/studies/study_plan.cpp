@@ -40,35 +40,35 @@ double unitUniform(std::mt19937_64& random) { return static_cast<double>(random(
 VariedParameter parseVariedParameter(const std::string& text, bool count_required) {
   const std::size_t equals = text.find('=');
   const std::string form = count_required ? "PATH=FROM:TO:COUNT" : "PATH=FROM:TO[:COUNT]";
-  if (equals == std::string::npos || equals == 0) throwInputError("--vary", text, "must be " + form);
+  if (equals == std::string::npos || equals == 0) throwInputError("vary", text, "must be " + form);
   VariedParameter p;
   p.path = text.substr(0, equals);
   for (const auto& path : split(p.path, ','))
-    if (path.empty()) throwInputError("--vary", text, "has an empty PATH in the list A,B,…");
+    if (path.empty()) throwInputError("vary", text, "has an empty PATH in the list A,B,…");
   const auto parts = split(text.substr(equals + 1), ':');
-  if (parts.size() != 3 && (count_required || parts.size() != 2)) throwInputError("--vary", text, "must be " + form);
-  if (!parseDouble(parts[0], &p.from)) throwInputError("--vary " + p.path + " FROM", parts[0], "must be a finite number");
-  if (!parseDouble(parts[1], &p.to)) throwInputError("--vary " + p.path + " TO", parts[1], "must be a finite number");
+  if (parts.size() != 3 && (count_required || parts.size() != 2)) throwInputError("vary", text, "must be " + form);
+  if (!parseDouble(parts[0], &p.from)) throwInputError("vary " + p.path + " FROM", parts[0], "must be a finite number");
+  if (!parseDouble(parts[1], &p.to)) throwInputError("vary " + p.path + " TO", parts[1], "must be a finite number");
   p.count = 1;
   if (parts.size() == 3) {
     char* end = nullptr;
     const long count = std::strtol(parts[2].c_str(), &end, 10);
     if (parts[2].empty() || *end != '\0' || count < 1 || count > 1000000)
-      throwInputError("--vary " + p.path + " COUNT", parts[2], "must be an integer in [1, 1000000]");
+      throwInputError("vary " + p.path + " COUNT", parts[2], "must be an integer in [1, 1000000]");
     p.count = static_cast<int>(count);
   }
   if (p.count > 1 && p.from == p.to)
-    throwInputError("--vary " + p.path + " TO", parts[1], "must differ from FROM when COUNT > 1");
+    throwInputError("vary " + p.path + " TO", parts[1], "must differ from FROM when COUNT > 1");
   return p;
 }
 
 StudyPlan makeGridPlan(const std::vector<VariedParameter>& parameters, long max_samples) {
-  if (parameters.empty()) throwInputError("--vary", "(none)", "give at least one PATH=FROM:TO:COUNT");
+  if (parameters.empty()) throwInputError("vary", "(none)", "give at least one PATH=FROM:TO:COUNT");
   long total = 1;
   for (const auto& p : parameters) {
     total *= p.count;
     if (total > max_samples)
-      throwInputError("--vary", "(grid)", "the grid has more than " + std::to_string(max_samples) + " samples");
+      throwInputError("vary", "(grid)", "the grid has more than " + std::to_string(max_samples) + " samples");
   }
   StudyPlan plan;
   plan.parameters = parameters;
@@ -93,8 +93,8 @@ StudyPlan makeGridPlan(const std::vector<VariedParameter>& parameters, long max_
 }
 
 StudyPlan makeLatinHypercubePlan(const std::vector<VariedParameter>& parameters, int count, std::uint64_t seed) {
-  if (parameters.empty()) throwInputError("--vary", "(none)", "give at least one PATH=FROM:TO");
-  if (count < 1 || count > 10000000) throwInputError("--lhs", std::to_string(count), "must be in [1, 10000000]");
+  if (parameters.empty()) throwInputError("vary", "(none)", "give at least one PATH=FROM:TO");
+  if (count < 1 || count > 10000000) throwInputError("lhs", std::to_string(count), "must be in [1, 10000000]");
   const int n = static_cast<int>(parameters.size());
   std::mt19937_64 random(seed);
   std::vector<std::vector<double>> unit(count, std::vector<double>(n));

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "eqhb/continuation/continuation.h"
-#include "eqhb/output/curve_writers.h"
+#include "eqhb/curves/curve_writers.h"
 #include "eqhb/error.h"
 #include "eqhb/io_error.h"
 #include "eqhb/scenes/scene.h"

@@ -1,4 +1,4 @@
-#include "eqhb/output/curve_writers.h"
+#include "eqhb/curves/curve_writers.h"
 
 #include <algorithm>
 #include <cmath>

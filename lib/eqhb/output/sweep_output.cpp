@@ -1,0 +1,60 @@
+#include "eqhb/output/sweep_output.h"
+
+#include <sstream>
+
+#include "eqhb/harmonic_balance/problem_scales.h"
+#include "eqhb/output/curve_json.h"
+#include "eqhb/output/solution_json.h"
+
+namespace eqhb::output {
+
+namespace {
+
+double chosenRhoFactor(const app::SweepResult& r) { return r.rho.factors[r.accurate->first.candidate]; }
+
+// The summary's accuracy line: the choice at the first point, how far H was
+// raised, the largest estimate and where the target was not met.
+std::string accuracyLine(const app::SweepResult& r, const std::string& option) {
+  const AccurateCurve& a = *r.accurate;
+  std::ostringstream line;
+  line << option << " " << a.tolerance << ": H = " << r.model.basis.count()
+       << ", rho = " << rhoJson(r.rho.scene_rho, chosenRhoFactor(r)).dump() << " chosen at omega = "
+       << r.plan.continuation.from << ", raised up to H = " << a.highest_harmonics << "; largest estimate "
+       << r.largestEstimate() << "; not met at " << a.not_met.size() << " point(s); " << a.seconds << " s in all";
+  return line.str();
+}
+
+}  // namespace
+
+CurveRun curveRun(const app::SweepResult& r, const std::string& accuracy_option) {
+  CurveRun run;
+  run.scene = r.plan.scene.name;
+  run.solver = r.plan.solver_name;
+  run.arclength = r.plan.options.arclength;
+  run.from = r.plan.continuation.from;
+  run.to = r.plan.continuation.to;
+  run.step = r.plan.continuation.step;
+  run.condensed = r.plan.continuation.condensed;
+  run.model = &r.model;
+  run.stability = r.stability ? &*r.stability : nullptr;
+  if (!r.curve.complete) run.advice = rhoScaleAdvice(r.model);
+  run.error_estimate = r.plan.options.error_estimate;
+  if (r.accurate) run.accuracy = accuracyLine(r, accuracy_option);
+  return run;
+}
+
+nlohmann::json sweepJson(const app::SweepResult& r) {
+  nlohmann::json out = curveJson(r.curve, curveRun(r));
+  if (!r.accurate) return out;
+  const AccurateCurve& a = *r.accurate;
+  out["rho"] = rhoJson(r.rho.scene_rho, chosenRhoFactor(r));
+  out["accuracy"] = {{"tolerance", a.tolerance},
+                     {"reached", a.not_met.empty() && r.curve.failed_points == 0 && r.curve.complete},
+                     {"not_met", a.not_met},
+                     {"highest_harmonics", a.highest_harmonics},
+                     {"seconds", a.seconds},
+                     {"first_point", accuracyJson(a.first, a.tolerance, r.rho.factors)}};
+  return out;
+}
+
+}  // namespace eqhb::output
