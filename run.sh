@@ -4,6 +4,8 @@
 #   ./run.sh test              install, build, run the test suite (ctest)
 #   ./run.sh field [--quick]   install, build, sweep the field problems (problems/field/)
 #                              on every backend -> results/field-suite.md, .json
+#   ./run.sh docs              install, build, build the documentation site (runs the
+#                              tutorials, warnings are errors) -> build/docs/html
 #   ./run.sh perf-check        short benchmark compared with bench/baseline.json (CI)
 #   ./run.sh baseline          re-record bench/baseline.json (on purpose only)
 #   ./run.sh sanitize          the test suite under ASan + UBSan (clang), then every
@@ -16,6 +18,8 @@ PACKAGES=(cmake g++ make pkg-config libeigen3-dev libspectra-dev libceres-dev li
   libcminpack-dev libcli11-dev nlohmann-json3-dev libtoml11-dev python3 python3-matplotlib
   python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest
   libopenmpi-dev openmpi-bin
+  python3-sphinx python3-myst-parser python3-breathe doxygen
+  python3-venv python3-pip python3-setuptools python3-wheel
   clang libclang-rt-14-dev)
 
 install_packages() {
@@ -98,6 +102,12 @@ case "${1:-}" in
     mkdir -p results
     /usr/bin/python3 bench/field_suite.py --eqhb build/eqhb --out results "$@"
     ;;
+  docs)
+    install_packages
+    build
+    cmake --build build --target docs
+    echo "site: build/docs/html/index.html"
+    ;;
   perf-check)
     install_packages
     build
@@ -144,7 +154,7 @@ case "${1:-}" in
     echo "bench/baseline.json re-recorded: commit it with the reason"
     ;;
   *)
-    echo "usage: $0 test | bench [--quick] | field [--quick] | perf-check | baseline | sanitize" >&2
+    echo "usage: $0 test | bench [--quick] | field [--quick] | docs | perf-check | baseline | sanitize" >&2
     exit 2
     ;;
 esac

@@ -26,7 +26,7 @@ __all__ = ["InputError", "Model", "__version__", "compare", "load_scene", "model
 
 
 def load_scene(path, overrides=None):
-    """The model of a scene file (problems/*.toml). `overrides` maps a dotted
+    """The model of a scene file (a .toml file, as in problems/). `overrides` maps a dotted
     path to a value, as `eqhb --set`: {"law[0].muN": 5, "harmonic_balance.omega": 0.3}."""
     if not isinstance(path, (str, os.PathLike)):
         raise InputError(f"path = {path!r}: must be a file path (str or pathlib.Path)")
@@ -39,12 +39,16 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
     """A model from arrays.
 
     mass, stiffness, damping: n x n numpy arrays or scipy.sparse matrices
-        (damping None: no damping).
+    (damping None: no damping).
+
     laws: dicts with the scene file's keys, DOFs numbered from 1, e.g.
-        {"type": "coulomb-1d", "dofs": [2], "muN": 7.2}.
+    {"type": "coulomb-1d", "dofs": [2], "muN": 7.2}.
+
     forcing: dicts {"dof": 1, "harmonic": 1, "cos": 20.0, "sin": 0.0}.
+
     harmonics, harmonic_set ("odd" or "all"), samples (default: a power of
     two >= 4 (2 k_max + 1), at least 64), omega: the harmonic-balance settings.
+
     sweep: an optional (start, stop) frequency range used by `sweep`.
     """
     dofs = _square_size(mass, "mass")
@@ -117,7 +121,7 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
     system's weak Jacobian. `solution` is what solve returned (its omega is
     used), its "solution" dict, or the "full" coefficient vector; give the
     harmonics/samples (and omega) it was solved with. Returns a dict: stable,
-    spectral_radius, multipliers and exponents (complex, largest |multiplier|
+    spectral_radius, multipliers and exponents (complex, largest modulus
     first), pencil_size, seconds, failure (empty when computed)."""
     if isinstance(solution, dict) and "solution" in solution:
         omega = solution.get("omega") if omega is None else omega
