@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <set>
@@ -234,102 +235,137 @@ void checkModelBeforeBuilding(const std::string& source, ModelSizes settings, co
   });
 }
 
-// `settings`: the coefficients and samples of the model the structure is for.
+// The structure types: each reads M, C, K (and nodes) from the [structure]
+// table, `settings` being the coefficients and samples of the model the
+// structure is for (memory is bounded before anything is built). A new type
+// is one reader and one line of kStructureTypes.
+using StructureReader = void (*)(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read);
+
+// n masses m fixed at DOF 1's end and free after DOF n: M = m I, K = k T, C = d T.
+void readChain(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
+  const int n = s.integer("dofs", 2);
+  if (n < 1) s.fail("structure.dofs", std::to_string(n), "must be >= 1");
+  // Sparse: n entries in M, 3n − 2 in C and K (a dense M, C, K would take 24 n²
+  // bytes; the dense path is bounded where it is chosen).
+  bounded(source, [&] {
+    checkBytes("structure.dofs", std::to_string(n), "a chain's sparse M, C and K",
+               sparseBytes(n, n) + 2.0 * sparseBytes(n, 3.0 * n));
+  });
+  checkModelBeforeBuilding(source, settings, "structure.dofs", std::to_string(n), n, 7.0 * n);
+  const double m = s.number("m"), k = s.number("k"), d = s.number("d");
+  if (!(m > 0.0)) s.fail("structure.m", formatNumber(m), "mass must be > 0");
+  if (k < 0.0) s.fail("structure.k", formatNumber(k), "stiffness must be >= 0");
+  if (d < 0.0) s.fail("structure.d", formatNumber(d), "damping must be >= 0");
+  const SparseMatrix t = chainPattern(n);
+  SparseMatrix identity(n, n);
+  identity.setIdentity();
+  read->structure = LinearStructure(SparseMatrix(m * identity), SparseMatrix(d * t), SparseMatrix(k * t));
+}
+
+// Small M, C, K given inline.
+void readInlineMatrices(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
+  (void)settings;
+  LinearStructure& structure = read->structure;
+  structure = LinearStructure(s.matrix("mass"), s.matrix("damping"), s.matrix("stiffness"));
+  StructureMatrices matrices{structure.mass, structure.damping, structure.stiffness};
+  // Named like every other field: the file, then the key.
+  MatrixNames names{source + ": structure.mass", source + ": structure.damping",
+                    source + ": structure.stiffness"};
+  checkStructureMatrices(matrices, 1e-12, names);
+}
+
+// M, K (and C, or a damping model) from Matrix Market files.
+void readMarketStructure(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
+  const double tolerance = s.number("symmetry_tolerance", 1e-8);
+  if (!(tolerance >= 0.0)) s.fail("structure.symmetry_tolerance", formatNumber(tolerance), "must be >= 0");
+  MatrixNames names;
+  names.mass = relativeToScene(source, s.text("mass"));
+  names.stiffness = relativeToScene(source, s.text("stiffness"));
+  const bool damping_file = s.has("damping");
+  if (damping_file && (s.has("rayleigh") || s.has("modal_damping")))
+    s.fail("structure.damping", describe(s.raw("damping")),
+           "give one damping model: a damping file, rayleigh or modal_damping");
+  if (damping_file) names.damping = relativeToScene(source, s.text("damping"));
+  // The size lines first: M, K (and C) square and of one size, and the
+  // model within memory, before any entry is read.
+  MarketStructureSizes declared;
+  bounded(source, [&] {
+    declared = checkMarketStructureSizes({"structure.mass", names.mass}, {"structure.stiffness", names.stiffness},
+                                         {"structure.damping", damping_file ? names.damping : std::string()});
+  });
+  const double n = static_cast<double>(declared.dofs);
+  if (s.has("modal_damping"))
+    checkModalDampingSize(static_cast<int>(declared.dofs), s.number("modal_damping"), "structure.modal_damping");
+  // C from a model: rayleigh has at most the entries of M and K, modal is dense.
+  const double modelled_damping =
+      damping_file ? 0.0 : s.has("modal_damping") ? n * n : s.has("rayleigh") ? declared.stored_entries : 0.0;
+  checkModelBeforeBuilding(source, settings, "structure.mass", "\"" + names.mass + "\"", n,
+                           declared.stored_entries + modelled_damping, declared.reading_bytes);
+  StructureMatrices matrices;
+  bounded(source + ": structure.mass", [&] { matrices.mass = readMatrixMarket(names.mass); });
+  bounded(source + ": structure.stiffness", [&] { matrices.stiffness = readMatrixMarket(names.stiffness); });
+  if (damping_file)
+    bounded(source + ": structure.damping", [&] { matrices.damping = readMatrixMarket(names.damping); });
+  // Sizes and symmetry of M and K first: the damping models build on them.
+  if (!damping_file) names.damping = "structure.damping (from M and K)";
+  {
+    StructureMatrices mk = matrices;
+    mk.damping = matrices.mass;
+    checkStructureMatrices(mk, tolerance, names);
+  }
+  readDampingModel(s, matrices);
+  checkStructureMatrices(matrices, tolerance, names);
+  read->structure = toLinearStructure(matrices);
+}
+
+// A cantilever Euler–Bernoulli beam (structures/beam.h), with a damping model.
+void readBeam(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
+  BeamParameters beam;
+  beam.elements = s.integer("elements");
+  // Two DOFs per node, 16 entries per element in M and K (and C), and the
+  // assembly's triplets: bounded before they are built.
+  const double e = std::max(beam.elements, 0);
+  bounded(source, [&] {
+    checkBytes("structure.elements", std::to_string(beam.elements), "a beam's sparse M, C and K",
+               3.0 * sparseBytes(2.0 * e, 16.0 * e) + 2.0 * 16.0 * 16.0 * e);
+  });
+  checkModelBeforeBuilding(source, settings, "structure.elements", std::to_string(beam.elements), 2.0 * e,
+                           3.0 * 16.0 * e);
+  beam.youngs_modulus = s.number("E");
+  beam.second_moment = s.number("I");
+  beam.mass_per_length = s.number("rhoA");
+  beam.length = s.number("L");
+  StructureMatrices matrices = cantileverBeam(beam);
+  readDampingModel(s, matrices);
+  read->structure = toLinearStructure(matrices);
+  read->nodes = beam.elements;
+}
+
+struct StructureType {
+  const char* name;
+  StructureReader read;
+};
+constexpr StructureType kStructureTypes[] = {
+    {"chain", readChain}, {"matrices", readInlineMatrices}, {"matrix-market", readMarketStructure}, {"beam", readBeam}};
+
+// "\"a\", \"b\" or \"c\"": the registered type names, for the message of an unknown one.
+std::string structureTypeNames() {
+  std::string out;
+  const size_t n = std::size(kStructureTypes);
+  for (size_t i = 0; i < n; ++i)
+    out += (i == 0 ? "" : i + 1 == n ? " or " : ", ") + std::string("\"") + kStructureTypes[i].name + "\"";
+  return out;
+}
+
 ReadStructure readStructure(TableReader& top, const std::string& source, const ModelSizes& settings) {
   TableReader s(top.raw("structure"), "structure", source);
-  ReadStructure read;
-  LinearStructure& structure = read.structure;
   const std::string type = s.text("type");
-  if (type == "chain") {
-    const int n = s.integer("dofs", 2);
-    if (n < 1) s.fail("structure.dofs", std::to_string(n), "must be >= 1");
-    // Sparse: n entries in M, 3n − 2 in C and K (a dense M, C, K would take 24 n²
-    // bytes; the dense path is bounded where it is chosen).
-    bounded(source, [&] {
-      checkBytes("structure.dofs", std::to_string(n), "a chain's sparse M, C and K",
-                 sparseBytes(n, n) + 2.0 * sparseBytes(n, 3.0 * n));
-    });
-    checkModelBeforeBuilding(source, settings, "structure.dofs", std::to_string(n), n, 7.0 * n);
-    const double m = s.number("m"), k = s.number("k"), d = s.number("d");
-    if (!(m > 0.0)) s.fail("structure.m", formatNumber(m), "mass must be > 0");
-    if (k < 0.0) s.fail("structure.k", formatNumber(k), "stiffness must be >= 0");
-    if (d < 0.0) s.fail("structure.d", formatNumber(d), "damping must be >= 0");
-    const SparseMatrix t = chainPattern(n);
-    SparseMatrix identity(n, n);
-    identity.setIdentity();
-    structure = LinearStructure(SparseMatrix(m * identity), SparseMatrix(d * t), SparseMatrix(k * t));
-  } else if (type == "matrices") {
-    structure = LinearStructure(s.matrix("mass"), s.matrix("damping"), s.matrix("stiffness"));
-    StructureMatrices matrices{structure.mass, structure.damping, structure.stiffness};
-    // Named like every other field: the file, then the key.
-    MatrixNames names{source + ": structure.mass", source + ": structure.damping",
-                      source + ": structure.stiffness"};
-    checkStructureMatrices(matrices, 1e-12, names);
-  } else if (type == "matrix-market") {
-    const double tolerance = s.number("symmetry_tolerance", 1e-8);
-    if (!(tolerance >= 0.0)) s.fail("structure.symmetry_tolerance", formatNumber(tolerance), "must be >= 0");
-    MatrixNames names;
-    names.mass = relativeToScene(source, s.text("mass"));
-    names.stiffness = relativeToScene(source, s.text("stiffness"));
-    const bool damping_file = s.has("damping");
-    if (damping_file && (s.has("rayleigh") || s.has("modal_damping")))
-      s.fail("structure.damping", describe(s.raw("damping")),
-             "give one damping model: a damping file, rayleigh or modal_damping");
-    if (damping_file) names.damping = relativeToScene(source, s.text("damping"));
-    // The size lines first: M, K (and C) square and of one size, and the
-    // model within memory, before any entry is read.
-    MarketStructureSizes declared;
-    bounded(source, [&] {
-      declared = checkMarketStructureSizes({"structure.mass", names.mass}, {"structure.stiffness", names.stiffness},
-                                           {"structure.damping", damping_file ? names.damping : std::string()});
-    });
-    const double n = static_cast<double>(declared.dofs);
-    if (s.has("modal_damping"))
-      checkModalDampingSize(static_cast<int>(declared.dofs), s.number("modal_damping"), "structure.modal_damping");
-    // C from a model: rayleigh has at most the entries of M and K, modal is dense.
-    const double modelled_damping =
-        damping_file ? 0.0 : s.has("modal_damping") ? n * n : s.has("rayleigh") ? declared.stored_entries : 0.0;
-    checkModelBeforeBuilding(source, settings, "structure.mass", "\"" + names.mass + "\"", n,
-                             declared.stored_entries + modelled_damping, declared.reading_bytes);
-    StructureMatrices matrices;
-    bounded(source + ": structure.mass", [&] { matrices.mass = readMatrixMarket(names.mass); });
-    bounded(source + ": structure.stiffness", [&] { matrices.stiffness = readMatrixMarket(names.stiffness); });
-    if (damping_file)
-      bounded(source + ": structure.damping", [&] { matrices.damping = readMatrixMarket(names.damping); });
-    // Sizes and symmetry of M and K first: the damping models build on them.
-    if (!damping_file) names.damping = "structure.damping (from M and K)";
-    {
-      StructureMatrices mk = matrices;
-      mk.damping = matrices.mass;
-      checkStructureMatrices(mk, tolerance, names);
-    }
-    readDampingModel(s, matrices);
-    checkStructureMatrices(matrices, tolerance, names);
-    structure = toLinearStructure(matrices);
-  } else if (type == "beam") {
-    BeamParameters beam;
-    beam.elements = s.integer("elements");
-    // Two DOFs per node, 16 entries per element in M and K (and C), and the
-    // assembly's triplets: bounded before they are built.
-    const double e = std::max(beam.elements, 0);
-    bounded(source, [&] {
-      checkBytes("structure.elements", std::to_string(beam.elements), "a beam's sparse M, C and K",
-                 3.0 * sparseBytes(2.0 * e, 16.0 * e) + 2.0 * 16.0 * 16.0 * e);
-    });
-    checkModelBeforeBuilding(source, settings, "structure.elements", std::to_string(beam.elements), 2.0 * e,
-                             3.0 * 16.0 * e);
-    beam.youngs_modulus = s.number("E");
-    beam.second_moment = s.number("I");
-    beam.mass_per_length = s.number("rhoA");
-    beam.length = s.number("L");
-    StructureMatrices matrices = cantileverBeam(beam);
-    readDampingModel(s, matrices);
-    structure = toLinearStructure(matrices);
-    read.nodes = beam.elements;
-  } else {
-    s.fail("structure.type", "\"" + type + "\"",
-           "must be \"chain\", \"matrices\", \"matrix-market\" or \"beam\"");
-  }
+  ReadStructure read;
+  const auto* found = std::find_if(std::begin(kStructureTypes), std::end(kStructureTypes),
+                                   [&](const StructureType& t) { return type == t.name; });
+  if (found == std::end(kStructureTypes))
+    s.fail("structure.type", "\"" + type + "\"", "must be " + structureTypeNames());
+  found->read(s, source, settings, &read);
   s.requireKnownKeys();
   return read;
 }
