@@ -9,6 +9,7 @@
 #include "eqhb/version.h"
 #include "flag_names.h"
 #include "generate_command.h"
+#include "modes_command.h"
 #include "shoot_command.h"
 #include "solve_command.h"
 #include "study_command.h"
@@ -37,6 +38,8 @@ int main(int argc, char** argv) {
   eqhb::cli::addGenerateCommand(app, generate);
   eqhb::cli::ShootArguments shoot;
   eqhb::cli::addShootCommand(app, shoot);
+  eqhb::cli::ModesArguments modes;
+  eqhb::cli::addModesCommand(app, modes);
   eqhb::cli::SolveArguments study_hb;
   eqhb::cli::StudyArguments study;
   eqhb::cli::addStudyCommand(app, study_hb, study);
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("generate")) return eqhb::cli::runGenerate(generate);
     if (app.got_subcommand("sweep")) return eqhb::cli::runSweep(sweep_hb, sweep);
     if (app.got_subcommand("shoot")) return eqhb::cli::runShoot(shoot);
+    if (app.got_subcommand("modes")) return eqhb::cli::runModes(modes);
     if (app.got_subcommand("study")) return eqhb::cli::runStudy(study_hb, study);
     if (app.got_subcommand("compare")) return eqhb::cli::runCompare(compare_hb, compare_time);
     return eqhb::cli::runSolve(solve);

@@ -58,3 +58,11 @@ eqhb_cli_expect(matrix_market_long_line 2 "structure.stiffness: .*mm-long-line.m
 # before the chain is built (before: 36 s and 5.5 GB).
 eqhb_cli_expect(chain_model_by_memory 2 "structure.dofs = 16777216: the model \\(16777216 DOFs.* needs about 11.5 GiB"
                 solve ${SCENE} --set structure.dofs=16777216)
+
+# eqhb modes: a mode above the linearised structure's count (friction-1d
+# stuck has one), an amplitude range <= 0 or NaN; and a backbone that runs.
+eqhb_cli_expect(modes_mode_too_high 2 "mode = 2: must be in \\[1, 1\\]" modes ${SCENE} --mode 2)
+eqhb_cli_expect(modes_from_zero 2 "from = 0: must be finite and > 0" modes ${SCENE} --from 0 --to 1)
+eqhb_cli_expect(modes_to_nan 2 "to = nan: must be finite and > 0" modes ${SCENE} --to nan)
+eqhb_cli_expect(modes_reversed 2 "to = 0.1: must be > from" modes ${SCENE} --from 1 --to 0.1)
+eqhb_cli_expect(modes_json 0 "\"damping_ratio\": 0.0141421356" modes ${SCENE} --from 0.1 --to 1 --points 3 --json)

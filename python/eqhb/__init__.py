@@ -19,9 +19,9 @@ import numbers
 import os
 
 from ._eqhb import InputError, Model, __version__, solvers
-from ._eqhb import _compare, _shoot, _simulate, _solve, _stability, _study, _sweep
+from ._eqhb import _compare, _modes, _shoot, _simulate, _solve, _stability, _study, _sweep
 
-__all__ = ["InputError", "Model", "__version__", "compare", "load_scene", "model", "shoot", "simulate", "solve", "solvers", "stability",
+__all__ = ["InputError", "Model", "__version__", "compare", "load_scene", "model", "modes", "shoot", "simulate", "solve", "solvers", "stability",
            "study", "sweep"]
 
 
@@ -278,6 +278,33 @@ def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
                 shooting_tolerance=_real(tolerance, "tolerance"),
                 shooting_max_iterations=_integer(max_iterations, "max_iterations"))
     return _shoot(_model(model), args)
+
+
+def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, samples=None, form=None, rho=None,
+          solver="dogleg", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
+          linear_algebra="auto"):
+    """The nonlinear mode `mode` (K, from 1, of the structure linearised about
+    rest) by the extended periodic motion concept, as `eqhb modes`: the
+    unforced structure with an added damping -xi M x' that makes the motion
+    periodic, followed over `points` modal amplitudes phi^T M x1 evenly spaced
+    in log from `start` to `stop` (`eqhb modes --from/--to`; None: 1e-2 and
+    1e3 of the scene's length scale). Returns the keys of `eqhb modes
+    --json`: mode, from, to, linear_mode (omega, damping_ratio, shape),
+    complete, failed_points, seconds and points, each with amplitude, omega,
+    xi, damping_ratio (xi / 2 omega), dissipated_energy (per cycle), max_abs
+    (per DOF), the solve's counts and "channels" (every DOF's and law
+    force's Fourier coefficients)."""
+    start, stop = _real(start, "start", True), _real(stop, "stop", True)
+    for value, field in ((start, "start"), (stop, "stop")):
+        if value is not None and not (math.isfinite(value) and value > 0.0):
+            raise InputError(f"{field} = {value!r}: must be finite and > 0 (a modal amplitude)")
+    if start is not None and stop is not None and not stop > start:
+        raise InputError(f"stop = {stop!r}: must be > start ({start!r})")
+    args = _scene_args(None, harmonics, samples, form, rho)
+    args.update(mode=_integer(mode, "mode"), points=_integer(points, "points"), **{"from": start, "to": stop})
+    args.update(_hb_args(solver, "full", tolerance, max_iterations, max_evaluations, time_limit, options,
+                         linear_algebra, "coarse", "none"))
+    return _modes(_model(model), args)
 
 
 def _scene_args(omega, harmonics, samples, form, rho):

@@ -12,6 +12,7 @@
 
 #include "conversions.h"
 #include "py_model.h"
+#include "eqhb/app/modes.h"
 #include "eqhb/app/shoot.h"
 #include "eqhb/app/simulate.h"
 #include "eqhb/app/solve.h"
@@ -25,6 +26,7 @@
 #include "eqhb/output/study_json.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
+#include "eqhb/output/backbone_writers.h"
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/solvers/deadline.h"
 #include "eqhb/orbits/smooth_flow.h"
@@ -316,6 +318,28 @@ py::dict shoot(const PyModel& m, const py::dict& args) {
   return orbitDict(*orbit);
 }
 
+// eqhb.modes: the nonlinear mode's backbone, as `eqhb modes` (app::modes);
+// the dict holds every key of `eqhb modes --json`.
+py::dict modes(const PyModel& m, const py::dict& args) {
+  const app::SceneSettings scene = sceneArgs(args).of(m);
+  app::ModesOptions o;
+  o.mode = args["mode"].cast<int>();
+  o.from = args["from"].cast<std::optional<double>>();
+  o.to = args["to"].cast<std::optional<double>>();
+  o.points = args["points"].cast<int>();
+  o.solver = args["solver"].cast<std::string>();
+  o.solver_options = solverOptions(args["tolerance"].cast<double>(), args["max_iterations"].cast<int>(),
+                                   args["max_evaluations"].cast<int>(), args["time_limit"].cast<double>(),
+                                   args["options"].cast<std::map<std::string, std::string>>(),
+                                   args["linear_algebra"].cast<std::string>());
+  std::optional<app::ModesRun> run;
+  {
+    py::gil_scoped_release unlocked;
+    run = app::modes(scene, o);
+  }
+  return fromJson(output::backboneJson(*run)).cast<py::dict>();
+}
+
 py::list lawList(const HbModel& model) {
   py::list laws;
   for (const auto& l : model.laws) {
@@ -390,6 +414,7 @@ PYBIND11_MODULE(_eqhb, m) {
   m.def("_stability", &stability, py::arg("model"), py::arg("full"), py::arg("omega"), py::arg("harmonics"),
         py::arg("samples"));
   m.def("_shoot", &shoot, py::arg("model"), py::arg("args"));
+  m.def("_modes", &modes, py::arg("model"), py::arg("args"));
   m.def("_simulate", &simulate, py::arg("model"), py::arg("args"));
   m.def("_compare", &compare, py::arg("model"), py::arg("args"));
 }

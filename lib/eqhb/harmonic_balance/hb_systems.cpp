@@ -58,6 +58,7 @@ std::string HbSystem::violatedPhysics(const Eigen::Ref<const Eigen::VectorXd>& z
 }
 
 void HbSystem::setScaleFreeRhos() {
+  if (rho_held_) return;
   model_ = withScaleFreeRhos(std::move(model_));  // returns it as it was when no ρ is scale-free
   laws_.replaceLaws(model_.laws);
 }
@@ -299,6 +300,14 @@ bool FullSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z,
     }
   }
   return g.allFinite();
+}
+
+void FullSystem::lawOmegaDerivative(Eigen::Ref<Eigen::VectorXd> column) {
+  for (int l = 0; l < laws_.lawCount(); ++l) {
+    const Eigen::MatrixXd& derivative = laws_.omegaDerivative(l, model_.omega);
+    for (int a = 0; a < laws_.dimension(l); ++a)
+      column.segment(dynamic_rows_ + model_.componentIndex(l, a) * nb_, nb_) = derivative.col(a);
+  }
 }
 
 // ----------------------------------------------------------- condensed system

@@ -44,6 +44,10 @@ class HbSystem : public SquareSystem {
   // The solution vector of this system for a full coefficient vector.
   virtual Eigen::VectorXd fromFullCoefficients(const Eigen::VectorXd& full) const = 0;
   virtual bool condensed() const = 0;
+  // While held, setOmega keeps every law's ρ as it is instead of setting a
+  // scale-free ρ for the new ω: a system whose ω is an unknown (nonlinear
+  // modes) needs one residual function of ω within a solve.
+  void holdRho(bool held) { rho_held_ = held; }
   // Dynamics rows (full system): the force scale F; law rows: each law's
   // residual scale, in the model's physical scales at the current ω
   // (problem_scales.h).
@@ -62,6 +66,7 @@ class HbSystem : public SquareSystem {
   HbModel model_;
   LawAssembly laws_;
   int nb_;
+  bool rho_held_ = false;
 };
 
 class FullSystem : public HbSystem {
@@ -88,6 +93,10 @@ class FullSystem : public HbSystem {
     return full;
   }
   bool condensed() const override { return false; }
+  // After residualAndJacobian or residualAndSparseJacobian at z: the law
+  // rows of ∂g/∂ω at z (LawAssembly::omegaDerivative) into `column`; its
+  // dynamics rows are left as they are.
+  void lawOmegaDerivative(Eigen::Ref<Eigen::VectorXd> column);
 
  protected:
   double responseAtLaws() const override;

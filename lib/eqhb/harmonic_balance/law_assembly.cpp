@@ -27,6 +27,7 @@ LawAssembly::LawAssembly(const HbModel& model)
     s.displacement_coefficients.setZero(nb, d);
     s.force_coefficients.setZero(nb, d);
     s.psi_coefficients.setZero(nb, d);
+    s.omega_coefficients.setZero(nb, d);
     s.derived_coefficients.setZero(nb, 2 * d);
     most_channels = std::max(most_channels, 4 * d);  // x, ẋ, λ, λ̇ per component
     s.samples.resize(n, d);
@@ -35,6 +36,7 @@ LawAssembly::LawAssembly(const HbModel& model)
   }
   gram_scratch_.setZero(nb, nb);
   velocity_scratch_.setZero(nb, nb);
+  sample_scratch_.setZero(n);
   channels_.resize(most_channels);
 }
 
@@ -99,6 +101,25 @@ bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
     }
   }
   return true;
+}
+
+const Eigen::MatrixXd& LawAssembly::omegaDerivative(int l, double omega) {
+  Slot& s = slots_[l];
+  const Law& law = *laws_[l].law;
+  const int d = law.dimension();
+  for (int a = 0; a < d; ++a) {
+    sample_scratch_.setZero();
+    for (int b = 0; b < d; ++b) {
+      if (law.usesVelocity())
+        sample_scratch_.array() += s.samples.dpsi_dvelocity.col(a * d + b).array() * s.samples.velocity.col(b).array();
+      if (law.usesForceRate())
+        sample_scratch_.array() +=
+            s.samples.dpsi_dforce_rate.col(a * d + b).array() * s.samples.force_rate.col(b).array();
+    }
+    sample_scratch_ /= omega;
+    transform_.project(sample_scratch_.data(), s.omega_coefficients.col(a).data());
+  }
+  return s.omega_coefficients;
 }
 
 }  // namespace eqhb

@@ -53,10 +53,16 @@ class LawAssembly {
   const Eigen::MatrixXd& forceBlock(int l, int a, int b) const {
     return slots_[l].force_blocks[a * dimension(l) + b];
   }
+  // ∂(projected Ψ)/∂ω (nb x d) on the samples of the last evaluate(l, omega,
+  // true): Ψ sees ω only through ẋ = ω D x and λ̇ = ω D λ, so
+  //   ∂Ψ_a/∂ω = Σ_b (∂Ψ_a/∂ẋ_b ẋ_b + ∂Ψ_a/∂λ̇_b λ̇_b) / ω,
+  // projected like Ψ. For systems whose ω is an unknown (nonlinear modes).
+  const Eigen::MatrixXd& omegaDerivative(int l, double omega);
 
  private:
   struct Slot {
     Eigen::MatrixXd displacement_coefficients, force_coefficients, psi_coefficients;
+    Eigen::MatrixXd omega_coefficients;    // nb x d: omegaDerivative
     Eigen::MatrixXd derived_coefficients;  // nb x 2d: velocity and λ̇ of each component
     LawSamples samples;
     std::vector<Eigen::MatrixXd> displacement_blocks, force_blocks;
@@ -65,6 +71,7 @@ class LawAssembly {
   FourierTransform transform_;
   std::vector<Slot> slots_;
   Eigen::MatrixXd gram_scratch_, velocity_scratch_;
+  Eigen::VectorXd sample_scratch_;  // one channel's samples: omegaDerivative
   std::vector<std::pair<const double*, double*>> channels_;  // (coefficients, samples) to synthesise
 };
 

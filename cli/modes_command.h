@@ -1,0 +1,25 @@
+// `eqhb modes`: a scene's nonlinear mode K followed in modal amplitude
+// (app::modes): ω, damping ratio, dissipated energy and shape per amplitude.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+
+#include "eqhb/app/modes.h"
+#include "solve_command.h"
+
+namespace eqhb::cli {
+
+struct ModesArguments {
+  SolveArguments solve;  // scene, backend and its limits (the solve flags modes shares)
+  int mode = app::ModesOptions{}.mode;
+  std::optional<double> from, to;
+  int points = app::ModesOptions{}.points;
+  bool csv = false;
+};
+
+void addModesCommand(CLI::App& app, ModesArguments& args);
+// Exit code: 0 every point converged, 1 otherwise.
+int runModes(const ModesArguments& args);
+
+}  // namespace eqhb::cli

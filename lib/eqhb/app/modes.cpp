@@ -1,0 +1,91 @@
+#include "eqhb/app/modes.h"
+
+#include <cmath>
+
+#include "eqhb/backends/registry.h"
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/problem_scales.h"
+
+namespace eqhb::app {
+
+bool ModesOptions::isValid(std::string* why) const {
+  auto fail = [why](const std::string& field, const std::string& value, const std::string& rule) {
+    *why = field + " = " + value + ": " + rule;
+    return false;
+  };
+  if (mode < 1) return fail("mode", std::to_string(mode), "must be >= 1");
+  if (from && (!(*from > 0.0) || !std::isfinite(*from)))
+    return fail("from", formatNumber(*from), "must be finite and > 0 (a modal amplitude)");
+  if (to && (!(*to > 0.0) || !std::isfinite(*to)))
+    return fail("to", formatNumber(*to), "must be finite and > 0 (a modal amplitude)");
+  if (from && to && !(*to > *from))
+    return fail("to", formatNumber(*to), "must be > from (" + formatNumber(*from) + ")");
+  if (points < 2) return fail("points", std::to_string(points), "must be >= 2");
+  return solver_options.isValid(why);
+}
+
+namespace {
+// The modal amplitude at which the first law reaches its force level (a
+// friction law its slip limit μN) on the linear mode: each law's force is
+// the mode's reaction at its DOF, (K − ω² M) φ per unit amplitude; 0 when
+// no law has a force level or a reaction.
+double onsetAmplitude(const HbModel& model, const LinearMode& mode) {
+  const LinearStructure& s = model.structure;
+  const Eigen::VectorXd reaction =
+      s.stiffness * mode.shape - mode.omega * mode.omega * (s.mass * mode.shape);
+  double onset = 0.0;
+  for (const AttachedLaw& attached : model.laws) {
+    const double level = std::abs(attached.law->forceLevel());
+    for (int dof : attached.dofs) {
+      const double per_amplitude = std::abs(reaction[dof]);
+      if (!(level > 0.0) || !(per_amplitude > 0.0)) continue;
+      const double a = level / per_amplitude;
+      if (onset == 0.0 || a < onset) onset = a;
+    }
+  }
+  return onset;
+}
+
+// The default range (ModesOptions): 10⁻² .. 10³ times the onset amplitude,
+// else the scene's length scale over max|φ|.
+BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o) {
+  const std::vector<LinearMode> modes = linearModes(model);
+  const int count = static_cast<int>(modes.size());
+  if (o.mode > count)
+    throwInputError("mode", std::to_string(o.mode),
+                    "must be in [1, " + std::to_string(count) + "]: the linearised structure has " +
+                        std::to_string(count) + " mode(s)");
+  const LinearMode& mode = modes[o.mode - 1];
+  BackboneOptions b;
+  b.mode = o.mode;
+  b.points = o.points;
+  double reach = onsetAmplitude(model, mode);
+  if (!(reach > 0.0)) {
+    HbModel unforced = model;
+    unforced.structure.loads.clear();
+    unforced.omega = mode.omega;
+    reach = physicalScales(unforced, 0.0).displacement / mode.shape.cwiseAbs().maxCoeff();
+  }
+  b.from = o.from ? *o.from : 1e-2 * reach;
+  b.to = o.to ? *o.to : 1e3 * reach;
+  if (!(b.to > b.from))
+    throwInputError(o.to ? "to" : "from", formatNumber(o.to ? b.to : b.from),
+                    "the range must have to > from (from = " + formatNumber(b.from) + ", to = " +
+                        formatNumber(b.to) + ")");
+  return b;
+}
+}  // namespace
+
+ModesRun modes(const SceneSettings& scene, const ModesOptions& o) {
+  std::string why;
+  if (!o.isValid(&why)) throw InputError(why);
+  ModesRun run;
+  run.scene = loadScene(scene);
+  run.solver = o.solver;
+  run.options = chosenRange(run.scene.model, o);
+  auto solver = makeSolver(o.solver);
+  run.backbone = followBackbone(run.scene.model, *solver, o.solver_options, run.options);
+  return run;
+}
+
+}  // namespace eqhb::app

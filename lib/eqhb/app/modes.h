@@ -1,0 +1,44 @@
+// The nonlinear mode of a scene as every interface computes it (`eqhb
+// modes`, Python's eqhb.modes): the scene's structure and laws without its
+// loads, the linearised structure's mode K as the start, and the backbone
+// in modal amplitude (modes/backbone.h) by the chosen backend.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "eqhb/app/scene_settings.h"
+#include "eqhb/modes/backbone.h"
+#include "eqhb/scenes/scene.h"
+#include "eqhb/solvers/solver.h"
+
+namespace eqhb::app {
+
+struct ModesOptions {
+  int mode = 1;  // K, by increasing frequency of the linearised structure, >= 1
+  // Modal amplitude range φᵀ M x̂₁, both > 0, from < to. Unset: 10⁻² and
+  // 10³ times the amplitude at which the linear mode's reaction at a law
+  // reaches the law's force level (a friction law's slip onset), so that
+  // the range runs from well below it to well above; without a force level,
+  // the scene's length scale (problem_scales.h) over max|φ|.
+  std::optional<double> from, to;
+  int points = 50;                 // >= 2, evenly spaced in log a
+  std::string solver = "dogleg";   // a registered backend
+  SolverOptions solver_options;    // tolerance, limits, backend settings
+
+  // False with a message naming the field, its value and the rule.
+  bool isValid(std::string* why) const;
+};
+
+struct ModesRun {
+  Scene scene;
+  std::string solver;
+  BackboneOptions options;  // as run: the range chosen when not given
+  Backbone backbone;
+};
+
+// Throws InputError naming the option or the scene's field (a mode above
+// the structure's count, an amplitude range <= 0 or not finite).
+ModesRun modes(const SceneSettings& scene, const ModesOptions& options);
+
+}  // namespace eqhb::app

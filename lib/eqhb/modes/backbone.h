@@ -1,0 +1,63 @@
+// A nonlinear mode followed in modal amplitude (mode_system.h): from the
+// linearised structure's mode K at the smallest amplitude (linear_modes.h),
+// over N amplitudes spaced evenly in log a, each point started from the
+// secant through the last two (the linear mode for the first). A step whose
+// solve fails is halved in log a, down to max_halvings times, through
+// intermediate points that are not recorded; a point still failed is listed
+// as such and the next one starts from the last converged point.
+#pragma once
+
+#include <Eigen/Dense>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/modes/linear_modes.h"
+#include "eqhb/solvers/solver.h"
+
+namespace eqhb {
+
+struct BackboneOptions {
+  int mode = 1;          // K: the linearised structure's K-th mode by frequency, >= 1
+  double from = 0.0;     // smallest modal amplitude, > 0 (modes.h chooses one when not given)
+  double to = 0.0;       // largest, > from
+  int points = 50;       // >= 2
+  int max_halvings = 8;  // of a failed step in log a, >= 0
+  // Throws InputError naming the field; `modes`: how many the structure has.
+  void validate(int modes) const;
+};
+
+struct BackbonePoint {
+  double amplitude = 0.0;  // modal: φᵀ M x̂₁ (the fundamental's projection)
+  bool converged = false;
+  std::string termination;
+  int iterations = 0, residual_evaluations = 0, jacobian_evaluations = 0;
+  double seconds = 0.0;
+  double omega = 0.0, xi = 0.0;
+  double damping_ratio = 0.0;        // ζ = ξ / (2ω)
+  double dissipated_energy = 0.0;    // per cycle: ξ ∮ ẋᵀ M ẋ dt
+  std::vector<double> max_abs;       // per DOF, over one period
+  Eigen::VectorXd full;              // [x̂; λ̂]
+};
+
+struct Backbone {
+  LinearMode start;                  // the linear mode it started from
+  std::vector<BackbonePoint> points;
+  int failed_points = 0;
+  bool complete() const { return failed_points == 0 && !points.empty(); }
+  double seconds = 0.0;
+};
+
+using BackboneProgress = std::function<void(const BackbonePoint&, int index)>;
+
+// Throws InputError for bad options or a model without the fundamental, or
+// when the solver rejects its options.
+Backbone followBackbone(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
+                        const BackboneOptions& options, const BackboneProgress& progress = nullptr);
+
+// ξ ∮ ẋᵀ M ẋ dt over one period = ξ π ω Σ_{k>0} k² (x̂_cᵀ M x̂_c + x̂_sᵀ M x̂_s):
+// what −ξ M ẋ feeds in, equal to what the structure and its laws dissipate.
+double dissipatedEnergy(const HbModel& model, const Eigen::VectorXd& full, double omega, double xi);
+
+}  // namespace eqhb

@@ -1,0 +1,88 @@
+#include "eqhb/output/backbone_writers.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/output/solution_json.h"
+
+namespace eqhb::output {
+
+namespace {
+nlohmann::json pointJson(const HbModel& model, const BackbonePoint& p) {
+  nlohmann::json out = {{"amplitude", p.amplitude},
+                        {"converged", p.converged},
+                        {"termination", p.termination},
+                        {"iterations", p.iterations},
+                        {"residual_evaluations", p.residual_evaluations},
+                        {"jacobian_evaluations", p.jacobian_evaluations},
+                        {"seconds", p.seconds}};
+  if (!p.converged) return out;
+  out["omega"] = p.omega;
+  out["xi"] = p.xi;
+  out["damping_ratio"] = p.damping_ratio;
+  out["dissipated_energy"] = p.dissipated_energy;
+  out["max_abs"] = p.max_abs;
+  out["channels"] = channelsJson(model, summarize(model, p.full));
+  return out;
+}
+}  // namespace
+
+nlohmann::json backboneJson(const app::ModesRun& run) {
+  const Backbone& b = run.backbone;
+  HbModel model = run.scene.model;
+  model.structure.loads.clear();
+  nlohmann::json points = nlohmann::json::array();
+  for (const BackbonePoint& p : b.points) points.push_back(pointJson(model, p));
+  const std::vector<double> shape(b.start.shape.data(), b.start.shape.data() + b.start.shape.size());
+  return {{"scene", run.scene.name},
+          {"mode", run.options.mode},
+          {"solver", run.solver},
+          {"from", run.options.from},
+          {"to", run.options.to},
+          {"linear_mode", {{"omega", b.start.omega}, {"damping_ratio", b.start.damping_ratio}, {"shape", shape}}},
+          {"complete", b.complete()},
+          {"failed_points", b.failed_points},
+          {"seconds", b.seconds},
+          {"points", points}};
+}
+
+void writeBackboneCsv(std::ostream& out, const app::ModesRun& run) {
+  const int n = run.scene.model.structure.dofs();
+  out << "amplitude,omega,damping_ratio,xi,dissipated_energy";
+  for (int i = 0; i < n; ++i) out << ",max_abs_" << dofLabel(i);
+  out << ",converged,termination,iterations\n";
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  char buffer[64];
+  auto number = [&](double v) {
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    return std::string(buffer);
+  };
+  for (const BackbonePoint& p : run.backbone.points) {
+    out << number(p.amplitude);
+    for (double v : {p.omega, p.damping_ratio, p.xi, p.dissipated_energy}) out << "," << number(p.converged ? v : nan);
+    for (int i = 0; i < n; ++i) out << "," << number(p.converged ? p.max_abs[i] : nan);
+    out << "," << (p.converged ? 1 : 0) << "," << p.termination << "," << p.iterations << "\n";
+  }
+}
+
+void writeBackboneText(std::ostream& out, const app::ModesRun& run) {
+  const Backbone& b = run.backbone;
+  char line[256];
+  std::snprintf(line, sizeof line, "%s mode %d: linear omega = %.8g, zeta = %.6g; %d points, %d failed, %.3g s\n",
+                run.scene.name.c_str(), run.options.mode, b.start.omega, b.start.damping_ratio,
+                static_cast<int>(b.points.size()), b.failed_points, b.seconds);
+  out << line;
+  out << "   amplitude        omega         zeta   energy/cycle\n";
+  for (const BackbonePoint& p : b.points) {
+    if (p.converged)
+      std::snprintf(line, sizeof line, "%12.5g %12.8g %12.6g %14.6g\n", p.amplitude, p.omega, p.damping_ratio,
+                    p.dissipated_energy);
+    else
+      std::snprintf(line, sizeof line, "%12.5g   not converged: %s\n", p.amplitude, p.termination.c_str());
+    out << line;
+  }
+}
+
+}  // namespace eqhb::output

@@ -1,0 +1,60 @@
+"""eqhb.modes runs what `eqhb modes` runs: the same backbone on the same scene,
+a linear structure's modal frequency and damping ratio at every amplitude,
+and bad input named by the Python argument."""
+import json
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import eqhb
+
+PROBLEMS = pathlib.Path(os.environ.get("EQHB_PROBLEMS_DIR", pathlib.Path(__file__).parents[2] / "problems"))
+SCENE = PROBLEMS / "friction-1d.toml"
+
+
+def rayleigh_chain():
+    mass = np.diag([1.0, 2.0])
+    stiffness = np.array([[3.0, -1.0], [-1.0, 1.0]])
+    return eqhb.model(mass, stiffness, 0.01 * mass + 0.004 * stiffness, harmonics=3), mass, stiffness
+
+
+def test_linear_structure_keeps_its_modal_frequency_and_damping_ratio():
+    model, mass, stiffness = rayleigh_chain()
+    eigenvalues = np.sort(np.linalg.eigvals(np.linalg.solve(mass, stiffness)).real)
+    for mode in (1, 2):
+        omega = np.sqrt(eigenvalues[mode - 1])
+        zeta = 0.5 * (0.01 / omega + 0.004 * omega)
+        result = eqhb.modes(model, mode, start=1e-2, stop=1e2, points=5)
+        assert result["complete"] and len(result["points"]) == 5
+        for p in result["points"]:
+            assert abs(p["omega"] - omega) < 1e-10 * omega
+            assert abs(p["damping_ratio"] - zeta) < 1e-10 * zeta
+
+
+def test_same_backbone_as_the_command():
+    path = os.environ.get("EQHB_CLI")
+    if not path:
+        pytest.skip("EQHB_CLI is not set: built without the eqhb command (tests/CMakeLists.txt sets it)")
+    run = subprocess.run([path, "modes", str(SCENE), "--from", "0.5", "--to", "50", "--points", "4", "--json"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    command = json.loads(run.stdout)
+    python = eqhb.modes(eqhb.load_scene(SCENE), 1, start=0.5, stop=50, points=4)
+    for a, b in zip(command["points"], python["points"]):
+        for key in ("amplitude", "omega", "damping_ratio", "dissipated_energy"):
+            assert a[key] == pytest.approx(b[key], rel=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"mode": 3}, "mode = 3"),
+    ({"start": 0.0}, "start = 0.0"),
+    ({"stop": float("nan")}, "stop = nan"),
+    ({"start": 2.0, "stop": 1.0}, "stop = 1.0: must be > start"),
+])
+def test_bad_input_names_the_argument(kwargs, message):
+    model, _, _ = rayleigh_chain()
+    with pytest.raises(eqhb.InputError, match=message):
+        eqhb.modes(model, **kwargs)
