@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "eqhb/error.h"
+#include "eqhb/harmonic_balance/dense_from_pattern.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
 #include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/laws/dissipation_deficit.h"
@@ -248,11 +249,7 @@ bool FullSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                                      Eigen::Ref<Eigen::VectorXd> g,
                                      Eigen::Ref<Eigen::MatrixXd> jacobian) {
   const bool ok = evaluate(z, g, values_.data());
-  // Small systems: the sparse values scattered into the dense matrix.
-  jacobian.setZero();
-  for (int j = 0; j < size_; ++j)
-    for (int p = pattern_.outerIndexPtr()[j]; p < pattern_.outerIndexPtr()[j + 1]; ++p)
-      jacobian(pattern_.innerIndexPtr()[p], j) = values_[p];
+  denseFromPattern(pattern_, values_.data(), jacobian);  // small systems: the sparse values, dense
   return ok;
 }
 

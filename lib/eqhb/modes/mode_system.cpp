@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "eqhb/error.h"
+#include "eqhb/harmonic_balance/dense_from_pattern.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
 
 namespace eqhb {
@@ -124,10 +125,7 @@ bool ModeSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref
 bool ModeSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,
                                      Eigen::Ref<Eigen::MatrixXd> jacobian) {
   const bool ok = evaluate(z, g, values_.data());
-  jacobian.setZero();
-  for (int j = 0; j < size_; ++j)
-    for (int p = pattern_.outerIndexPtr()[j]; p < pattern_.outerIndexPtr()[j + 1]; ++p)
-      jacobian(pattern_.innerIndexPtr()[p], j) = values_[p];
+  denseFromPattern(pattern_, values_.data(), jacobian);  // small systems: the sparse values, dense
   return ok;
 }
 
