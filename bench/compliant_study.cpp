@@ -45,7 +45,7 @@ Solved solveFromRest(const std::filesystem::path& path, const std::vector<std::s
   const int n = 8 * scene.model.samples, nb = scene.model.basis.size();
   FourierTransform transform(scene.model.basis, n);
   Eigen::VectorXd x_n(n);
-  transform.synthesize(s.full.data() + scene.model.laws[0].dofs[0] * nb, x_n.data());
+  transform.synthesize(s.full.data() + scene.model.laws[0].attachment.dof(0) * nb, x_n.data());
   const Eigen::ArrayXd gap = law->parameters().gap - x_n.array();
   s.row.penetration = std::max(0.0, -gap.minCoeff()) / std::max(gap.abs().maxCoeff(), 1e-300);
   return s;

@@ -50,7 +50,7 @@ double balancedRho(const HbModel& model, const Eigen::VectorXd& full) {
   for (const auto& c : solution.forces) force = std::max(force, c.max_abs);
   double other = 0.0;
   for (const auto& attached : model.laws)
-    for (int dof : attached.dofs) {
+    for (int dof : attached.attachment.dofs()) {
       const auto& x = solution.displacements[dof];
       const auto site = piecewiseLinearSite(*attached.law);
       const bool contact = site && site->contact;  // a wall: ρ weighs a gap

@@ -85,7 +85,7 @@ omega = 3.0
 )";
   const Scene s = parseScene(text, "b.toml");
   EXPECT_EQ(s.model.structure.dofs(), 16);
-  EXPECT_EQ(s.model.laws[0].dofs, std::vector<int>{8});
+  EXPECT_EQ(s.model.laws[0].attachment.dofs(), std::vector<int>{8});
   EXPECT_EQ(s.model.structure.loads[0].dof, 14);
   std::string bad = text;
   bad.replace(bad.find("nodes = [5]"), 11, "nodes = [9]");
@@ -122,7 +122,7 @@ TEST(Beam, ShippedBeamScenesHaveTheirSizesAndSitNearTheFirstMode) {
     // Both scenes put ω near 1.8751² sqrt(E I / (ρA L⁴)) = 3.516.
     const double omega_1 = cantileverFrequencies(BeamParameters{}, 1)[0];
     EXPECT_NEAR(s->model.omega / omega_1, 1.0, 0.1) << s->name;
-    for (const auto& law : s->model.laws) EXPECT_EQ(law.dofs[0] % 2, 0) << "transverse DOF";
+    for (const auto& law : s->model.laws) EXPECT_EQ(law.attachment.dof(0) % 2, 0) << "transverse DOF";
   }
 }
 

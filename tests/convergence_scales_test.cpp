@@ -101,7 +101,7 @@ TEST(ConvergenceScales, DisplacementScaleIsTheLinearResponse) {
   EXPECT_NEAR((sf.tail(sc.size()) - sc).cwiseAbs().maxCoeff(), 0.0, 1e-9 * sc.cwiseAbs().maxCoeff());
   double local = 0.0;
   for (const auto& attached : beam.model.laws)
-    for (int i : attached.dofs) local = std::max(local, beam.model.structure.stiffness.coeff(i, i));
+    for (int i : attached.attachment.dofs()) local = std::max(local, beam.model.structure.stiffness.coeff(i, i));
   double force = 0.0;
   for (const auto& load : beam.model.structure.loads) force = std::max(force, std::abs(load.cos_amplitude));
   const PhysicalScales s = physicalScales(beam.model, linearResponseAtLaws(beam.model, false));

@@ -137,7 +137,7 @@ TEST(HbSystems, AFrictionForceThatDissipatesTooLittleIsNamed) {
 
 TEST(HbSystems, InvalidModelsAreRejectedWithTheField) {
   HbModel model = chainWithFriction(1.0, CoulombForm::kMinMax, 3, 0.5);
-  model.laws[0].dofs = {5};
+  model.laws[0].attachment = LawAttachment({5});
   try {
     FullSystem system(model);
     FAIL() << "accepted a law on a missing DOF";

@@ -62,7 +62,7 @@ HbModel withBlockedNormal(const HbModel& coulomb, double mu, FrictionForm form) 
   p.friction = form;
   p.rho = rho;
   std::vector<int> dofs = {n};
-  dofs.insert(dofs.end(), friction.dofs.begin(), friction.dofs.end());
+  dofs.insert(dofs.end(), friction.attachment.dofs().begin(), friction.attachment.dofs().end());
   model.laws = {{dofs, std::make_shared<ContactFriction>(p)}};
   return model;
 }

@@ -122,4 +122,77 @@ inline void expectAssembledJacobiansMatch(const std::shared_ptr<Law>& law, const
   }
 }
 
+// The law between the last d DOFs of a 3-DOF chain (node p) and d more DOFs
+// (node q) held to the ground by springs of stiffness `held`, along a rotated
+// frame R (u = R (x_p − x_q)): the structure's 3 + d DOFs.
+inline HbModel lawBetweenNodes(const std::shared_ptr<Law>& law, double held, const Eigen::MatrixXd& frame) {
+  const int n = 3, d = law->dimension();
+  HbModel model;
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n + d, n + d);
+  k.topLeftCorner(n, n) = 2.0 * Eigen::MatrixXd::Identity(n, n);
+  k(0, 1) = k(1, 0) = -1.0;
+  Eigen::MatrixXd c = 0.05 * k;
+  for (int a = 0; a < d; ++a) k(n + a, n + a) = held;
+  model.structure = LinearStructure(Eigen::MatrixXd::Identity(n + d, n + d), c, k);
+  model.structure.loads.push_back({0, 1, 2.0, 0.5});
+  std::vector<int> p, q;
+  std::vector<Eigen::VectorXd> directions;
+  for (int a = 0; a < d; ++a) {
+    p.push_back(n - d + a);
+    q.push_back(n + a);
+    directions.push_back(frame.row(a).transpose());
+  }
+  model.laws.push_back({LawAttachment::relative(p, q, directions), law});
+  model.basis = HarmonicSet(HarmonicKind::kAll, 3);
+  model.samples = 64;
+  model.omega = 0.8;
+  return model;
+}
+
+// Between two nodes: the assembled Jacobians (full and condensed) against
+// central differences on a rotated frame, and, with the second node held
+// 5e11 times stiffer than the chain along the axes, the condensed residual of
+// the grounded law at the same forces, up to the held node's own motion
+// (5e11: stiffer is refused by the condensation's rcond check).
+inline void expectBetweenNodesMatches(const std::shared_ptr<Law>& law, const std::string& label, unsigned seed) {
+  const int d = law->dimension();
+  const Eigen::MatrixXd frame =
+      Eigen::Matrix3d(Eigen::AngleAxisd(0.6, Eigen::Vector3d(1.0, 2.0, 0.5).normalized())).topLeftCorner(d, d);
+  Eigen::MatrixXd orthonormal = Eigen::HouseholderQR<Eigen::MatrixXd>(frame).householderQ();
+  for (bool condensed : {false, true}) {
+    auto system = makeHbSystem(lawBetweenNodes(law, 3.0, orthonormal), condensed);
+    srand(seed);
+    const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system->size());
+    Eigen::VectorXd g(system->size());
+    Eigen::MatrixXd j(system->size(), system->size());
+    ASSERT_TRUE(system->residualAndJacobian(z, g, j)) << label;
+    const Eigen::MatrixXd fd = finiteDifferenceJacobian(*system, z);
+    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()))
+        << label << " between nodes" << (condensed ? " condensed" : " full");
+  }
+  HbModel grounded = lawBetweenNodes(law, 5e11, Eigen::MatrixXd::Identity(d, d));
+  const HbModel held = grounded;
+  grounded.structure = LinearStructure(Eigen::MatrixXd(held.structure.mass).topLeftCorner(3, 3),
+                                       Eigen::MatrixXd(held.structure.damping).topLeftCorner(3, 3),
+                                       Eigen::MatrixXd(held.structure.stiffness).topLeftCorner(3, 3));
+  grounded.structure.loads = held.structure.loads;
+  std::vector<int> dofs;
+  for (int a = 0; a < d; ++a) dofs.push_back(3 - d + a);
+  grounded.laws[0].attachment = LawAttachment(dofs);
+  CondensedSystem a(grounded), b(held);
+  srand(seed);
+  const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(a.size());
+  Eigen::VectorXd ga(a.size()), gb(b.size());
+  Eigen::MatrixXd ja(a.size(), a.size());
+  ASSERT_TRUE(a.residualAndJacobian(z, ga, ja));
+  ASSERT_TRUE(b.residual(z, gb));
+  // The held node still moves by |λ| / 5e11, and the law's displacement
+  // with it: Ψ changes by up to |∂Ψ/∂x| times that. The condensed Jacobian's
+  // entries are ∂Ψ/∂x times the chain's compliances (>= 1/3, its stiffest
+  // mode being 3) plus ∂Ψ/∂λ, so 3 max|J| bounds |∂Ψ/∂x|.
+  const double held_motion = z.cwiseAbs().maxCoeff() / 5e11;
+  const double bound = 1e-12 * (1.0 + ga.cwiseAbs().maxCoeff()) + 3.0 * ja.cwiseAbs().maxCoeff() * held_motion;
+  EXPECT_LT((ga - gb).cwiseAbs().maxCoeff(), bound) << label << " held node";
+}
+
 }  // namespace eqhb::test

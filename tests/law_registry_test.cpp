@@ -29,6 +29,10 @@ TEST_P(RegisteredLaw, AssembledJacobiansMatchFiniteDifferences) {
   test::expectAssembledJacobiansMatch(GetParam().law, GetParam().label, 17);
 }
 
+TEST_P(RegisteredLaw, BetweenTwoNodesMatchesFiniteDifferencesAndTheGroundedLaw) {
+  test::expectBetweenNodesMatches(GetParam().law, GetParam().label, 41);
+}
+
 TEST_P(RegisteredLaw, IsOfItsEntrysType) { EXPECT_EQ(GetParam().law->type(), GetParam().type); }
 
 INSTANTIATE_TEST_SUITE_P(AllLaws, RegisteredLaw, ::testing::ValuesIn(test::registeredExamples()),
@@ -106,7 +110,7 @@ TEST(LawRegistry, EveryLawHasExamplesAndItsFormsAreCovered) {
 TEST(LawRegistry, DeclaredParametersAreTheKeysTheParserReads) {
   for (const LawEntry& entry : lawRegistry())
     for (const LawExample& example : entry.examples) {
-      std::set<std::string> keys = {"type", "dofs", "nodes"};
+      std::set<std::string> keys = {"type", "between", "dofs", "nodes"};
       for (const auto& p : entry.parameters) keys.insert(p.key);
       std::string allowed;
       for (const auto& k : keys) allowed += (allowed.empty() ? "" : ", ") + k;

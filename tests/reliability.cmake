@@ -165,13 +165,15 @@ add_test(NAME field.sequential_sweeps_complete
                  ${FIELD}/nlvib-08-advanced-cantilever-friction.toml
                  ${FIELD}/nlvib-01-duffing.toml
                  ${FIELD}/nlvib-02-2dof-cubic.toml
+                 ${FIELD}/nlvib-02-2dof-cubic-relative.toml
                  ${FIELD}/nlvib-07-grounded-jenkins-cubic.toml
+                 ${FIELD}/nlvib-07-multiple-nonlinearities.toml
                  ${FIELD}/tmdsimpy-sdof-duffing.toml
                  ${FIELD}/tmdsimpy-2dof-duffing.toml
                  ${FIELD}/tmdsimpy-2dof-elastic-dry-friction.toml
                  ${FIELD}/tmdsimpy-sdof-jenkins-f33.toml
                  ${FIELD}/tmdsimpy-sdof-jenkins-f38.toml)
-set_tests_properties(field.sequential_sweeps_complete PROPERTIES TIMEOUT 60)
+set_tests_properties(field.sequential_sweeps_complete PROPERTIES TIMEOUT 90)
 # A scene's N is chosen for its own H: --harmonics raises it where the new H
 # needs more (Duffing's 29 samples for 7 harmonics become 166 for 40), keeps
 # it where it is enough, and an explicit --samples below 2 k_max + 1 is refused.

@@ -20,8 +20,8 @@ TEST(SceneGenerator, ChainSceneHasTheRequestedSizeAndContacts) {
   const Scene s = parseScene(chainSceneText(spec), "chain.toml");
   EXPECT_EQ(s.model.structure.dofs(), 40);
   ASSERT_EQ(s.model.laws.size(), 4u);
-  EXPECT_EQ(s.model.laws[0].dofs[0], 9);   // DOF 10 (1-based)
-  EXPECT_EQ(s.model.laws[3].dofs[0], 39);  // the free end
+  EXPECT_EQ(s.model.laws[0].attachment.dof(0), 9);   // DOF 10 (1-based)
+  EXPECT_EQ(s.model.laws[3].attachment.dof(0), 39);  // the free end
   EXPECT_EQ(s.model.structure.loads[0].dof, 39);
   EXPECT_NEAR(s.model.omega, 0.8 * chainFirstFrequency(spec), 1e-15);
   // The closed-form first frequency is that of the assembled chain.

@@ -59,7 +59,8 @@ TEST(Scene, TheShippedFriction1dSceneHasTheSpecParameters) {
   EXPECT_DOUBLE_EQ(m.structure.stiffness.coeff(1, 1), 1.0);
   EXPECT_DOUBLE_EQ(m.structure.damping.coeff(0, 1), -0.02);
   ASSERT_EQ(m.laws.size(), 1u);
-  EXPECT_EQ(m.laws[0].dofs, std::vector<int>{1});
+  EXPECT_EQ(m.laws[0].attachment.dofs(), std::vector<int>{1});
+  EXPECT_TRUE(m.laws[0].attachment.grounded());
   const auto& law = dynamic_cast<const Coulomb1D&>(*m.laws[0].law);
   EXPECT_DOUBLE_EQ(law.muN(), 7.2);
   EXPECT_EQ(law.form(), CoulombForm::kMinMax);
@@ -179,10 +180,10 @@ TEST(Scene, ANulInsideAStringIsRefused) {
 TEST(Scene, AnUnknownLawKeyListsTheKeysThatLawAllows) {
   // A typo of an optional key: the list holds the keys allowed, not only those present.
   expectError(replaced("muN = 7.2", "muN = 7.2\nrh0 = 2"),
-              "law[0].rh0 = 2: unknown key (allowed here: beta, dofs, form, muN, nodes, rho, rho_factor, type)");
+              "law[0].rh0 = 2: unknown key (allowed here: beta, between, dofs, form, muN, nodes, rho, rho_factor, type)");
   expectError(replaced("type = \"coulomb-1d\"\ndofs = [2]\nmuN = 7.2",
                        "type = \"cubic\"\ndofs = [2]\nepsilon = 1\nrho = 1"),
-              "law[0].rho = 1: unknown key (allowed here: dofs, epsilon, nodes, type)");
+              "law[0].rho = 1: unknown key (allowed here: between, dofs, epsilon, nodes, type)");
 }
 
 TEST(Scene, EveryShippedSceneLoads) {

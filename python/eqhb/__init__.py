@@ -35,14 +35,16 @@ def load_scene(path, overrides=None):
 
 
 def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, harmonic_set="odd",
-          samples=None, omega=1.0, sweep=None, name="model"):
+          samples=None, omega=1.0, sweep=None, name="model", node_table=None):
     """A model from arrays.
 
     mass, stiffness, damping: n x n numpy arrays or scipy.sparse matrices
     (damping None: no damping).
 
     laws: dicts with the scene file's keys, DOFs numbered from 1, e.g.
-    {"type": "coulomb-1d", "dofs": [2], "muN": 7.2}.
+    {"type": "coulomb-1d", "dofs": [2], "muN": 7.2}, or an element between
+    two nodes: {"type": "cubic", "between": [1, 2], "epsilon": 0.1} (with
+    "normal" and "tangents" on nodes of several DOFs).
 
     forcing: dicts {"dof": 1, "harmonic": 1, "cos": 20.0, "sin": 0.0}.
 
@@ -50,6 +52,9 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
     two >= 4 (2 k_max + 1), at least 64), omega: the harmonic-balance settings.
 
     sweep: an optional (start, stop) frequency range used by `sweep`.
+
+    node_table: node i's DOFs (from 1) per row, e.g. [[1, 2, 3], [4, 5, 6]],
+    for elements that name nodes; without it a node is a DOF.
     """
     dofs = _square_size(mass, "mass")
     if isinstance(harmonics, bool) or not isinstance(harmonics, numbers.Integral):
@@ -59,6 +64,8 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
         samples = max(64, 1 << math.ceil(math.log2(4 * (2 * max(k_max, 0) + 1))))
     lines = [f"name = {_toml_value(name, 'name')}", "", "[structure]", 'type = "chain"', f"dofs = {dofs}",
              "m = 1.0", "k = 1.0", "d = 0.0"]
+    if node_table is not None:
+        lines.append(f"node_table = {_toml_value(node_table, 'node_table')}")
     for i, load in enumerate(_sequence(forcing, "forcing")):
         lines += ["", "[[forcing]]"] + _toml_table(load, f"forcing[{i}]")
     for i, law in enumerate(_sequence(laws, "laws")):

@@ -343,8 +343,8 @@ py::dict modes(const PyModel& m, const py::dict& args) {
 py::list lawList(const HbModel& model) {
   py::list laws;
   for (const auto& l : model.laws) {
-    py::list dofs;
-    for (int d : l.dofs) dofs.append(d + 1);
+    py::list dofs;  // every DOF the law reads (one per component when grounded)
+    for (int d : l.attachment.dofs()) dofs.append(d + 1);
     laws.append(py::dict(py::arg("type") = l.law->type(), py::arg("dofs") = dofs));
   }
   return laws;

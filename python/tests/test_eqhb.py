@@ -232,3 +232,24 @@ def test_a_failed_solve_reports_each_fallback_attempt():
     assert chained["converged"] == (chained["fallback"]["taken"] is not None)
     with pytest.raises(eqhb.InputError, match="fallback = cold,nope: has an unknown step nope"):
         eqhb.solve(cubic, 0.8, fallback="cold,nope")
+
+
+def test_an_element_between_two_nodes_acts_equally_and_oppositely():
+    # Four identical DOFs on unit springs to the ground, grouped in two 2-DOF
+    # nodes, a cubic spring between them along n = (0.6, 0.8): node 2 feels
+    # -n lambda where node 1 feels +n lambda.
+    k = np.eye(4)
+    law = {"type": "cubic", "between": [1, 2], "normal": [0.6, 0.8], "epsilon": 0.5}
+    m = eqhb.model(np.eye(4), k, 0.05 * k, laws=[law], forcing=[{"dof": 1, "cos": 0.2}, {"dof": 2, "cos": 0.1}],
+                   harmonics=5, omega=0.9, node_table=[[1, 2], [3, 4]])
+    r = eqhb.solve(m)
+    assert r["converged"]
+    for part in ("x_cos", "x_sin"):
+        x = np.array(r["solution"][part])  # dofs x harmonics (1, 3, 5, ...)
+        assert np.abs(0.8 * x[2] - 0.6 * x[3]).max() < 1e-9  # unloaded node 2 moves along n
+        assert np.abs(x[:2, 1:] + x[2:, 1:]).max() < 1e-9  # above harmonic 1 (no load): opposite
+    assert np.abs(np.array(r["solution"]["x_cos"])[2:, 1:]).max() > 1e-6  # the spring acts there
+    reads = r["laws"][0]["components"][0]["reads"]
+    assert [(d["dof"], d["weight"]) for d in reads] == [(1, 0.6), (2, 0.8), (3, -0.6), (4, -0.8)]
+    with pytest.raises(eqhb.InputError, match=r"law\[0\]\.normal = \[0, 0\]: must be a nonzero"):
+        eqhb.model(np.eye(4), k, laws=[dict(law, normal=[0.0, 0.0])], node_table=[[1, 2], [3, 4]])

@@ -36,7 +36,7 @@ double onsetAmplitude(const HbModel& model, const LinearMode& mode) {
   double onset = 0.0;
   for (const AttachedLaw& attached : model.laws) {
     const double level = std::abs(attached.law->forceLevel());
-    for (int dof : attached.dofs) {
+    for (int dof : attached.attachment.dofs()) {
       const double per_amplitude = std::abs(reaction[dof]);
       if (!(level > 0.0) || !(per_amplitude > 0.0)) continue;
       const double a = level / per_amplitude;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/system_memory.h"
@@ -48,8 +47,8 @@ void HbModel::validate() const {
     const std::string field = "law[" + std::to_string(l) + "]";
     if (!attached.law) throwInputError(field, "(null)", "no law given");
     const int d = attached.law->dimension();
-    if (static_cast<int>(attached.dofs.size()) != d)
-      throwInputError(field + ".dofs", std::to_string(attached.dofs.size()) + " DOF(s)",
+    if (attached.attachment.dimension() != d)
+      throwInputError(field + ".dofs", std::to_string(attached.attachment.dimension()) + " DOF(s)",
                       "a " + attached.law->type() + " law acts on exactly " +
                           std::to_string(d) + " DOF(s)");
     if (attached.law->needsConstantTerm() && !basis.contains(0))
@@ -57,15 +56,7 @@ void HbModel::validate() const {
                       field + " (" + attached.law->type() +
                           ") needs the constant term (harmonic 0): its force is one-sided, so "
                           "its mean is not zero; use set = \"all\"");
-    std::set<int> distinct;
-    for (int dof : attached.dofs) {
-      if (dof < 0 || dof >= structure.dofs())
-        throwInputError(field + ".dofs", std::to_string(dof + 1),
-                        "no such DOF (the structure has " + std::to_string(structure.dofs()) +
-                            ", numbered from 1)");
-      if (!distinct.insert(dof).second)
-        throwInputError(field + ".dofs", std::to_string(dof + 1), "listed twice");
-    }
+    attached.attachment.validate(structure.dofs(), field + ".dofs");
   }
 }
 

@@ -147,7 +147,8 @@ void FullSystem::buildPattern(const Deadline& deadline) {
   std::vector<Entry> all;
   std::size_t law_entries = 0;
   for (int l = 0; l < laws_.lawCount(); ++l)
-    law_entries += static_cast<std::size_t>(laws_.dimension(l)) * (nb_ + 2 * laws_.dimension(l) * nb_ * nb_);
+    law_entries += static_cast<std::size_t>(laws_.dimension(l)) *
+                   (laws_.law(l).attachment.dofs().size() * (nb_ + nb_ * nb_) + laws_.dimension(l) * nb_ * nb_);
   all.reserve(dynamics.size() + law_entries);
   all.insert(all.end(), dynamics.begin(), dynamics.end());
   for (int l = 0; l < laws_.lawCount(); ++l) {
@@ -157,12 +158,14 @@ void FullSystem::buildPattern(const Deadline& deadline) {
     for (int a = 0; a < d; ++a) {
       const int lambda = dynamic_rows_ + model_.componentIndex(l, a) * nb_;
       const int row = lambda;  // law rows follow the λ layout
-      for (int t = 0; t < nb_; ++t) all.emplace_back(attached.dofs[a] * nb_ + t, lambda + t, 0.0);
+      for (const AttachmentTerm& term : attached.attachment.row(a))
+        for (int t = 0; t < nb_; ++t) all.emplace_back(term.dof * nb_ + t, lambda + t, 0.0);
       for (int b = 0; b < d; ++b) {
         const int lambda_b = dynamic_rows_ + model_.componentIndex(l, b) * nb_;
         for (int c = 0; c < nb_; ++c)
           for (int r = 0; r < nb_; ++r) {
-            all.emplace_back(row + r, attached.dofs[b] * nb_ + c, 0.0);
+            for (const AttachmentTerm& term : attached.attachment.row(b))
+              all.emplace_back(row + r, term.dof * nb_ + c, 0.0);
             all.emplace_back(row + r, lambda_b + c, 0.0);
           }
       }
@@ -192,21 +195,25 @@ void FullSystem::buildPattern(const Deadline& deadline) {
     const AttachedLaw& attached = laws_.law(l);
     const int d = laws_.dimension(l);
     const double sign = attached.law->forceSign();
-    displacement_slots_[l].assign(d * d, std::vector<int>(nb_ * nb_));
+    const LawAttachment& w = attached.attachment;
+    displacement_slots_[l].assign(d * d, {});
     force_slots_[l].assign(d * d, std::vector<int>(nb_ * nb_));
     for (int a = 0; a < d; ++a) {
       const int row = dynamic_rows_ + model_.componentIndex(l, a) * nb_;
-      // Dynamics: − sign λ_a on the law's DOF (constant).
-      for (int t = 0; t < nb_; ++t)
-        constant_values_[slotOf(pattern_, attached.dofs[a] * nb_ + t, row + t)] -= sign;
+      // Dynamics: − sign W_aj λ_a on each DOF j of the law's row a (constant).
+      for (const AttachmentTerm& term : w.row(a))
+        for (int t = 0; t < nb_; ++t)
+          constant_values_[slotOf(pattern_, term.dof * nb_ + t, row + t)] -= sign * term.weight;
       for (int b = 0; b < d; ++b) {
         const int lambda_b = dynamic_rows_ + model_.componentIndex(l, b) * nb_;
+        std::vector<int>& ds = displacement_slots_[l][a * d + b];
+        ds.assign(w.row(b).size() * nb_ * nb_, 0);
+        for (size_t k = 0; k < w.row(b).size(); ++k)
+          for (int c = 0; c < nb_; ++c)
+            for (int r = 0; r < nb_; ++r)
+              ds[k * nb_ * nb_ + c * nb_ + r] = slotOf(pattern_, row + r, w.row(b)[k].dof * nb_ + c);
         for (int c = 0; c < nb_; ++c)
-          for (int r = 0; r < nb_; ++r) {
-            displacement_slots_[l][a * d + b][c * nb_ + r] =
-                slotOf(pattern_, row + r, attached.dofs[b] * nb_ + c);
-            force_slots_[l][a * d + b][c * nb_ + r] = slotOf(pattern_, row + r, lambda_b + c);
-          }
+          for (int r = 0; r < nb_; ++r) force_slots_[l][a * d + b][c * nb_ + r] = slotOf(pattern_, row + r, lambda_b + c);
       }
     }
   }
@@ -272,12 +279,12 @@ bool FullSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z,
     const AttachedLaw& attached = laws_.law(l);
     const int d = laws_.dimension(l);
     const double sign = attached.law->forceSign();
+    const LawAttachment& w = attached.attachment;
     for (int a = 0; a < d; ++a) {
-      const int dof = attached.dofs[a];
       const int lambda = dynamic_rows_ + model_.componentIndex(l, a) * nb_;
-      laws_.displacement(l).col(a) = z.segment(dof * nb_, nb_);
+      w.gatherCoefficients(z.data(), nb_, a, laws_.displacement(l).col(a).data());
       laws_.force(l).col(a) = z.segment(lambda, nb_);
-      g.segment(dof * nb_, nb_) -= sign * z.segment(lambda, nb_);
+      w.scatterCoefficients(z.data() + lambda, nb_, a, -sign, g.data());
     }
     if (!laws_.evaluate(l, model_.omega, values != nullptr)) return false;
     for (int a = 0; a < d; ++a) {
@@ -289,9 +296,11 @@ bool FullSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z,
         const double* force = laws_.forceBlock(l, a, b).data();
         const std::vector<int>& ds = displacement_slots_[l][a * d + b];
         const std::vector<int>& fs = force_slots_[l][a * d + b];
-        for (int e = 0; e < nb_ * nb_; ++e) {
-          values[ds[e]] += displacement[e];
-          values[fs[e]] += force[e];
+        for (int e = 0; e < nb_ * nb_; ++e) values[fs[e]] += force[e];
+        const std::vector<AttachmentTerm>& terms = w.row(b);
+        for (size_t k = 0; k < terms.size(); ++k) {
+          const int* slot = ds.data() + k * nb_ * nb_;
+          for (int e = 0; e < nb_ * nb_; ++e) values[slot[e]] += terms[k].weight * displacement[e];
         }
       }
     }
@@ -334,7 +343,7 @@ CondensedSystem::CondensedSystem(HbModel model, LinearAlgebra algebra, const Dea
   size_ = components_ * nb_;
   for (const auto& attached : model_.laws)
     for (int a = 0; a < attached.law->dimension(); ++a) {
-      component_dof_.push_back(attached.dofs[a]);
+      component_row_.push_back(attached.attachment.row(a));
       component_sign_.push_back(attached.law->forceSign());
     }
   coupling_.assign(components_,
@@ -368,19 +377,26 @@ void CondensedSystem::condenseAt(double omega, const Deadline& deadline) {
     deadline.check("set-up of the condensed system: receptance at the laws, " + std::to_string(h) + " of " +
                    std::to_string(ks.size()) + " harmonics done");
     const int k = ks[h], w = harmonicWidth(k), o = model_.basis.offset(static_cast<int>(h));
-    // A_k⁻¹ [f_k | W_k]; only its rows at the law DOFs are kept.
+    // W A_k⁻¹ [f_k | Wᵀ_k s]: the compliance W A⁻¹ Wᵀ seen by the laws.
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(w * n, 1 + components_ * w);
     for (int i = 0; i < n; ++i)
       for (int r = 0; r < w; ++r) rhs(r * n + i, 0) = f[i * nb_ + o + r];
     for (int c = 0; c < components_; ++c)
-      for (int r = 0; r < w; ++r) rhs(r * n + component_dof_[c], 1 + c * w + r) = component_sign_[c];
+      for (const AttachmentTerm& term : component_row_[c])
+        for (int r = 0; r < w; ++r) rhs(r * n + term.dof, 1 + c * w + r) += component_sign_[c] * term.weight;
     const Eigen::MatrixXd map = factors_.solve(static_cast<int>(h), rhs);
     for (int q = 0; q < components_; ++q) {
-      const int dof = component_dof_[q];
+      const std::vector<AttachmentTerm>& terms = component_row_[q];
       for (int r = 0; r < w; ++r) {
-        offset_[q][o + r] = map(r * n + dof, 0);
+        // u_q = Σ_j W_qj x_j, the first term assigned (a unit row copies x_j exactly).
+        auto read = [&](int column) {
+          double u = terms.front().weight * map(r * n + terms.front().dof, column);
+          for (size_t k = 1; k < terms.size(); ++k) u += terms[k].weight * map(r * n + terms[k].dof, column);
+          return u;
+        };
+        offset_[q][o + r] = read(0);
         for (int c = 0; c < components_; ++c)
-          for (int j = 0; j < w; ++j) coupling_[q][c](o + r, j) = map(r * n + dof, 1 + c * w + j);
+          for (int j = 0; j < w; ++j) coupling_[q][c](o + r, j) = read(1 + c * w + j);
       }
     }
   }
@@ -465,8 +481,8 @@ Eigen::VectorXd CondensedSystem::fullCoefficients(const Eigen::VectorXd& z) cons
     for (int i = 0; i < n; ++i)
       for (int r = 0; r < w; ++r) rhs(r * n + i, 0) = f[i * nb_ + o + r];
     for (int c = 0; c < components_; ++c)
-      for (int r = 0; r < w; ++r)
-        rhs(r * n + component_dof_[c], 0) += component_sign_[c] * z[c * nb_ + o + r];
+      for (const AttachmentTerm& term : component_row_[c])
+        for (int r = 0; r < w; ++r) rhs(r * n + term.dof, 0) += component_sign_[c] * term.weight * z[c * nb_ + o + r];
     const Eigen::MatrixXd x = factors_.solve(static_cast<int>(h), rhs);
     for (int i = 0; i < n; ++i)
       for (int r = 0; r < w; ++r) full[i * nb_ + o + r] = x(r * n + i, 0);

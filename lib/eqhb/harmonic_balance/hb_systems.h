@@ -119,8 +119,9 @@ class FullSystem : public HbSystem {
   std::vector<int> operator_slot_, jacobian_slot_;
   Eigen::VectorXd constant_values_;  // the Jacobian without the law blocks
   Eigen::VectorXd values_;           // scratch for the dense Jacobian
-  // Per law l, per (a, b): the nb x nb slots (column-major) of ∂Ψ_a/∂x_b
-  // and ∂Ψ_a/∂λ_b in pattern_'s values.
+  // Per law l, per (a, b): the nb x nb slots (column-major) of ∂Ψ_a/∂λ_b in
+  // pattern_'s values, and of ∂Ψ_a/∂u_b · W_bj for each DOF j of W's row b
+  // (one nb x nb block after another, in the row's order).
   std::vector<std::vector<std::vector<int>>> displacement_slots_, force_slots_;
   // responseAtLaws() at response_omega_ (one solve per ω, made when asked).
   mutable double response_ = 0.0, response_omega_ = 0.0;
@@ -158,12 +159,13 @@ class CondensedSystem : public HbSystem {
   void condenseAt(double omega, const Deadline& deadline);
   int size_;
   int components_;
-  std::vector<int> component_dof_;  // DOF of each law component
+  // Row of W (law_attachment.h) of each law component, and its force sign.
+  std::vector<std::vector<AttachmentTerm>> component_row_;
   std::vector<double> component_sign_;
   DynamicStiffnessFactors factors_;
   bool factored_ = false;
   // coupling_[q][c]: nb x 2, rows of harmonic h hold the w x w block mapping
-  // λ_c's coefficients of h to those of x at component q's DOF.
+  // λ_c's coefficients of h to those of u_q = W_q x (component q's reading).
   std::vector<std::vector<Eigen::MatrixXd>> coupling_;
   std::vector<Eigen::VectorXd> offset_;  // c per component's DOF (nb)
 };

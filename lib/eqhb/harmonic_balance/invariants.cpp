@@ -29,7 +29,7 @@ std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::Ve
   FourierTransform transform(model.basis, n);
   const int nb = model.basis.size();
   const int base = model.structure.dofs() * nb;
-  Eigen::VectorXd rate(nb);
+  Eigen::VectorXd rate(nb), reading(nb);  // reading: u_a = W_a x, coefficients
   std::vector<LawInvariants> reports;
   for (size_t l = 0; l < model.laws.size(); ++l) {
     const AttachedLaw& attached = model.laws[l];
@@ -37,7 +37,8 @@ std::vector<LawInvariants> checkInvariants(const HbModel& model, const Eigen::Ve
     LawSamples s;
     s.resize(n, d);
     for (int a = 0; a < d; ++a) {
-      const double* x = full.data() + attached.dofs[a] * nb;
+      attached.attachment.gatherCoefficients(full.data(), nb, a, reading.data());
+      const double* x = reading.data();
       transform.synthesize(x, s.displacement.col(a).data());
       transform.differentiate(x, model.omega, rate.data());
       transform.synthesize(rate.data(), s.velocity.col(a).data());

@@ -21,7 +21,7 @@ PhysicalScales physicalScales(const HbModel& model, double response) {
   const double w = model.omega;
   double stiffness = 0.0;
   for (const auto& attached : model.laws)
-    for (int i : attached.dofs)
+    for (int i : attached.attachment.dofs())
       if (i >= 0 && i < s.dofs())
         stiffness = std::max({stiffness, std::abs(s.stiffness.coeff(i, i)), w * std::abs(s.damping.coeff(i, i)),
                               w * w * std::abs(s.mass.coeff(i, i))});
@@ -53,17 +53,27 @@ double linearResponseAtLaws(const HbModel& model, bool sparse) {
     if (rhs.isZero(0.0)) continue;
     const Eigen::MatrixXd x = factors.solve(static_cast<int>(h), rhs);
     for (const auto& attached : model.laws)
-      for (int i : attached.dofs)
-        most = std::max(most, w == 1 ? std::abs(x(i, 0)) : std::hypot(x(i, 0), x(n + i, 0)));
+      for (int a = 0; a < attached.attachment.dimension(); ++a) {
+        const double u = attached.attachment.gather(x.col(0), a);
+        most = std::max(most, w == 1 ? std::abs(u) : std::hypot(u, attached.attachment.gather(x.col(0).tail(n), a)));
+      }
   }
   return most;
 }
 
 namespace {
-// |(A_k⁻¹)_ii| for each DOF in `dofs`, for every harmonic k of `basis` at
-// ω: one row per harmonic. Throws where some A_k is singular.
+// Row a of a law's attachment W.
+struct ComponentRow {
+  const LawAttachment* attachment;
+  int a;
+  const std::vector<AttachmentTerm>& terms() const { return attachment->row(a); }
+};
+
+// |W_a A_k⁻¹ W_aᵀ| for each row W_a in `rows` (|(A_k⁻¹)_ii| for a grounded
+// component on DOF i), for every harmonic k of `basis` at ω: one row per
+// harmonic. Throws where some A_k is singular.
 std::vector<std::vector<double>> compliances(const HbModel& model, const HarmonicSet& basis,
-                                             const std::vector<int>& dofs) {
+                                             const std::vector<ComponentRow>& rows) {
   const LinearStructure& s = model.structure;
   const int n = s.dofs();
   DynamicStiffnessFactors factors(s, basis, n >= kSparseCondensationFromDofs);
@@ -73,11 +83,12 @@ std::vector<std::vector<double>> compliances(const HbModel& model, const Harmoni
     const int width = basis.harmonics()[h] == 0 ? 1 : 2;
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(width * n, 1);
     std::vector<double> row;
-    for (int i : dofs) {
-      rhs(i, 0) = 1.0;
+    for (const ComponentRow& c : rows) {
+      for (const AttachmentTerm& term : c.terms()) rhs(term.dof, 0) = term.weight;
       const Eigen::MatrixXd x = factors.solve(static_cast<int>(h), rhs);
-      rhs(i, 0) = 0.0;
-      row.push_back(width == 1 ? std::abs(x(i, 0)) : std::hypot(x(i, 0), x(n + i, 0)));
+      for (const AttachmentTerm& term : c.terms()) rhs(term.dof, 0) = 0.0;
+      const double re = c.attachment->gather(x.col(0), c.a);
+      row.push_back(width == 1 ? std::abs(re) : std::hypot(re, c.attachment->gather(x.col(0).tail(n), c.a)));
     }
     out.push_back(row);
   }
@@ -91,24 +102,30 @@ std::vector<std::vector<double>> compliances(const HbModel& model, const Harmoni
 // alone stalled the solver); above the resonances the mass makes |G| the
 // smaller. Without K (a free body) the dynamic value alone; where A₁ is
 // singular too (an undamped resonance), 1/max(K_ii, ωC_ii, ω²M_ii).
-std::vector<double> drivingPointCompliances(const HbModel& model, const std::vector<int>& dofs) {
+std::vector<double> drivingPointCompliances(const HbModel& model, const std::vector<ComponentRow>& rows) {
   try {
-    const auto both = compliances(model, HarmonicSet(HarmonicKind::kAll, 1), dofs);  // k = 0 and 1
+    const auto both = compliances(model, HarmonicSet(HarmonicKind::kAll, 1), rows);  // k = 0 and 1
     std::vector<double> out;
-    for (size_t a = 0; a < dofs.size(); ++a) out.push_back(std::min(both[0][a], both[1][a]));
+    for (size_t a = 0; a < rows.size(); ++a) out.push_back(std::min(both[0][a], both[1][a]));
     return out;
   } catch (const std::exception&) {
   }
   try {
-    return compliances(model, HarmonicSet(HarmonicKind::kOdd, 1), dofs).front();
+    return compliances(model, HarmonicSet(HarmonicKind::kOdd, 1), rows).front();
   } catch (const std::exception&) {
   }
   const LinearStructure& s = model.structure;
   const double w = model.omega;
   std::vector<double> out;
-  for (int i : dofs)
-    out.push_back(1.0 / std::max({std::abs(s.stiffness.coeff(i, i)), w * std::abs(s.damping.coeff(i, i)),
-                                  w * w * std::abs(s.mass.coeff(i, i))}));
+  for (const ComponentRow& c : rows) {
+    double most = 0.0;  // the stiffest DOF of the row
+    for (const AttachmentTerm& term : c.terms()) {
+      const int i = term.dof;
+      most = std::max({most, std::abs(s.stiffness.coeff(i, i)), w * std::abs(s.damping.coeff(i, i)),
+                       w * w * std::abs(s.mass.coeff(i, i))});
+    }
+    out.push_back(1.0 / most);
+  }
   return out;
 }
 
@@ -116,14 +133,15 @@ std::vector<double> drivingPointCompliances(const HbModel& model, const std::vec
 // compliance over its DOFs; nullopt where nothing gives one (no stiffness,
 // mass or damping at the DOF).
 std::vector<std::optional<LawScales>> lawScales(const HbModel& model, const std::vector<int>& laws) {
-  std::vector<int> dofs;
-  for (int l : laws) dofs.insert(dofs.end(), model.laws[l].dofs.begin(), model.laws[l].dofs.end());
-  const std::vector<double> compliance = drivingPointCompliances(model, dofs);
+  std::vector<ComponentRow> rows;
+  for (int l : laws)
+    for (int a = 0; a < model.laws[l].attachment.dimension(); ++a) rows.push_back({&model.laws[l].attachment, a});
+  const std::vector<double> compliance = drivingPointCompliances(model, rows);
   std::vector<std::optional<LawScales>> out;
   size_t next = 0;
   for (int l : laws) {
     double largest = 0.0;
-    for (size_t a = 0; a < model.laws[l].dofs.size(); ++a) largest = std::max(largest, compliance[next++]);
+    for (int a = 0; a < model.laws[l].attachment.dimension(); ++a) largest = std::max(largest, compliance[next++]);
     if (largest > 0.0 && std::isfinite(largest)) out.push_back(LawScales{model.omega, largest});
     else out.push_back(std::nullopt);
   }

@@ -1,8 +1,9 @@
 // A law Ψ(x, ẋ, λ) = 0 kept as an equality (spec §1–2), evaluated on a batch
 // of N time samples at once: one virtual call per evaluation, not per sample.
 //
-// A law of dimension d acts on d DOFs and owns d force components λ; the force
-// it applies on the structure is forceSign() · λ on those DOFs. Its pointwise
+// A law of dimension d reads d components u = W x of the structure's DOFs
+// (law_attachment.h) and owns d force components λ; the force it applies on
+// the structure is Wᵀ (forceSign() · λ). Its pointwise
 // weak derivatives ∂Ψ_a/∂q_b (q = x, ẋ or λ) are returned as sample columns;
 // the assembly turns them into Jacobian blocks.
 #pragma once
@@ -13,6 +14,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "eqhb/laws/law_attachment.h"
 
 namespace eqhb {
 
@@ -158,9 +161,10 @@ class Law {
   virtual std::optional<RhoComparison> compareRho(const LawScales& scales) const;
 };
 
-// A law attached to DOFs of the structure (0-based, one per component).
+// A law attached to the structure through a map W (law_attachment.h): a DOF
+// list, 0-based and one per component, is the grounded form.
 struct AttachedLaw {
-  std::vector<int> dofs;
+  LawAttachment attachment;
   std::shared_ptr<Law> law;
 };
 

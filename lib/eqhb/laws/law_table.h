@@ -17,9 +17,14 @@ class LawTable {
  public:
   // `field`: "law[i]", the prefix of every field a message names; `type`
   // and `forms`: the law's registered name and forms (law_registry.h);
-  // `dofs`: the law's DOFs, 0-based, one per component.
-  LawTable(std::string field, std::string type, std::vector<std::string> forms, std::vector<int> dofs)
-      : field_(std::move(field)), type_(std::move(type)), forms_(std::move(forms)), dofs_(std::move(dofs)) {}
+  // `components`: how many components the scene gives the law (its
+  // dimension), under the key `components_key` ("dofs", "nodes" or, for an
+  // element between nodes, "tangents"); `dofs`: the law's DOFs, 0-based, one
+  // per component, for a grounded law (empty for an element between nodes).
+  LawTable(std::string field, std::string type, std::vector<std::string> forms, int components,
+           std::string components_key, std::vector<int> dofs)
+      : field_(std::move(field)), type_(std::move(type)), forms_(std::move(forms)), components_(components),
+        components_key_(std::move(components_key)), dofs_(std::move(dofs)) {}
   virtual ~LawTable() = default;
 
   // Whether the key is present; every key asked about is one the table allows.
@@ -28,12 +33,14 @@ class LawTable {
   virtual double number(const std::string& key, std::optional<double> fallback) = 0;
   // A string; `fallback` when absent (nullopt: the key is required).
   virtual std::string text(const std::string& key, std::optional<std::string> fallback) = 0;
-  // The DOF (or node) list as written, for messages about it.
+  // The DOF, node or direction list as written, for messages about it.
   virtual std::string dofsText() const = 0;
   // Throws InputError "SOURCE: FIELD = VALUE: RULE".
   [[noreturn]] virtual void fail(const std::string& field, const std::string& value, const std::string& rule) const = 0;
 
   const std::string& field() const { return field_; }
+  int components() const { return components_; }
+  const std::string& componentsKey() const { return components_key_; }
   const std::vector<int>& dofs() const { return dofs_; }
   std::string path(const std::string& key) const { return field_ + "." + key; }
 
@@ -51,6 +58,8 @@ class LawTable {
  private:
   std::string field_, type_;
   std::vector<std::string> forms_;
+  int components_;
+  std::string components_key_;
   std::vector<int> dofs_;
 };
 

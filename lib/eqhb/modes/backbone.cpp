@@ -57,7 +57,7 @@ Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, do
   for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
     const AttachedLaw& attached = model.laws[l];
     for (int c = 0; c < attached.law->dimension(); ++c) {
-      const int dof = attached.dofs[c];
+      const int dof = attached.attachment.dof(c);  // grounded: linearModes checked
       if (taken[dof]) continue;  // a second law on one DOF starts at no force
       taken[dof] = true;
       const int row = (n + model.componentIndex(l, c)) * nb + fundamental;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "eqhb/laws/grounded_laws.h"
+
 namespace eqhb {
 
 namespace {
@@ -33,11 +35,12 @@ LinearisedStructure linearisedStructure(const HbModel& model) {
   out.stiffness = Eigen::MatrixXd(s.stiffness);
   out.damping = Eigen::MatrixXd(s.damping);
   out.held.assign(n, false);
+  requireGroundedLaws(model.laws, "nonlinear modes");
   for (const AttachedLaw& attached : model.laws) {
     const Law& law = *attached.law;
     for (int a = 0; a < law.dimension(); ++a) {
       const RestPartials p = partialsAtRest(law, a);
-      const int i = attached.dofs[a];
+      const int i = attached.attachment.dof(a);
       const double sign = law.forceSign();
       if (p.force != 0.0) {
         out.stiffness(i, i) += sign * p.displacement / p.force;

@@ -11,6 +11,8 @@
 #include <Eigen/Dense>
 #include <vector>
 
+#include "eqhb/laws/grounded_laws.h"
+#include "eqhb/laws/law.h"
 #include "eqhb/structures/linear_structure.h"
 
 namespace eqhb::orbits {
@@ -24,6 +26,7 @@ struct HeldDofs {
   Eigen::MatrixXd multiplier;  // λ_G = multiplier · b, rows in the order of `dofs`
 };
 HeldDofs holdDofs(const Eigen::MatrixXd& mass_inverse, const std::vector<int>& dofs);
+
 
 // max(√‖M⁻¹K‖∞, ‖M⁻¹C‖∞, k ω for each forcing harmonic k, ω).
 double fastestRate(const Eigen::MatrixXd& mass_inverse, const Eigen::MatrixXd& stiffness,

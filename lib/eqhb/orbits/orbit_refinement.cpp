@@ -6,6 +6,7 @@
 #include <set>
 
 #include "eqhb/error.h"
+#include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/orbits/smooth_flow.h"
 
 namespace eqhb::orbits {
@@ -38,7 +39,7 @@ void forcesFromDynamics(const HbModel& model, Eigen::VectorXd* full) {
     for (size_t l = 0; l < model.laws.size(); ++l) {
       const Law& law = *model.laws[l].law;
       for (int a = 0; a < law.dimension(); ++a) {
-        const int q = model.componentIndex(static_cast<int>(l), a), dof = model.laws[l].dofs[a];
+        const int q = model.componentIndex(static_cast<int>(l), a), dof = model.laws[l].attachment.dof(a);
         for (int c = 0; c < width; ++c) (*full)[(n + q) * nb + o + c] = law.forceSign() * unbalanced[c * n + dof];
       }
     }
@@ -63,9 +64,10 @@ void RefinementOptions::validate(const HbModel& model) const {
                     "must be 0 (automatic) or >= 2 k_max + 1 = " + std::to_string(basis.minimumSamples()));
   // The forces are read off the dynamics on the law's DOFs: two laws on one
   // DOF could not be told apart.
+  requireGroundedLaws(model.laws, "exact orbits (shooting)");
   std::set<int> used;
   for (const auto& attached : model.laws)
-    for (int dof : attached.dofs)
+    for (int dof : attached.attachment.dofs())
       if (!used.insert(dof).second)
         throwInputError("law dofs", std::to_string(dof + 1),
                         "two laws act on this DOF: their forces cannot be refined by shooting");

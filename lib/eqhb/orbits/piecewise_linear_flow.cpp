@@ -30,6 +30,7 @@ bool PiecewiseLinearFlow::supports(const HbModel& model) {
 PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitution)
     : restitution_(restitution) {
   model.validate();
+  requireGroundedLaws(model.laws, "exact orbits (shooting)");
   if (!(restitution >= 0.0 && restitution <= 1.0))
     throwInputError("restitution", formatNumber(restitution), "must be in [0, 1]");
   const LinearStructure& s = model.structure;
@@ -59,7 +60,7 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
   for (size_t l = 0; l < model.laws.size(); ++l) {
     const Law* law = model.laws[l].law.get();
     LawSite site;
-    site.dof = model.laws[l].dofs[0];
+    site.dof = model.laws[l].attachment.dof(0);
     if (const auto capability = piecewiseLinearSite(*law)) {  // the law's registry entry
       site.contact = capability->contact;
       site.limit = capability->limit;

@@ -8,6 +8,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/laws/law_registry.h"
+#include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/solvers/deadline.h"
 
 namespace eqhb::orbits {
@@ -170,7 +171,7 @@ Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full,
     const auto slider = piecewiseLinearSite(*model.laws[l].law);  // an elastic slider: k_t > 0
     if (!slider || !(slider->stiffness > 0.0)) continue;
     double x = 0.0, r = 0.0, rate = 0.0;
-    synthesize(model.laws[l].dofs[0] * nb, x, rate);
+    synthesize(model.laws[l].attachment.dof(0) * nb, x, rate);
     synthesize((n + model.componentIndex(static_cast<int>(l), 0)) * nb, r, rate);
     sliders.push_back(x + r / slider->stiffness);
   }
@@ -181,6 +182,7 @@ Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full,
 }
 
 double quietStartTime(const HbModel& model, const Eigen::VectorXd& full) {
+  requireGroundedLaws(model.laws, "exact orbits (shooting)");
   const int samples = std::max(64, model.samples);
   const double period = 2.0 * M_PI / model.omega;
   const int n = model.structure.dofs();
@@ -188,7 +190,7 @@ double quietStartTime(const HbModel& model, const Eigen::VectorXd& full) {
   for (int s = 0; s < samples; ++s) states[s] = harmonicState(model, full, period * s / samples);
   std::vector<double> score(samples, 1.0);
   for (const auto& attached : model.laws) {
-    const int dof = attached.dofs[0];
+    const int dof = attached.attachment.dof(0);
     auto contact = piecewiseLinearSite(*attached.law);  // a rigid wall
     if (contact && !contact->contact) contact.reset();
     if (!attached.law->usesVelocity() && !contact) continue;  // smooth in x: no event
@@ -196,7 +198,7 @@ double quietStartTime(const HbModel& model, const Eigen::VectorXd& full) {
     double largest = 0.0;
     for (int s = 0; s < samples; ++s) {
       double speed = 0.0;  // sliding speed, in the plane for 2D friction
-      for (int dof_k : attached.dofs) speed = std::hypot(speed, states[s][n + dof_k]);
+      for (int dof_k : attached.attachment.dofs()) speed = std::hypot(speed, states[s][n + dof_k]);
       distance[s] = contact ? std::max(0.0, contact->gap - states[s][dof]) : speed;
       largest = std::max(largest, distance[s]);
     }

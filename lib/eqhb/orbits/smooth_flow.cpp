@@ -32,6 +32,7 @@ std::unique_ptr<Flow> makeFlow(const HbModel& model, double restitution) {
 
 SmoothFlow::SmoothFlow(const HbModel& model) {
   model.validate();
+  requireGroundedLaws(model.laws, "exact orbits (shooting)");
   const LinearStructure& s = model.structure;
   n_ = s.dofs();
   omega_ = model.omega;
@@ -42,13 +43,13 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
   for (size_t l = 0; l < model.laws.size(); ++l) {
     const Law* law = model.laws[l].law.get();
     Site site;
-    site.dof = model.laws[l].dofs[0];
+    site.dof = model.laws[l].attachment.dof(0);
     if (const auto capability = smoothFlowSite(*law)) {  // the law's registry entry
       using Declared = SmoothFlowSite::Kind;
       site.kind = capability->kind == Declared::kCubic    ? Kind::kCubic
                   : capability->kind == Declared::kPlanar ? Kind::kPlanar
                                                           : Kind::kStribeck;
-      if (site.kind == Kind::kPlanar) site.second_dof = model.laws[l].dofs[1];
+      if (site.kind == Kind::kPlanar) site.second_dof = model.laws[l].attachment.dof(1);
       site.coefficient = capability->coefficient;
       site.drop = capability->drop;
       site.v_s = capability->v_s;

@@ -31,8 +31,17 @@ nlohmann::json channelsJson(const HbModel& model, const HbSolution& solution) {
     double max_abs = 0.0;
     for (int a = 0; a < model.laws[l].law->dimension(); ++a, ++q) {
       const auto& c = solution.forces[q];
-      components.push_back({{"dof", model.laws[l].dofs[a] + 1}, {"max_abs", c.max_abs},
-                            {"coefficients", coefficientsJson(model.basis, c.coefficients)}});
+      nlohmann::json component = {{"max_abs", c.max_abs},
+                                  {"coefficients", coefficientsJson(model.basis, c.coefficients)}};
+      const LawAttachment& w = model.laws[l].attachment;
+      if (w.grounded()) {
+        component["dof"] = w.dof(a) + 1;
+      } else {  // u_a = Σ weight · x_dof
+        nlohmann::json reads = nlohmann::json::array();
+        for (const AttachmentTerm& term : w.row(a)) reads.push_back({{"dof", term.dof + 1}, {"weight", term.weight}});
+        component["reads"] = reads;
+      }
+      components.push_back(component);
       max_abs = std::max(max_abs, c.max_abs);
     }
     laws.push_back({{"law", l + 1}, {"type", model.laws[l].law->type()}, {"max_abs", max_abs},

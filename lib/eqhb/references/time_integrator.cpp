@@ -58,17 +58,16 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
   std::vector<Eigen::MatrixXd> response(laws);  // Y_l = h Ŵ⁻¹ W_l s_l (n x d_l)
   for (int l = 0; l < laws; ++l) {
     const auto& attached = model.laws[l];
-    Eigen::MatrixXd w = Eigen::MatrixXd::Zero(n, attached.law->dimension());
-    for (int a = 0; a < attached.law->dimension(); ++a) w(attached.dofs[a], a) = attached.law->forceSign();
-    response[l] = h * lu.solve(w);
+    response[l] = h * lu.solve(attached.attachment.transposeDense(n, attached.law->forceSign()));
   }
-  // coupling[l][m] = W_lᵀ Y_m: velocity of law l's DOFs per unit force of law m.
+  // coupling[l][m] = W_l Y_m (the Delassus blocks): velocity of law l's
+  // components per unit force of law m.
   std::vector<std::vector<LocalMatrix>> coupling(laws, std::vector<LocalMatrix>(laws));
   for (int l = 0; l < laws; ++l)
     for (int m = 0; m < laws; ++m) {
       const int dl = model.laws[l].law->dimension(), dm = model.laws[m].law->dimension();
       coupling[l][m].resize(dl, dm);
-      for (int a = 0; a < dl; ++a) coupling[l][m].row(a) = response[m].row(model.laws[l].dofs[a]);
+      for (int a = 0; a < dl; ++a) coupling[l][m].row(a) = model.laws[l].attachment.rowTimes(response[m], a);
     }
 
   auto forcing = [&](double t, Eigen::VectorXd& f) {
@@ -126,9 +125,9 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
           problem.v_start.resize(d);
           problem.u_free.resize(d);
           for (int a = 0; a < d; ++a) {
-            problem.x_start[a] = x[attached.dofs[a]];
-            problem.v_start[a] = v[attached.dofs[a]];
-            problem.u_free[a] = v_free[attached.dofs[a]];
+            problem.x_start[a] = attached.attachment.gather(x, a);
+            problem.v_start[a] = attached.attachment.gather(v, a);
+            problem.u_free[a] = attached.attachment.gather(v_free, a);
           }
           for (int m = 0; m < laws; ++m)
             if (m != l) problem.u_free += coupling[l][m] * lambda[m];

@@ -20,7 +20,9 @@
 #include "eqhb/structures/beam.h"
 #include "eqhb/structures/market_structure_sizes.h"
 #include "eqhb/structures/matrix_market.h"
+#include "eqhb/structures/node_table.h"
 #include "eqhb/structures/structure_matrices.h"
+#include "eqhb/scenes/element_frame.h"
 #include "eqhb/scenes/toml_guard.h"
 #include "eqhb/scenes/toml_number.h"
 #include "eqhb/size_limits.h"
@@ -178,6 +180,23 @@ std::string relativeToScene(const std::string& source, const std::string& path) 
 struct ReadStructure {
   LinearStructure structure;
   int nodes = 0;
+  NodeTable node_table;  // all but beams: node i + 1 → its DOFs (node_table.h)
+};
+
+// How an element names nodes (`between`): a node table's node → its DOFs, a
+// beam's node i → its transverse DOF 2(i − 1), else one node per DOF.
+struct NodeMap {
+  int dofs = 0;
+  int beam_nodes = 0;
+  const std::vector<std::vector<int>>* table = nullptr;
+  int count() const {
+    if (table && !table->empty()) return static_cast<int>(table->size());
+    return beam_nodes > 0 ? beam_nodes : dofs;
+  }
+  std::vector<int> dofsOf(int node) const {  // node from 1
+    if (table && !table->empty()) return (*table)[node - 1];
+    return {beam_nodes > 0 ? beamTransverseDof(node) : node - 1};
+  }
 };
 
 // C from the damping keys shared by the matrix-market and beam types:
@@ -233,6 +252,33 @@ void checkModelBeforeBuilding(const std::string& source, ModelSizes settings, co
                    " coefficients and " + formatNumber(settings.samples) + " samples per channel, before its laws)",
                modelBytes(settings) + extra);
   });
+}
+
+// `node_table`: rows of DOFs inline ([[1, 2, 3], [4, 5, 6]]: node i is row i)
+// or a file of lines `node dof [dof ...]` (structures/node_table.h).
+NodeTable readNodeTableKey(TableReader& s, const std::string& source, int dofs) {
+  const toml::value& v = s.raw("node_table");
+  NodeTable table;
+  if (v.is_string()) {
+    const std::string path = relativeToScene(source, s.text("node_table"));
+    bounded(source, [&] { table = readNodeTable(path, dofs, "structure.node_table"); });
+    return table;
+  }
+  if (!v.is_array() || v.as_array().empty())
+    s.fail("structure.node_table", describe(v), "must be a file name or a non-empty array of DOF lists");
+  std::vector<std::vector<long long>> rows;
+  for (size_t i = 0; i < v.as_array().size(); ++i) {
+    const toml::value& row = v.as_array()[i];
+    const std::string field = "structure.node_table[" + std::to_string(i) + "]";
+    if (!row.is_array()) s.fail(field, describe(row), "must be a list of DOF numbers");
+    rows.emplace_back();
+    for (const auto& e : row.as_array()) {
+      if (!e.is_integer()) s.fail(field, describe(row), "DOF numbers must be integers");
+      rows.back().push_back(e.as_integer());
+    }
+  }
+  bounded(source, [&] { table = makeNodeTable(rows, dofs, "structure.node_table"); });
+  return table;
 }
 
 // The structure types: each reads M, C, K (and nodes) from the [structure]
@@ -366,6 +412,8 @@ ReadStructure readStructure(TableReader& top, const std::string& source, const M
   if (found == std::end(kStructureTypes))
     s.fail("structure.type", "\"" + type + "\"", "must be " + structureTypeNames());
   found->read(s, source, settings, &read);
+  if (type != "beam" && s.has("node_table"))
+    read.node_table = readNodeTableKey(s, source, read.structure.dofs());
   s.requireKnownKeys();
   return read;
 }
@@ -379,9 +427,10 @@ const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
 // A law's table as its registered parser reads it (laws/law_table.h).
 class SceneLawTable : public LawTable {
  public:
-  SceneLawTable(TableReader& reader, const std::string& field, const LawEntry& entry, std::vector<int> dofs,
-                std::string dofs_text)
-      : LawTable(field, entry.type, entry.forms, std::move(dofs)), reader_(reader), dofs_text_(std::move(dofs_text)) {}
+  SceneLawTable(TableReader& reader, const std::string& field, const LawEntry& entry, int components,
+                std::string components_key, std::vector<int> dofs, std::string dofs_text)
+      : LawTable(field, entry.type, entry.forms, components, std::move(components_key), std::move(dofs)),
+        reader_(reader), dofs_text_(std::move(dofs_text)) {}
   bool has(const std::string& key) const override { return reader_.has(key); }
   double number(const std::string& key, std::optional<double> fallback) override {
     return reader_.number(key, fallback);
@@ -399,11 +448,81 @@ class SceneLawTable : public LawTable {
   std::string dofs_text_;
 };
 
+// A list of numbers at `field` (a direction).
+Eigen::VectorXd readVector(TableReader& t, const toml::value& v, const std::string& field) {
+  if (!v.is_array() || v.as_array().empty()) t.fail(field, describe(v), "must be a non-empty array of numbers");
+  Eigen::VectorXd out(static_cast<Eigen::Index>(v.as_array().size()));
+  for (size_t i = 0; i < v.as_array().size(); ++i)
+    out[static_cast<Eigen::Index>(i)] = t.numberIn(v.as_array()[i], field, "entries must be numbers");
+  return out;
+}
+
+// An element between two nodes, `between = [a, b]` (or `[a]`: against the
+// ground), reading n·(u_a − u_b) along its `normal` and `tangents`
+// (element_frame.h). Its direction list, as written, goes to `text`.
+LawAttachment readElement(TableReader& t, const std::string& field, const NodeMap& nodes, std::string* text) {
+  const std::string key = field + ".between";
+  const toml::value& list = t.raw("between");
+  if (!list.is_array() || list.as_array().empty() || list.as_array().size() > 2)
+    t.fail(key, describe(list), "must be [node, node] or [node] (against the ground)");
+  std::vector<std::vector<int>> ends;
+  for (const auto& e : list.as_array()) {
+    if (!e.is_integer()) t.fail(key, describe(list), "node numbers must be integers");
+    const auto number = e.as_integer();
+    if (number < 1 || number > nodes.count())
+      t.fail(key, std::to_string(number),
+             "no such node (the structure has " + std::to_string(nodes.count()) + ", numbered from 1)");
+    ends.push_back(nodes.dofsOf(static_cast<int>(number)));
+  }
+  if (ends.size() == 2 && list.as_array()[0].as_integer() == list.as_array()[1].as_integer())
+    t.fail(key, describe(list), "the two nodes must differ");
+  if (ends.size() == 2 && ends[0].size() != ends[1].size())
+    t.fail(key, describe(list), "the two nodes have different numbers of DOFs");
+  ElementDirections given;
+  *text = describe(list);
+  if (t.has("normal")) {
+    given.normal = readVector(t, t.raw("normal"), field + ".normal");
+    *text = describe(t.raw("normal"));
+  }
+  if (t.has("tangents")) {
+    const toml::value& v = t.raw("tangents");
+    if (!v.is_array() || v.as_array().empty() || v.as_array().size() > 2)
+      t.fail(field + ".tangents", describe(v), "must be [[t1...]] or [[t1...], [t2...]]");
+    for (size_t i = 0; i < v.as_array().size(); ++i)
+      given.tangents.push_back(readVector(t, v.as_array()[i], field + ".tangents[" + std::to_string(i) + "]"));
+    *text = describe(v);
+  }
+  const auto directions = elementDirections(given, static_cast<int>(ends[0].size()), field,
+                                            [&](const std::string& f, const std::string& value, const std::string& rule) {
+                                              t.fail(f, value, rule);
+                                            });
+  return LawAttachment::relative(ends[0], ends.size() == 2 ? ends[1] : std::vector<int>(), directions);
+}
+
 AttachedLaw readLaw(const toml::value& value, const std::string& field, const std::string& source,
-                    int dofs, int nodes) {
+                    int dofs, const NodeMap& node_map) {
   TableReader t(value, field, source);
   const std::string type = t.text("type");
   AttachedLaw attached;
+  const LawEntry* entry = findLaw(type);
+  if (!entry) t.fail(field + ".type", "\"" + type + "\"", "unknown law (known: " + knownLawTypes() + ")");
+  if (t.has("between")) {  // an element between two nodes
+    if (t.has("dofs") || t.has("nodes"))
+      t.fail(field + ".between", "(and dofs or nodes)", "give between or dofs/nodes, not both");
+    std::string text;
+    attached.attachment = readElement(t, field, node_map, &text);
+    const int d = attached.attachment.dimension();
+    SceneLawTable table(t, field, *entry, d, t.has("tangents") ? "tangents" : "normal", {}, text);
+    attached.law = entry->parse(table);
+    if (d != attached.law->dimension())
+      t.fail(field + ".tangents", text,
+             "a " + type + " law reads " + std::to_string(attached.law->dimension()) +
+                 " direction(s) between the nodes ([normal, t1, t2], those it has)");
+    t.requireKnownKeys();
+    return attached;
+  }
+  const int nodes = node_map.beam_nodes;
+  std::vector<int> law_dofs;
   // `dofs` (numbered from 1) or, on a structure with nodes, `nodes`.
   const bool by_node = t.has("nodes");
   if (by_node && t.has("dofs")) t.fail(field + ".nodes", "(and dofs)", "give dofs or nodes, not both");
@@ -421,13 +540,12 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
       t.fail(field + "." + key, std::to_string(number),
              std::string(by_node ? "no such node" : "no such DOF") + " (the structure has " +
                  std::to_string(count) + ", numbered from 1)");
-    attached.dofs.push_back(by_node ? beamTransverseDof(static_cast<int>(number)) : static_cast<int>(number) - 1);
+    law_dofs.push_back(by_node ? beamTransverseDof(static_cast<int>(number)) : static_cast<int>(number) - 1);
   }
-  const LawEntry* entry = findLaw(type);
-  if (!entry) t.fail(field + ".type", "\"" + type + "\"", "unknown law (known: " + knownLawTypes() + ")");
-  SceneLawTable table(t, field, *entry, attached.dofs, describe(list));
+  SceneLawTable table(t, field, *entry, static_cast<int>(law_dofs.size()), key, law_dofs, describe(list));
   attached.law = entry->parse(table);
-  if (static_cast<int>(attached.dofs.size()) != attached.law->dimension())
+  attached.attachment = LawAttachment(law_dofs);
+  if (attached.attachment.dimension() != attached.law->dimension())
     t.fail(field + ".dofs", describe(list),
            "a " + type + " law acts on exactly " + std::to_string(attached.law->dimension()) +
                " DOF(s)");
@@ -599,7 +717,8 @@ Scene buildScene(toml::value root, const std::string& source,
   if (top.has("law")) {
     const auto& laws = arrayOfTables(top, "law");
     for (size_t i = 0; i < laws.size(); ++i)
-      scene.model.laws.push_back(readLaw(laws[i], "law[" + std::to_string(i) + "]", source, dofs, structure.nodes));
+      scene.model.laws.push_back(readLaw(laws[i], "law[" + std::to_string(i) + "]", source, dofs,
+                                         NodeMap{dofs, structure.nodes, &structure.node_table}));
   }
 
   if (top.has("sweep")) {

@@ -10,7 +10,10 @@
 //                                              T = tridiag(−1, 2, −1) with T_nn = 1
 //   [structure] type = "matrices"              mass, damping, stiffness (arrays of rows)
 //   [[forcing]] dof, harmonic (1), cos (0), sin (0)
-//   [[law]]     type, dofs (one per component) and the keys of its type: each
+//   [[law]]     type, dofs (one per component) or between = [node, node] with
+//               normal and tangents (an element between two nodes; nodes from
+//               [structure] node_table, a beam's nodes, else one per DOF), and
+//               the keys of its type: each
 //               law's entry in laws/registry/ declares them (LawEntry::parameters,
 //               with defaults, ranges and docs; laws/law_registry.h)
 //   [harmonic_balance] harmonics, set = odd|all, samples, omega

@@ -33,10 +33,11 @@ struct HillPencil {
 // Work space of addLawRateBlocks, made once per model: samples per law.
 struct LawRateWork {
   std::vector<LawSamples> samples;
-  Eigen::VectorXd rate;
+  Eigen::VectorXd rate, reading;  // reading: u_a = W_a x, coefficients
   Eigen::MatrixXd block;
   explicit LawRateWork(const HbModel& model)
-      : samples(model.laws.size()), rate(model.basis.size()), block(model.basis.size(), model.basis.size()) {
+      : samples(model.laws.size()), rate(model.basis.size()), reading(model.basis.size()),
+        block(model.basis.size(), model.basis.size()) {
     for (size_t l = 0; l < model.laws.size(); ++l) samples[l].resize(model.samples, model.laws[l].law->dimension());
   }
 };
@@ -54,7 +55,8 @@ void addLawRateBlocks(const HbModel& model, FourierTransform& transform, LawRate
     const int d = law.dimension();
     LawSamples& samples = work.samples[l];
     for (int a = 0; a < d; ++a) {
-      const double* x = full.data() + attached.dofs[a] * nb;
+      attached.attachment.gatherCoefficients(full.data(), nb, a, work.reading.data());
+      const double* x = work.reading.data();
       const double* lambda = full.data() + (n + model.componentIndex(l, a)) * nb;
       transform.synthesize(x, samples.displacement.col(a).data());
       transform.differentiate(x, model.omega, rate.data());
@@ -72,7 +74,9 @@ void addLawRateBlocks(const HbModel& model, FourierTransform& transform, LawRate
           transform.gram(samples.dpsi_dvelocity.col(ab).data(), block);
           for (int c = 0; c < nb; ++c)
             for (int r = 0; r < nb; ++r)
-              if (block(r, c) != 0.0) b.emplace_back(row + r, attached.dofs[bi] * nb + c, -block(r, c));
+              if (block(r, c) != 0.0)
+                for (const AttachmentTerm& term : attached.attachment.row(bi))
+                  b.emplace_back(row + r, term.dof * nb + c, -(term.weight * block(r, c)));
         }
         if (law.usesForceRate()) {
           *uses_force_rate = true;

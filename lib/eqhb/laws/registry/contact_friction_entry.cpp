@@ -6,19 +6,20 @@ namespace eqhb {
 
 namespace {
 
-// dofs = [normal, tangential (, tangential)].
+// dofs = [normal, tangential (, tangential)], or between two nodes a normal
+// and one or two tangents.
 std::shared_ptr<Law> parseContactFriction(LawTable& t) {
   const std::string& field = t.field();
   const std::vector<int>& dofs = t.dofs();
   const std::string normal_form = t.text("form", std::string("min"));
-  if (dofs.size() != 2 && dofs.size() != 3)
-    t.fail(field + ".dofs", std::to_string(dofs.size()) + " DOF(s)",
+  if (t.components() != 2 && t.components() != 3)
+    t.fail(t.path(t.componentsKey()), t.dofsText(),
            "a contact-friction law acts on [normal, tangential] or [normal, tangential, tangential]");
   for (size_t a = 1; a < dofs.size(); ++a)
     if (dofs[a] == dofs[0])
       t.fail(field + ".dofs", std::to_string(dofs[0] + 1), "the normal DOF is also a tangential DOF");
   ContactFrictionParameters p;
-  p.tangential = static_cast<int>(dofs.size()) - 1;
+  p.tangential = t.components() - 1;
   auto non_negative = [&](const char* key, const char* what) {
     const double x = t.number(key, std::nullopt);
     if (x < 0.0) t.fail(t.path(key), formatNumber(x), std::string(what) + " must be >= 0");

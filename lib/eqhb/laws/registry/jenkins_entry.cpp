@@ -16,8 +16,8 @@ LawEntry jenkinsEntry() {
     const double mu_n = t.frictionLimit("muN");
     const double k_t = t.positive("k_t", std::nullopt);
     const RhoSetting rho = t.rho();
-    const int m = static_cast<int>(t.dofs().size());
-    if (m != 1 && m != 2) t.fail(t.path("dofs"), t.dofsText(), "a jenkins law acts on 1 or 2 DOFs");
+    const int m = t.components();
+    if (m != 1 && m != 2) t.fail(t.path(t.componentsKey()), t.dofsText(), "a jenkins law acts on 1 or 2 DOFs");
     const std::string name = t.form(m == 1 ? "minmax" : "max");
     if (name == "minmax" && m != 1)
       t.fail(t.path("form"), "\"minmax\"", "the minmax form is one-dimensional; use max or projection");
