@@ -14,11 +14,14 @@ LawEntry cubicEntry();
 LawEntry contactFrictionEntry();
 LawEntry jenkinsEntry();
 LawEntry penaltyContactEntry();
+LawEntry polynomialEntry();
+LawEntry quadraticDampingEntry();
 
 const std::vector<LawEntry>& lawRegistry() {
   static const std::vector<LawEntry> entries = {coulomb1DEntry(), coulomb2DEntry(),       signoriniEntry(),
                                                 stribeckEntry(),  cubicEntry(),           contactFrictionEntry(),
-                                                jenkinsEntry(),   penaltyContactEntry()};
+                                                jenkinsEntry(),   penaltyContactEntry(),  polynomialEntry(),
+                                                quadraticDampingEntry()};
   return entries;
 }
 

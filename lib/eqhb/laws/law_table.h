@@ -31,6 +31,8 @@ class LawTable {
   virtual bool has(const std::string& key) const = 0;
   // A finite number; `fallback` when absent (nullopt: the key is required).
   virtual double number(const std::string& key, std::optional<double> fallback) = 0;
+  // A required non-empty list of finite numbers.
+  virtual std::vector<double> numbers(const std::string& key) = 0;
   // A string; `fallback` when absent (nullopt: the key is required).
   virtual std::string text(const std::string& key, std::optional<std::string> fallback) = 0;
   // The DOF, node or direction list as written, for messages about it.

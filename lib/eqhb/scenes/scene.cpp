@@ -103,6 +103,15 @@ class TableReader {
     return v.as_string().str;
   }
 
+  std::vector<double> numbers(const std::string& key) {
+    const toml::value& v = raw(key);
+    if (!v.is_array() || v.as_array().empty()) fail(path(key), describe(v), "must be a non-empty array of numbers");
+    std::vector<double> out;
+    for (size_t i = 0; i < v.as_array().size(); ++i)
+      out.push_back(numberIn(v.as_array()[i], path(key) + "[" + std::to_string(i) + "]", "must be a number"));
+    return out;
+  }
+
   Eigen::MatrixXd matrix(const std::string& key) {
     const toml::value& v = raw(key);
     if (!v.is_array() || v.as_array().empty())
@@ -435,6 +444,7 @@ class SceneLawTable : public LawTable {
   double number(const std::string& key, std::optional<double> fallback) override {
     return reader_.number(key, fallback);
   }
+  std::vector<double> numbers(const std::string& key) override { return reader_.numbers(key); }
   std::string text(const std::string& key, std::optional<std::string> fallback) override {
     return reader_.text(key, std::move(fallback));
   }

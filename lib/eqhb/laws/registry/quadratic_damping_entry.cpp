@@ -1,0 +1,21 @@
+// quadratic-damping: a velocity-squared damper (laws/quadratic_damping.h).
+#include "eqhb/laws/quadratic_damping.h"
+#include "eqhb/laws/registry/entry_support.h"
+
+namespace eqhb {
+
+LawEntry quadraticDampingEntry() {
+  LawEntry e;
+  e.type = "quadratic-damping";
+  e.summary = "quadratic damper, force −c ẋ|ẋ| (as the DAE f + c ẋ|ẋ| = 0)";
+  e.parameters = {{"coefficient", "", ">= 0", "c"}};
+  e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
+    const double c = t.number("coefficient", std::nullopt);
+    if (!(c >= 0.0)) t.fail(t.path("coefficient"), formatNumber(c), "must be >= 0 (a damper dissipates)");
+    return std::make_shared<QuadraticDamping>(c);
+  };
+  e.examples = {{"quadratic-damping", 1, "coefficient = 0.6"}};
+  return e;
+}
+
+}  // namespace eqhb
