@@ -166,8 +166,31 @@ TEST(LawRegistry, CapabilitiesAnswerForTheLawsThatHaveThem) {
     const auto piecewise = piecewiseLinearSite(*c.law);
     const bool jenkins_1d = c.type == "jenkins" && c.law->dimension() == 1;
     EXPECT_EQ(smooth.has_value(), c.type == "coulomb-1d" || c.type == "coulomb-2d" || c.type == "stribeck" ||
-                                      c.type == "cubic")
+                                      c.type == "cubic" || c.type == "polynomial" || c.type == "quadratic-damping")
         << c.label;
+    if (smooth && smooth->kind == SmoothFlowSite::Kind::kForce) {
+      // The exact flow's force is the law's: f(x, ẋ) = −Ψ(x, ẋ, λ = 0), with
+      // its partials against central differences.
+      for (double x : {-1.3, -0.2, 0.7, 1.6})
+        for (double v : {-0.9, 0.4, 1.1}) {
+          LawSamples samples;
+          samples.resize(1, 1);
+          samples.displacement(0, 0) = x;
+          samples.velocity(0, 0) = v;
+          samples.force(0, 0) = 0.0;
+          c.law->evaluate(samples, false);
+          double f = 0.0, df_dx = 0.0, df_dv = 0.0, fp = 0.0, fm = 0.0, unused = 0.0;
+          smooth->force(x, v, &f, &df_dx, &df_dv);
+          EXPECT_NEAR(f, -samples.psi(0, 0), 1e-14 * (1.0 + std::abs(f))) << c.label;
+          const double h = 1e-6;
+          smooth->force(x + h, v, &fp, &unused, &unused);
+          smooth->force(x - h, v, &fm, &unused, &unused);
+          EXPECT_NEAR(df_dx, (fp - fm) / (2 * h), 1e-6 * (1.0 + std::abs(df_dx))) << c.label;
+          smooth->force(x, v + h, &fp, &unused, &unused);
+          smooth->force(x, v - h, &fm, &unused, &unused);
+          EXPECT_NEAR(df_dv, (fp - fm) / (2 * h), 1e-6 * (1.0 + std::abs(df_dv))) << c.label;
+        }
+    }
     EXPECT_EQ(piecewise.has_value(), c.type == "coulomb-1d" || c.type == "signorini" || jenkins_1d) << c.label;
     if (piecewise) {
       EXPECT_EQ(piecewise->contact, c.type == "signorini") << c.label;

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "eqhb/orbits/shooting.h"
+#include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/references/time_integrator.h"
 #include "eqhb/scenes/scene.h"
 #include "test_support.h"
@@ -39,7 +41,6 @@ TEST(PolynomialStiffness, AQuadraticTermShiftsTheMeanAsTheTimeReferenceDoes) {
       oscillator("type = \"polynomial\"\ncoefficients = [0.3, 0.1]\nexponents = [2, 3]", 0.1, 0.3, 0.8, 9, "all", 64),
       "q").model;
   const Eigen::VectorXd hb = test::harmonicBalance(model);
-  const int nb = model.basis.size();
   // x's constant term: a mean pulled towards −x by the force −0.3 x².
   EXPECT_LT(hb[0], -1e-3);
   TimeOptions options;
@@ -48,7 +49,6 @@ TEST(PolynomialStiffness, AQuadraticTermShiftsTheMeanAsTheTimeReferenceDoes) {
   const TimeReference ref = integrateToSteadyState(model, options, hb);
   ASSERT_TRUE(ref.periodic);
   for (const ChannelError& e : compareWithReference(model, hb, ref)) EXPECT_LT(e.relative_l2, 2e-3) << e.label;
-  (void)nb;
 }
 
 // At ω = √(k/m) the spring and the mass cancel and the dampers alone hold
@@ -74,6 +74,32 @@ TEST(QuadraticDamping, HarmonicBalanceAgreesWithTheTimeReference) {
   const TimeReference ref = integrateToSteadyState(model, options, hb);
   ASSERT_TRUE(ref.periodic);
   for (const ChannelError& e : compareWithReference(model, hb, ref)) EXPECT_LT(e.relative_l2, 2e-3) << e.label;
+}
+
+// The exact periodic orbit (smooth flow, shooting) of both elements
+// together, with an even power: harmonic balance on 0..15 reaches max|x| to
+// 1e-6 and shooting converges from it in few Newton steps.
+TEST(SmoothElements, ExactOrbitsAgreeWithHarmonicBalance) {
+  const HbModel model =
+      parseScene("name = \"both\"\n[structure]\ntype = \"matrices\"\nmass = [[1.0]]\ndamping = [[0.02]]\n"
+                 "stiffness = [[1.0]]\n[[forcing]]\ndof = 1\nharmonic = 1\ncos = 0.2\n"
+                 "[[law]]\ntype = \"quadratic-damping\"\ncoefficient = 0.4\ndofs = [1]\n"
+                 "[[law]]\ntype = \"polynomial\"\ncoefficients = [0.2, 0.1]\nexponents = [2, 3]\ndofs = [1]\n"
+                 "[harmonic_balance]\nharmonics = 15\nset = \"all\"\nsamples = 128\nomega = 0.9\n",
+                 "both")
+          .model;
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
+  const auto flow = orbits::makeFlow(model, 0.0);
+  const orbits::ShootingResult orbit = orbits::shootFromHarmonicBalance(*flow, model, hb, {});
+  ASSERT_TRUE(orbit.converged) << orbit.failure;
+  EXPECT_LE(orbit.iterations, 3);
+  double hb_max = 0.0;
+  for (int k = 0; k < 4096; ++k) {
+    const double t = 2.0 * M_PI / model.omega * k / 4096.0;
+    hb_max = std::max(hb_max, std::abs(orbits::harmonicState(model, hb, t)[0]));
+  }
+  EXPECT_NEAR(hb_max / orbit.max_abs[0], 1.0, 1e-6);
+  EXPECT_TRUE(orbit.stable);
 }
 
 }  // namespace

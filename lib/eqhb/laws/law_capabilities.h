@@ -4,17 +4,23 @@
 // form or by smooth phases.
 #pragma once
 
+#include <functional>
+
 namespace eqhb {
 
 // A law that SmoothFlow (orbits/smooth_flow.h) integrates by smooth phases
-// with stick/slip events: a cubic spring, a planar Coulomb slider on two
-// DOFs, or a Stribeck (or Coulomb: no drop) slider on one DOF.
+// with stick/slip events: a cubic spring, a smooth force of x and ẋ on one
+// DOF, a planar Coulomb slider on two DOFs, or a Stribeck (or Coulomb: no
+// drop) slider on one DOF.
 struct SmoothFlowSite {
-  enum class Kind { kCubic, kPlanar, kStribeck };
+  enum class Kind { kCubic, kForce, kPlanar, kStribeck };
   Kind kind = Kind::kCubic;
   double coefficient = 0.0;  // ε (cubic), μN (planar), μ_d N (Stribeck)
   double drop = 0.0;         // Stribeck: (μ_s − μ_d) N
   double v_s = 1.0;          // Stribeck: the decay velocity
+  // kForce: the force f(x, ẋ) on the structure and its partials (a
+  // polynomial spring, a quadratic damper).
+  std::function<void(double x, double v, double* f, double* df_dx, double* df_dv)> force;
 };
 
 // A law on one DOF that PiecewiseLinearFlow (orbits/piecewise_linear_flow.h)

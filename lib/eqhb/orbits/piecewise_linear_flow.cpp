@@ -69,8 +69,9 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
       if (site.stiffness > 0.0) site.slider = m_++;
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
-                      "exact orbits handle coulomb-1d, jenkins on 1 DOF, signorini (closed form), cubic, coulomb-2d, stribeck "
-                      "and coulomb-1d (smooth phases) laws; signorini does not mix with the smooth ones");
+                      "exact orbits handle coulomb-1d, jenkins on 1 DOF, signorini (closed form), cubic, polynomial, "
+                      "quadratic-damping, coulomb-2d, stribeck and coulomb-1d (smooth phases) laws; signorini does "
+                      "not mix with the smooth ones");
     }
     sites_.push_back(site);
   }

@@ -47,16 +47,19 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
     if (const auto capability = smoothFlowSite(*law)) {  // the law's registry entry
       using Declared = SmoothFlowSite::Kind;
       site.kind = capability->kind == Declared::kCubic    ? Kind::kCubic
+                  : capability->kind == Declared::kForce  ? Kind::kForce
                   : capability->kind == Declared::kPlanar ? Kind::kPlanar
                                                           : Kind::kStribeck;
+      site.force = capability->force;
       if (site.kind == Kind::kPlanar) site.second_dof = model.laws[l].attachment.dof(1);
       site.coefficient = capability->coefficient;
       site.drop = capability->drop;
       site.v_s = capability->v_s;
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
-                      "exact orbits handle coulomb-1d, signorini (closed form), cubic, coulomb-2d, stribeck "
-                      "and coulomb-1d (smooth phases) laws; signorini does not mix with the smooth ones");
+                      "exact orbits handle coulomb-1d, signorini (closed form), cubic, polynomial, "
+                      "quadratic-damping, coulomb-2d, stribeck and coulomb-1d (smooth phases) laws; signorini "
+                      "does not mix with the smooth ones");
     }
     components_ += site.components();
     sites_.push_back(site);
@@ -67,7 +70,7 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
   double force = 0.0;
   for (const auto& load : loads_) force += std::abs(load.cos_amplitude) + std::abs(load.sin_amplitude);
   for (const Site& site : sites_)
-    if (site.kind != Kind::kCubic) force += site.coefficient + site.drop;
+    if (!site.alwaysSmooth()) force += site.coefficient + site.drop;
   acceleration_scale_ = mass_inverse_.cwiseAbs().rowwise().sum().maxCoeff() * force;
 }
 
@@ -110,11 +113,19 @@ bool SmoothFlow::freeForce(double t, const Eigen::VectorXd& y, const Modes& mode
     const Site& site = sites_[s];
     // Stuck sites act through λ; a friction site marked smooth is left out
     // (the restart guess adds its force itself).
-    if (modes[s] == Mode::kStick || (site.kind != Kind::kCubic && modes[s] == Mode::kSmooth)) continue;
+    if (modes[s] == Mode::kStick || (!site.alwaysSmooth() && modes[s] == Mode::kSmooth)) continue;
     if (site.kind == Kind::kCubic) {
       const double x = y[site.dof];
       b[site.dof] -= site.coefficient * x * x * x;
       if (db) (*db)(site.dof, site.dof) -= 3.0 * site.coefficient * x * x;
+    } else if (site.kind == Kind::kForce) {
+      double f = 0.0, df_dx = 0.0, df_dv = 0.0;
+      site.force(y[site.dof], y[n_ + site.dof], &f, &df_dx, &df_dv);
+      b[site.dof] += f;
+      if (db) {
+        (*db)(site.dof, site.dof) += df_dx;
+        (*db)(site.dof, n_ + site.dof) += df_dv;
+      }
     } else if (site.kind == Kind::kStribeck) {
       // Slip in direction σ: force −σ L(σ v) on the continuation of L past
       // v = 0, smooth, so that the stop is a plain sign change of v.
@@ -170,6 +181,9 @@ Eigen::VectorXd SmoothFlow::siteForce(int s, double t, const Eigen::VectorXd& y,
   }
   if (site.kind == Kind::kCubic) {
     out[0] = -site.coefficient * std::pow(y[site.dof], 3);
+  } else if (site.kind == Kind::kForce) {
+    double df_dx = 0.0, df_dv = 0.0;
+    site.force(y[site.dof], y[n_ + site.dof], &out[0], &df_dx, &df_dv);
   } else if (site.kind == Kind::kStribeck) {
     const double sigma = modes[s] == Mode::kSlipPositive ? 1.0 : -1.0;
     out[0] = -sigma * (site.coefficient + site.drop * std::exp(-sigma * y[n_ + site.dof] / site.v_s));

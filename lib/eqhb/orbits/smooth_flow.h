@@ -65,7 +65,7 @@ class SmoothFlow : public Flow {
 
  private:
   class Integration;  // one call of integrate (smooth_flow_integration.h)
-  enum class Kind { kCubic, kPlanar, kStribeck };
+  enum class Kind { kCubic, kForce, kPlanar, kStribeck };
   enum class Mode { kSmooth, kSlide, kSlipPositive, kSlipNegative, kStick };
   using Modes = std::vector<Mode>;
   struct Site {
@@ -73,6 +73,9 @@ class SmoothFlow : public Flow {
     int dof = 0, second_dof = 0;
     double coefficient = 0.0;       // ε (cubic), μN (planar), μ_d N (Stribeck)
     double drop = 0.0, v_s = 1.0;   // Stribeck: (μ_s − μ_d) N and v_s
+    std::function<void(double, double, double*, double*, double*)> force;  // kForce: f, ∂f/∂x, ∂f/∂ẋ
+    // Always in smooth phase: no stick or slip of its own.
+    bool alwaysSmooth() const { return kind == Kind::kCubic || kind == Kind::kForce; }
     int components() const { return kind == Kind::kPlanar ? 2 : 1; }
   };
   struct Constraint {

@@ -28,6 +28,17 @@ LawEntry polynomialEntry() {
   };
   e.examples = {{"polynomial-odd", 1, "coefficients = [0.5, -0.2, 0.05]\nexponents = [1, 3, 5]"},
                 {"polynomial-quadratic", 1, "coefficients = [0.3, 0.4]\nexponents = [2, 3]"}};
+  e.smooth_flow = [](const Law& law) -> std::optional<SmoothFlowSite> {
+    SmoothFlowSite site;
+    site.kind = SmoothFlowSite::Kind::kForce;
+    const PolynomialStiffness spring = static_cast<const PolynomialStiffness&>(law);
+    site.force = [spring](double x, double, double* f, double* df_dx, double* df_dv) {
+      *f = -spring.force(x);
+      *df_dx = -spring.slope(x);
+      *df_dv = 0.0;
+    };
+    return site;
+  };
   return e;
 }
 
