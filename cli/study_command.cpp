@@ -63,6 +63,7 @@ app::StudyOptions studyOptions(const SolveArguments& s, const StudyArguments& a)
   o.coarse_points = a.coarse_points;
   o.max_peaks = a.max_peaks;
   o.threads = a.threads;
+  o.fallback = s.fallback;
   o.out = a.out;
   return o;
 }

@@ -186,7 +186,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
 def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=None, step=0.01, dof=1,
           coarse_points=41, max_peaks=4, threads=0, harmonics=None, samples=None, form=None, rho=None,
           solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
-          time_limit=0.0, options=None, linear_algebra="auto"):
+          time_limit=0.0, options=None, linear_algebra="auto", fallback="default"):
     """A parameter study, as `eqhb study` runs it on threads: over a grid of
     the scene values `vary` ("PATH=FROM:TO:COUNT" strings, PATH as for
     load_scene's overrides, or "A,B,..." set together) or, with lhs=N, a
@@ -198,7 +198,8 @@ def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=N
     (default: the model's sweep range). The model must come from a scene
     file (load_scene): samples reload it. `out` is the study folder
     (study.csv, study.json, journal.csv, plan.txt; a folder of the same
-    study is resumed, its samples not computed again). Returns study.json
+    study is resumed, its samples not computed again). A failed point of a
+    sample's sweeps gets the `fallback` steps, as in sweep. Returns study.json
     as a dict (scene, mode, dof, range, parameters, samples: per sample its
     values, status, reason, start, peak_omega, first_harmonic, max_abs,
     peaks, solves, iterations, seconds, worker, curve) with total,
@@ -207,7 +208,7 @@ def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=N
         vary = [vary]
     args = _scene_args(None, harmonics, samples, form, rho)
     args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
-                         linear_algebra, "coarse", "default"))
+                         linear_algebra, "coarse", fallback))
     if not isinstance(vary, (list, tuple)):
         raise InputError(f"vary = {vary!r}: must be a string or a list of strings")
     args.update(vary=[_text(v, "vary") for v in vary], out=_text(out, "out"),

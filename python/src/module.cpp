@@ -231,6 +231,7 @@ py::dict study(const PyModel& m, const py::dict& args) {
   o.max_peaks = args["max_peaks"].cast<int>();
   o.threads = args["threads"].cast<int>();
   o.out = args["out"].cast<std::string>();
+  o.fallback = args["fallback"].cast<std::string>();
   std::optional<app::StudySetup> setup;
   try {
     setup = app::setupStudy(scene, o);

@@ -258,3 +258,13 @@ def test_study_is_eqhb_study(tmp_path):
         eqhb.study(eqhb.model(np.eye(1), np.eye(1)), "law.muN=1:2:2", out=str(tmp_path / "m"))
     with pytest.raises(eqhb.InputError, match="^mode = \"both\""):
         eqhb.study(eqhb.load_scene(SCENE), "law.muN=1:2:2", out=str(tmp_path / "m"), mode="both")
+
+
+def test_study_fallback_reaches_every_sample(tmp_path):
+    duffing = eqhb.load_scene(PROBLEMS / "field" / "nlvib-01-duffing.toml")
+    bare = eqhb.study(duffing, "law[0].epsilon=0.1:0.1:1", out=str(tmp_path / "none"), mode="sweep", fallback="none")
+    assert bare["failed"] == 1 and "grid point" in bare["samples"][0]["reason"]
+    helped = eqhb.study(duffing, "law[0].epsilon=0.1:0.1:1", out=str(tmp_path / "default"), mode="sweep")
+    assert helped["succeeded"] and helped["failed"] == 0
+    with pytest.raises(eqhb.InputError, match="^fallback = bogus: has an unknown step bogus"):
+        eqhb.study(duffing, "law[0].epsilon=0.1:0.1:1", out=str(tmp_path / "bad"), mode="sweep", fallback="bogus")

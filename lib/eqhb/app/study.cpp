@@ -6,6 +6,7 @@
 #include <mutex>
 #include <thread>
 
+#include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
 #include "eqhb/studies/study_journal.h"
@@ -96,6 +97,12 @@ StudySetup setupStudy(const SceneSettings& scene_settings, const StudyOptions& o
   makeSolver(o.solver);  // an unknown name is an input error now, not per sample
   const std::string solver_name = o.solver;
   settings.make_solver = [solver_name] { return makeSolver(solver_name); };
+  const std::string fallback = o.fallback;
+  const OwnedFallbackChain checked(fallback, solver_name, "fallback");  // an unknown step is an input error now
+  settings.make_fallbacks = [fallback, solver_name]() -> std::shared_ptr<const FallbackChain> {
+    const auto owned = std::make_shared<OwnedFallbackChain>(fallback, solver_name, "fallback");
+    return std::shared_ptr<const FallbackChain>(owned, &owned->chain());  // keeps its backends alive
+  };
   settings.out_dir = o.out;
   setup.plan_text = studyPlanText(settings, o.solver);
   return setup;

@@ -33,6 +33,9 @@ struct StudyOptions {
   int coarse_points = 41;          // peak: points of the coarse sweep that starts a peak cold
   int max_peaks = 4;               // peak: resonances followed at once
   int threads = 0;                 // 0: every core, in [0, 4096]
+  // Steps after a failed point of a sample's sweeps: "default", "none" or
+  // "cold,full,NAME,..." (backends/default_path.h).
+  std::string fallback = "default";
   std::string out;                 // the study folder: study.csv, study.json, journal.csv, plan.txt
 };
 

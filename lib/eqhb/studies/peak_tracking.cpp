@@ -308,6 +308,7 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
     sweep.min_step = sweep.step * 1e-4;
     sweep.max_step = std::max(1.0, sweep.step);
     sweep.condensed = options.condensed;
+    if (options.fallbacks) sweep.fallbacks = *options.fallbacks;
     const Curve curve = sweepSequential(m, solver, solver_options, sweep);
     const int last = static_cast<int>(curve.points.size()) - 1;
     auto amplitude = [&](int i) { return curve.points[i].first_harmonic[options.dof - 1]; };
@@ -329,6 +330,10 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
         if (curve.points[i - 1].converged && curve.points[i].converged && curve.points[i + 1].converged &&
             amplitude(i) >= amplitude(i - 1) && amplitude(i) >= amplitude(i + 1))
           maxima.push_back(i);
+      if (maxima.empty())
+        why = "no local maximum with converged neighbours on the coarse sweep over [" + formatNumber(options.from) +
+              ", " + formatNumber(options.to) + "] (" + std::to_string(curve.failed_points) + " of " +
+              std::to_string(last + 1) + " points failed)";
       std::sort(maxima.begin(), maxima.end(), [&](int a, int b) { return amplitude(a) > amplitude(b); });
       if (static_cast<int>(maxima.size()) > options.max_peaks) maxima.resize(options.max_peaks);
       for (int i : maxima) {

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "eqhb/continuation/fallback_chain.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/solvers/solver.h"
 
@@ -44,6 +45,9 @@ struct PeakOptions {
   int max_secant_steps = 40;
   int max_peaks = 4;              // local maxima followed at once, >= 1
   bool condensed = true;
+  // The steps after a failed point of the cold start's sweep; null: the
+  // sweeps' standard chain (cold start, full system, no other backend).
+  const FallbackChain* fallbacks = nullptr;
   // Throws InputError naming the field.
   void validate(int dofs) const;
 };

@@ -21,7 +21,10 @@ std::vector<std::string> sampleOverrides(const StudySettings& settings, int id) 
 }
 
 SampleWorker::SampleWorker(const StudySettings& settings, int worker)
-    : settings_(settings), worker_(worker), solver_(settings.make_solver()) {}
+    : settings_(settings),
+      worker_(worker),
+      solver_(settings.make_solver()),
+      fallbacks_(settings.make_fallbacks ? settings.make_fallbacks() : nullptr) {}
 
 SampleResult SampleWorker::run(int id) {
   const auto started = std::chrono::steady_clock::now();
@@ -53,7 +56,9 @@ SampleResult SampleWorker::compute(int id) {
   }
   if (settings_.mode == StudyMode::kPeak) {
     const bool neighbour = id == previous_id_ + 1 && settings_.plan.continues[id];
-    const PeakResult peak = trackPeak(scene.model, *solver_, settings_.solver_options, settings_.peak,
+    PeakOptions peak_options = settings_.peak;
+    peak_options.fallbacks = fallbacks_.get();
+    const PeakResult peak = trackPeak(scene.model, *solver_, settings_.solver_options, peak_options,
                                       neighbour ? &previous_peak_ : nullptr);
     r.ok = peak.converged;
     r.reason = peak.reason;
@@ -74,6 +79,7 @@ SampleResult SampleWorker::compute(int id) {
   sweep.min_step = std::min(1e-6, sweep.step);
   sweep.max_step = std::max(1.0, sweep.step);
   sweep.condensed = settings_.peak.condensed;
+  if (fallbacks_) sweep.fallbacks = *fallbacks_;
   const Curve curve = sweepSequential(scene.model, *solver_, settings_.solver_options, sweep);
   char name[64];
   std::snprintf(name, sizeof name, "curves/sample_%06d.csv", id);

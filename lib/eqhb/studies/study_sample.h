@@ -27,6 +27,9 @@ struct StudySettings {
   int dofs = 0;              // of the scene; every sample must keep it
   SolverOptions solver_options;
   std::function<std::unique_ptr<Solver>()> make_solver;
+  // Per worker, the fallback chain of its sweeps, owning its backends; empty
+  // (or null returned): the sweeps' standard chain.
+  std::function<std::shared_ptr<const FallbackChain>()> make_fallbacks;
 };
 
 struct SampleResult {
@@ -59,6 +62,7 @@ class SampleWorker {
   const StudySettings& settings_;
   int worker_;
   std::unique_ptr<Solver> solver_;
+  std::shared_ptr<const FallbackChain> fallbacks_;  // null: the standard chain
   int previous_id_ = -2;
   PeakState previous_peak_;
 };
