@@ -24,6 +24,12 @@ constexpr double kScaleFloorFraction = 1e-3;
 constexpr double kBridgeFractions[] = {1e-3, 1e-2, 3e-2};
 // A curve bridged this often is not being traced by arclength any more.
 constexpr int kMostBridges = 10;
+// Local parametrisation by ω (ArclengthSweep::correctAtFixedOmega) only
+// where ω carries at least this share of the unit tangent (a fold is near
+// where it carries less).
+constexpr double kLocalOmega = 0.01;
+// A point found with ω held lies within this many steps of the current one.
+constexpr double kLocalReach = 2.0;
 
 struct ArcPoint {
   Eigen::VectorXd z;
@@ -130,7 +136,19 @@ class ArclengthSweep {
       const Eigen::VectorXd predicted = y + step.size() * t;
       BorderedSystem bordered(*system_, s);
       bordered.setConstraint(t, predicted);
-      const SolverResult r = solver_.solve(bordered, predicted, solver_options_);
+      // Once the bordered corrector has stalled where the fixed-ω one got
+      // through, ω stays the parameter while it carries the tangent.
+      const bool local = std::abs(t[n_]) >= kLocalOmega;
+      if (!local) by_omega_ = false;
+      SolverResult r = by_omega_ ? correctAtFixedOmega(s, y, t, step.size()) : solver_.solve(bordered, predicted, solver_options_);
+      if (!r.converged() && local) {
+        SolverResult other = by_omega_ ? solver_.solve(bordered, predicted, solver_options_)
+                                       : correctAtFixedOmega(s, y, t, step.size());
+        if (other.converged()) {
+          by_omega_ = !by_omega_;
+          r = std::move(other);
+        }
+      }
       if (!r.converged()) {
         if (step.halve()) continue;
         if (bridgeOrStop("the corrector failed (" + std::string(terminationName(r.termination)) + ") near " +
@@ -238,6 +256,40 @@ class ArclengthSweep {
     return false;
   }
 
+  // The bordered corrector can stall just above the tolerance where a
+  // nonsmooth law switches: measured on the beam dampers, it ends at
+  // ‖g‖ ≈ 1e-9 for a tolerance of 1e-10 on most steps, whatever the step,
+  // while the same point solved with ω held converges to 1e-16 in one to
+  // five iterations. Where ω moves with the curve (|τ_ω| >= kLocalOmega),
+  // ω is then the curve's local parameter (Rheinboldt's local
+  // parametrisation): the corrector holds ω at the predicted value and
+  // solves g(z, ω) = 0 from the predicted z, `step` along `tangent` from
+  // `current`. Returns the result in the scaled unknowns ŷ, like the
+  // bordered corrector's.
+  SolverResult correctAtFixedOmega(const ArcScales& s, const Eigen::VectorXd& current, const Eigen::VectorXd& tangent,
+                                   double step) {
+    const Eigen::VectorXd predicted = current + step * tangent;
+    SolverResult r;
+    r.termination = Termination::kEvaluationFailed;
+    const double omega = predicted[n_] * s.omega;
+    try {
+      system_->setOmega(omega);
+    } catch (const std::exception& e) {
+      r.native_message = e.what();
+      return r;
+    }
+    r = solver_.solve(*system_, predicted.head(n_) * s.z, solver_options_);
+    r.solution = s.scaled(r.solution, omega);
+    // Near a fold ω held may land on the branch the curve came from, or far
+    // off: the point must lie ahead of the current one, within two steps.
+    const Eigen::VectorXd ahead = r.solution - current;
+    if (r.converged() && (ahead.dot(tangent) <= 0.0 || ahead.norm() > kLocalReach * step)) {
+      r.termination = Termination::kNotProgressing;
+      r.native_message = "omega held: the point found is not ahead on the curve";
+    }
+    return r;
+  }
+
   // Where the bordered Jacobian is singular at the current point (a friction
   // slider stuck over the whole period leaves its mean undetermined): the
   // secant to the solution with ω fixed a little further on, heading `heading`.
@@ -337,6 +389,7 @@ class ArclengthSweep {
   ArcPoint current_;
   double largest_norm_ = 0.0;
   FoldWatch folds_;
+  bool by_omega_ = false;  // the corrector holds ω (correctAtFixedOmega)
   std::vector<std::string> bridged_;  // "ω_from -> ω_to" of each bridge
   Curve curve_;
 };
