@@ -209,6 +209,27 @@ TEST(Backbone, ExactCoulombGoesFromTheStuckModeToTheFreeOneWithDampingPeakingBet
     EXPECT_GE(b.points[i].omega, b.points[i - 1].omega * (1.0 - 1e-9));  // from √2 up to 1.618
 }
 
+// NLvib's example 05 with the exact Coulomb law, undamped: DOF 1 held at
+// small amplitude (ω² = 640 with m₂ = 1), its antiresonance, where a ρ made
+// from the dynamic compliance would vanish; sliding freely at large
+// amplitude (the free chain's first mode). With ρ from the dynamic
+// compliance 23 of these 30 amplitudes failed; one, in the sharp turn at
+// the onset of slip (a = 0.155), still does.
+TEST(Backbone, NlvibExampleFiveGoesFromStuckToSliding) {
+  const Scene scene = loadScene(test::problem("field/modes/nlvib-05-2dof-friction-modes.toml"));
+  const Backbone b = backboneOf(scene.model, 1, 0.0316, 10.0, 30);
+  EXPECT_NEAR(b.start.omega, std::sqrt(640.0), 1e-10);
+  EXPECT_LE(b.failed_points, 1);
+  // The free chain: 0.02 λ² − 52.8 λ + 24000 = 0, λ = ω².
+  const double free_omega = std::sqrt((52.8 - std::sqrt(52.8 * 52.8 - 4.0 * 0.02 * 24000.0)) / 0.04);
+  EXPECT_NEAR(b.points.front().omega, std::sqrt(640.0), 1e-9);
+  EXPECT_LT(b.points.back().omega, std::sqrt(640.0) - 0.9 * (std::sqrt(640.0) - free_omega));
+  double peak = 0.0;
+  for (const BackbonePoint& p : b.points) peak = std::max(peak, p.damping_ratio);
+  EXPECT_GT(peak, 0.01);  // friction damps the mode while it slips
+  EXPECT_LT(b.points.back().damping_ratio, 0.5 * peak);
+}
+
 TEST(Backbone, RefusesAModeAboveTheStructuresAndABadAmplitudeRange) {
   const HbModel model = rayleighChain(0.01, 0.004);
   auto solver = makeSolver("dogleg");

@@ -60,8 +60,14 @@ std::string HbSystem::violatedPhysics(const Eigen::Ref<const Eigen::VectorXd>& z
 
 void HbSystem::setScaleFreeRhos() {
   if (rho_held_) return;
-  model_ = withScaleFreeRhos(std::move(model_));  // returns it as it was when no ρ is scale-free
+  // Each returns the model as it was when no ρ is scale-free.
+  model_ = rho_static_ ? withStaticScaleFreeRhos(std::move(model_)) : withScaleFreeRhos(std::move(model_));
   laws_.replaceLaws(model_.laws);
+}
+
+void HbSystem::scaleRhoByStaticCompliance() {
+  rho_static_ = true;
+  setScaleFreeRhos();
 }
 
 // ---------------------------------------------------------------- full system

@@ -48,6 +48,10 @@ class HbSystem : public SquareSystem {
   // scale-free ρ for the new ω: a system whose ω is an unknown (nonlinear
   // modes) needs one residual function of ω within a solve.
   void holdRho(bool held) { rho_held_ = held; }
+  // From now on every scale-free ρ comes from the static compliance
+  // (withStaticScaleFreeRhos), set at once: for a system whose ω is a
+  // resonance of its own (nonlinear modes).
+  void scaleRhoByStaticCompliance();
   // Dynamics rows (full system): the force scale F; law rows: each law's
   // residual scale, in the model's physical scales at the current ω
   // (problem_scales.h).
@@ -67,6 +71,7 @@ class HbSystem : public SquareSystem {
   LawAssembly laws_;
   int nb_;
   bool rho_held_ = false;
+  bool rho_static_ = false;
 };
 
 class FullSystem : public HbSystem {

@@ -132,11 +132,21 @@ std::vector<double> drivingPointCompliances(const HbModel& model, const std::vec
 // LawScales of each law in `laws` (indices into model.laws), the largest
 // compliance over its DOFs; nullopt where nothing gives one (no stiffness,
 // mass or damping at the DOF).
-std::vector<std::optional<LawScales>> lawScales(const HbModel& model, const std::vector<int>& laws) {
+std::vector<std::optional<LawScales>> lawScales(const HbModel& model, const std::vector<int>& laws,
+                                                bool static_only = false) {
   std::vector<ComponentRow> rows;
   for (int l : laws)
     for (int a = 0; a < model.laws[l].attachment.dimension(); ++a) rows.push_back({&model.laws[l].attachment, a});
-  const std::vector<double> compliance = drivingPointCompliances(model, rows);
+  std::vector<double> compliance;
+  if (!static_only) {
+    compliance = drivingPointCompliances(model, rows);
+  } else {
+    try {
+      compliance = compliances(model, HarmonicSet(HarmonicKind::kAll, 1), rows)[0];  // k = 0: K⁻¹
+    } catch (const std::exception&) {
+      compliance.assign(rows.size(), 0.0);  // K singular: no scale
+    }
+  }
   std::vector<std::optional<LawScales>> out;
   size_t next = 0;
   for (int l : laws) {
@@ -149,13 +159,14 @@ std::vector<std::optional<LawScales>> lawScales(const HbModel& model, const std:
 }
 }  // namespace
 
-HbModel withScaleFreeRhos(HbModel model) {
+namespace {
+HbModel scaleFreeRhos(HbModel model, bool static_only) {
   // Only laws that ask for it cost a factorisation (probed with unit scales).
   std::vector<int> wanted;
   for (int l = 0; l < static_cast<int>(model.laws.size()); ++l)
     if (model.laws[l].law->withScaleFreeRho(LawScales{})) wanted.push_back(l);
   if (wanted.empty()) return model;
-  const auto scales = lawScales(model, wanted);
+  const auto scales = lawScales(model, wanted, static_only);
   for (size_t k = 0; k < wanted.size(); ++k)
     if (scales[k]) {  // else ρ stays its factor
       AttachedLaw& attached = model.laws[wanted[k]];
@@ -163,6 +174,11 @@ HbModel withScaleFreeRhos(HbModel model) {
     }
   return model;
 }
+}  // namespace
+
+HbModel withScaleFreeRhos(HbModel model) { return scaleFreeRhos(std::move(model), false); }
+
+HbModel withStaticScaleFreeRhos(HbModel model) { return scaleFreeRhos(std::move(model), true); }
 
 std::vector<std::string> rhoScaleAdvice(const HbModel& scene_model) {
   const HbModel model = withScaleFreeRhos(scene_model);  // the ρ a system would use

@@ -36,6 +36,12 @@ double linearResponseAtLaws(const HbModel& model, bool sparse);
 // |(A₁⁻¹)_ii| at the fundamental, by one factorisation of K and A₁ and one
 // solve per law DOF (see drivingPointCompliances). Laws given a ρ are kept.
 HbModel withScaleFreeRhos(HbModel model);
+// The same from the static compliance |(K⁻¹)_ii| alone, for a system whose
+// ω is a resonance of its own (a nonlinear mode): there the dynamic
+// compliance is infinite at a free mode, or nil at a DOF the mode holds (its
+// antiresonance), and says nothing of the scales. Laws keep their factor ρ
+// where K is singular.
+HbModel withStaticScaleFreeRhos(HbModel model);
 
 // Why a solve may have failed because of ρ: for every law whose ρ in use is
 // more than kRhoMisscale away from its scale-free value (either way), one

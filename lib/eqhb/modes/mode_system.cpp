@@ -29,6 +29,7 @@ int slotOf(const SparseMatrix& m, int row, int col) {
 
 ModeSystem::ModeSystem(const HbModel& model, const Eigen::VectorXd& shape)
     : inner_(unforced(model)), shape_(shape) {
+  inner_.scaleRhoByStaticCompliance();  // ω is the mode's resonance: its dynamic compliance is 0 or ∞
   const HbModel& m = inner_.model();
   if (!m.basis.contains(1))
     throwInputError("harmonic_balance.harmonics", std::to_string(m.basis.count()),
