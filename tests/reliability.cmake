@@ -150,13 +150,7 @@ endif()
 
 # Field suite (problems/field/, bench/field_suite.py): the sequential sweep of
 # each field scene on eqhb's defaults (own dogleg, 101 points over its range)
-# covers its range with every point converged. Left out, with the cause:
-#   nlvib-03-unilateral-wall: 83 of 101 points; the source's stiffness-100
-#     unilateral spring is written as a rigid wall (no penalty law yet), and
-#     the impacting orbits near the resonance (0.60-0.65) are not found;
-#     the arclength sweep completes.
-#   tmdsimpy-softening-duffing: 100 of 101 (omega = 0.985, by the jump of the
-#     softening fold); the arclength sweep completes.
+# covers its range with every point converged.
 set(FIELD ${PROJECT_SOURCE_DIR}/problems/field)
 add_test(NAME field.sequential_sweeps_complete
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/field_sweeps.sh ${EQHB_CLI}
@@ -174,6 +168,17 @@ add_test(NAME field.sequential_sweeps_complete
                  ${FIELD}/tmdsimpy-sdof-jenkins-f33.toml
                  ${FIELD}/tmdsimpy-sdof-jenkins-f38.toml)
 set_tests_properties(field.sequential_sweeps_complete PROPERTIES TIMEOUT 90)
+# Points that fail from the point before them and from the fallbacks, found
+# from the next grid point backwards: the softening Duffing oscillator lost
+# omega = 0.985 (the upper branch at its jump), NLvib's example 03 seven
+# points between 0.60 and 0.65 as a rigid wall and twelve between 0.62 and
+# 0.653 as its source poses it (penalty spring, stiffness 100).
+add_test(NAME field.sequential_sweeps_from_ahead
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/field_sweeps.sh ${EQHB_CLI}
+                 ${FIELD}/tmdsimpy-softening-duffing.toml
+                 ${FIELD}/nlvib-03-unilateral-wall.toml
+                 ${FIELD}/nlvib-03-unilateral-spring.toml)
+set_tests_properties(field.sequential_sweeps_from_ahead PROPERTIES TIMEOUT 300)
 # A scene's N is chosen for its own H: --harmonics raises it where the new H
 # needs more (Duffing's 29 samples for 7 harmonics become 166 for 40), keeps
 # it where it is enough, and an explicit --samples below 2 k_max + 1 is refused.

@@ -68,6 +68,48 @@ bool trySetOmega(HbSystem& system, double omega, std::string* why) {
   }
 }
 
+// A grid point that failed from the point before it (and from the fallback
+// chain): past a fold the branch it came from ends, and the point may lie on
+// a branch reached from the other side (the upper branch of a softening
+// Duffing oscillator's jump, found from above). Walks back from the next
+// grid point, converged, to `failed` with halved steps down to min_step;
+// true when it arrives, the point then described.
+bool solveFromAhead(HbSystem& system, HbModel& m, Solver& solver, const SolverOptions& solver_options,
+                    const ContinuationOptions& options, const CurvePoint& ahead, CurvePoint* failed) {
+  Eigen::VectorXd walk = system.fromFullCoefficients(ahead.full);
+  const double target = failed->omega, direction = target > ahead.omega ? 1.0 : -1.0;
+  double at = ahead.omega, h = std::abs(target - at);
+  std::string why;
+  SolverResult r;
+  CurvePoint counts;
+  while (h >= options.min_step && std::abs(target - at) > 1e-15) {
+    const double next = std::abs(target - at) <= h ? target : at + direction * h;
+    if (!trySetOmega(system, next, &why)) return false;
+    const SolverResult sub = solver.solve(system, walk, solver_options);
+    addSolverCounts(sub, &counts);
+    if (sub.converged()) {
+      walk = sub.solution;
+      at = next;
+      r = sub;
+    } else {
+      h /= 2.0;
+    }
+  }
+  if (std::abs(target - at) > 1e-15 || !r.converged()) return false;
+  CurvePoint& p = *failed;
+  p.iterations += counts.iterations;
+  p.residual_evaluations += counts.residual_evaluations;
+  p.jacobian_evaluations += counts.jacobian_evaluations;
+  p.seconds += counts.seconds;
+  p.converged = true;
+  p.termination = terminationName(r.termination);
+  p.residual_norm = r.final_norm;
+  p.fallback = "from the next point";
+  m.omega = target;
+  describeInto(m, system.fullCoefficients(r.solution), &p);
+  return true;
+}
+
 }  // namespace
 
 CurvePoint describePoint(const HbModel& model, const Eigen::VectorXd& full) {
@@ -183,6 +225,15 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
     }
     curve.points.push_back(point);
     if (progress) progress(curve.points.back(), i);
+  }
+  // Failed points next to a converged one further on: from there, backwards
+  // (a rescue like the fallbacks: not with an empty chain, --fallback none).
+  const bool rescue = !options.fallbacks.steps.empty();
+  for (int i = grid - 1; rescue && i >= 0 && curve.failed_points > 0; --i) {
+    CurvePoint& point = curve.points[i];
+    if (point.converged || !curve.points[i + 1].converged) continue;
+    if (solveFromAhead(*system, m, solver, solver_options, options, curve.points[i + 1], &point))
+      --curve.failed_points;
   }
   curve.complete = curve.failed_points == 0;
   curve.stop_reason = curve.complete ? "reached the end of the range"
