@@ -92,6 +92,18 @@ inline void expectPointwisePartialsMatch(const Law& law, const std::string& labe
   EXPECT_GT(checked, 0) << label;
 }
 
+// The assembled Jacobian at a random z (srand(seed), entries in ±0.7)
+// against central differences, to 1e-5 of its size.
+inline void expectJacobianMatchesFiniteDifferences(HbSystem& system, unsigned seed, const std::string& label) {
+  srand(seed);
+  const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system.size());
+  Eigen::VectorXd g(system.size());
+  Eigen::MatrixXd j(system.size(), system.size());
+  ASSERT_TRUE(system.residualAndJacobian(z, g, j)) << label;
+  const Eigen::MatrixXd fd = finiteDifferenceJacobian(system, z);
+  EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff())) << label;
+}
+
 // The law on the last DOFs of a 3-DOF chain, all harmonics 0..3, at a random
 // z: the weak Jacobian of the full and of the condensed system.
 inline void expectAssembledJacobiansMatch(const std::shared_ptr<Law>& law, const std::string& label,
@@ -110,15 +122,8 @@ inline void expectAssembledJacobiansMatch(const std::shared_ptr<Law>& law, const
     model.basis = HarmonicSet(HarmonicKind::kAll, 3);
     model.samples = 64;
     model.omega = 0.8;
-    auto system = makeHbSystem(model, condensed);
-    srand(seed);
-    const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system->size());
-    Eigen::VectorXd g(system->size());
-    Eigen::MatrixXd j(system->size(), system->size());
-    ASSERT_TRUE(system->residualAndJacobian(z, g, j)) << label;
-    const Eigen::MatrixXd fd = finiteDifferenceJacobian(*system, z);
-    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()))
-        << label << (condensed ? " condensed" : " full");
+    expectJacobianMatchesFiniteDifferences(*makeHbSystem(model, condensed), seed,
+                                           label + (condensed ? " condensed" : " full"));
   }
 }
 
@@ -160,15 +165,8 @@ inline void expectBetweenNodesMatches(const std::shared_ptr<Law>& law, const std
       Eigen::Matrix3d(Eigen::AngleAxisd(0.6, Eigen::Vector3d(1.0, 2.0, 0.5).normalized())).topLeftCorner(d, d);
   Eigen::MatrixXd orthonormal = Eigen::HouseholderQR<Eigen::MatrixXd>(frame).householderQ();
   for (bool condensed : {false, true}) {
-    auto system = makeHbSystem(lawBetweenNodes(law, 3.0, orthonormal), condensed);
-    srand(seed);
-    const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(system->size());
-    Eigen::VectorXd g(system->size());
-    Eigen::MatrixXd j(system->size(), system->size());
-    ASSERT_TRUE(system->residualAndJacobian(z, g, j)) << label;
-    const Eigen::MatrixXd fd = finiteDifferenceJacobian(*system, z);
-    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()))
-        << label << " between nodes" << (condensed ? " condensed" : " full");
+    expectJacobianMatchesFiniteDifferences(*makeHbSystem(lawBetweenNodes(law, 3.0, orthonormal), condensed), seed,
+                                           label + " between nodes" + (condensed ? " condensed" : " full"));
   }
   HbModel grounded = lawBetweenNodes(law, 5e11, Eigen::MatrixXd::Identity(d, d));
   const HbModel held = grounded;

@@ -68,6 +68,31 @@ bool trySetOmega(HbSystem& system, double omega, std::string* why) {
   }
 }
 
+// Walks in ω from `at` (solution z) to `target`, the first step `first_step`,
+// halved after each failed solve down to min_step: true when it arrives.
+// `r` takes every converged solve (the last one at `target` on arrival),
+// `counts` every solve's counts, `why` the reason ω could not be set.
+bool walkInOmega(HbSystem& system, Solver& solver, const SolverOptions& solver_options, double min_step, double at,
+                 Eigen::VectorXd z, double target, double first_step, SolverResult* r, CurvePoint* counts,
+                 std::string* why) {
+  const double direction = target > at ? 1.0 : -1.0;
+  double h = first_step;
+  while (h >= min_step && std::abs(target - at) > 1e-15) {
+    const double next = std::abs(target - at) <= h ? target : at + direction * h;
+    if (!trySetOmega(system, next, why)) return false;
+    const SolverResult sub = solver.solve(system, z, solver_options);
+    addSolverCounts(sub, counts);
+    if (sub.converged()) {
+      z = sub.solution;
+      at = next;
+      *r = sub;
+    } else {
+      h /= 2.0;
+    }
+  }
+  return std::abs(target - at) <= 1e-15 && r->converged();
+}
+
 // A grid point that failed from the point before it (and from the fallback
 // chain): past a fold the branch it came from ends, and the point may lie on
 // a branch reached from the other side (the upper branch of a softening
@@ -76,26 +101,14 @@ bool trySetOmega(HbSystem& system, double omega, std::string* why) {
 // true when it arrives, the point then described.
 bool solveFromAhead(HbSystem& system, HbModel& m, Solver& solver, const SolverOptions& solver_options,
                     const ContinuationOptions& options, const CurvePoint& ahead, CurvePoint* failed) {
-  Eigen::VectorXd walk = system.fromFullCoefficients(ahead.full);
-  const double target = failed->omega, direction = target > ahead.omega ? 1.0 : -1.0;
-  double at = ahead.omega, h = std::abs(target - at);
+  const double target = failed->omega;
   std::string why;
   SolverResult r;
   CurvePoint counts;
-  while (h >= options.min_step && std::abs(target - at) > 1e-15) {
-    const double next = std::abs(target - at) <= h ? target : at + direction * h;
-    if (!trySetOmega(system, next, &why)) return false;
-    const SolverResult sub = solver.solve(system, walk, solver_options);
-    addSolverCounts(sub, &counts);
-    if (sub.converged()) {
-      walk = sub.solution;
-      at = next;
-      r = sub;
-    } else {
-      h /= 2.0;
-    }
-  }
-  if (std::abs(target - at) > 1e-15 || !r.converged()) return false;
+  if (!walkInOmega(system, solver, solver_options, options.min_step, ahead.omega,
+                   system.fromFullCoefficients(ahead.full), target, std::abs(target - ahead.omega), &r, &counts,
+                   &why))
+    return false;
   CurvePoint& p = *failed;
   p.iterations += counts.iterations;
   p.residual_evaluations += counts.residual_evaluations;
@@ -171,22 +184,8 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
       addSolverCounts(r, &point);
     }
     if (!point.converged && !singular && !std::isnan(last_converged_omega)) {
-      Eigen::VectorXd walk = z;
-      double at = last_converged_omega, h = std::abs(target - at) / 2.0;
-      while (h >= options.min_step && std::abs(target - at) > 1e-15) {
-        const double next = std::abs(target - at) <= h ? target : at + direction * h;
-        if (!trySetOmega(*system, next, &why)) break;
-        const SolverResult sub = solver.solve(*system, walk, solver_options);
-        addSolverCounts(sub, &point);
-        if (sub.converged()) {
-          walk = sub.solution;
-          at = next;
-          r = sub;
-        } else {
-          h /= 2.0;
-        }
-      }
-      point.converged = std::abs(target - at) <= 1e-15 && r.converged();
+      point.converged = walkInOmega(*system, solver, solver_options, options.min_step, last_converged_omega, z,
+                                    target, std::abs(target - last_converged_omega) / 2.0, &r, &point, &why);
     }
     // The halved steps leave the system at their last ω: the fallbacks solve at the grid point.
     if (!point.converged && !singular && trySetOmega(*system, target, &why)) {

@@ -48,11 +48,20 @@ void PolynomialStiffness::evaluate(LawSamples& s, bool with_derivatives) const {
   const Eigen::Index n = s.psi.rows();
   for (Eigen::Index i = 0; i < n; ++i) {
     const double x = s.displacement(i, 0);
-    s.psi(i, 0) = s.force(i, 0) + force(x);
-    if (with_derivatives) {
-      s.dpsi_ddisplacement(i, 0) = slope(x);
-      s.dpsi_dforce(i, 0) = 1.0;
+    if (!with_derivatives) {
+      s.psi(i, 0) = s.force(i, 0) + force(x);
+      continue;
     }
+    // P and P' from the same powers: x^p = x^(p−1) · x, as integerPower forms it.
+    double value = 0.0, derivative = 0.0;
+    for (size_t k = 0; k < coefficients_.size(); ++k) {
+      const double below = integerPower(x, exponents_[k] - 1);
+      value += coefficients_[k] * (below * x);
+      derivative += coefficients_[k] * exponents_[k] * below;
+    }
+    s.psi(i, 0) = s.force(i, 0) + value;
+    s.dpsi_ddisplacement(i, 0) = derivative;
+    s.dpsi_dforce(i, 0) = 1.0;
   }
 }
 

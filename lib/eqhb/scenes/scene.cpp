@@ -399,9 +399,12 @@ void readBeam(TableReader& s, const std::string& source, const ModelSizes& setti
 struct StructureType {
   const char* name;
   StructureReader read;
+  bool takes_node_table;  // a beam has nodes of its own
 };
-constexpr StructureType kStructureTypes[] = {
-    {"chain", readChain}, {"matrices", readInlineMatrices}, {"matrix-market", readMarketStructure}, {"beam", readBeam}};
+constexpr StructureType kStructureTypes[] = {{"chain", readChain, true},
+                                             {"matrices", readInlineMatrices, true},
+                                             {"matrix-market", readMarketStructure, true},
+                                             {"beam", readBeam, false}};
 
 // "\"a\", \"b\" or \"c\"": the registered type names, for the message of an unknown one.
 std::string structureTypeNames() {
@@ -421,7 +424,7 @@ ReadStructure readStructure(TableReader& top, const std::string& source, const M
   if (found == std::end(kStructureTypes))
     s.fail("structure.type", "\"" + type + "\"", "must be " + structureTypeNames());
   found->read(s, source, settings, &read);
-  if (type != "beam" && s.has("node_table"))
+  if (found->takes_node_table && s.has("node_table"))
     read.node_table = readNodeTableKey(s, source, read.structure.dofs());
   s.requireKnownKeys();
   return read;
