@@ -43,6 +43,7 @@ class Signorini : public Law {
   std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const override;
   std::optional<RhoComparison> compareRho(const LawScales& scales) const override;
   double gap() const { return gap_; }
+  double rho() const { return rho_; }
 
  private:
   double gap_;

@@ -74,6 +74,7 @@ struct HillResult {
   int candidates = 0;        // finite eigenvalues examined
   int pencil_size = 0;       // unknowns of the pencil
   bool sparse = false;       // Spectra (true) or the dense solver
+  std::string method = "hill";  // or "monodromy" (monodromy_stability.h): exponents from its multipliers
   double seconds = 0.0;
   std::string failure;       // nonempty when no exponent could be computed
 };
