@@ -159,5 +159,26 @@ TEST(HalfWaveTransform, PairEqualsTwoSyntheses) {
   }
 }
 
+// Channels of very different sizes (a velocity of 1e-9 m/s beside a force of
+// 1 N): each keeps its own relative precision, and a power-of-two change of
+// the second channel's unit changes none of its bits (a change of time unit
+// must not change a solve).
+TEST(HalfWaveTransform, PairKeepsTheSmallerChannelsPrecision) {
+  HarmonicSet basis(HarmonicKind::kOdd, 10);
+  FourierTransform transform(basis, 128, Sampling::kHalfWave);
+  ASSERT_TRUE(transform.halfWave());
+  const int m = transform.activeSamples();
+  const Eigen::VectorXd large = Eigen::VectorXd::Random(basis.size());
+  const Eigen::VectorXd small = 1e-9 * Eigen::VectorXd::Random(basis.size());
+  Eigen::VectorXd alone(m), y1(m), y2(m), scaled1(m), scaled2(m);
+  transform.synthesize(small.data(), alone.data());
+  transform.synthesizePair(large.data(), small.data(), y1.data(), y2.data());
+  EXPECT_LT((y2 - alone).cwiseAbs().maxCoeff(), 1e-13 * basis.size() * alone.cwiseAbs().maxCoeff());
+  const Eigen::VectorXd small_in_other_unit = small / 128.0;
+  transform.synthesizePair(large.data(), small_in_other_unit.data(), scaled1.data(), scaled2.data());
+  EXPECT_EQ(scaled1, y1);
+  EXPECT_EQ(scaled2 * 128.0, y2);
+}
+
 }  // namespace
 }  // namespace eqhb

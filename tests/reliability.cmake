@@ -1,10 +1,11 @@
 # Verdicts to trust: model validation, convergence and invariants in the
 # problem's own scales, shipped scenes on their defaults, bounded runs.
-foreach(name hb_model_test convergence_scales_test invariant_scales_test shipped_scenes_test)
+foreach(name hb_model_test convergence_scales_test unit_systems_test invariant_scales_test shipped_scenes_test)
   add_executable(${name} ${name}.cpp)
   target_link_libraries(${name} PRIVATE eqhb_test_support)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)
 endforeach()
+target_link_libraries(unit_systems_test PRIVATE eqhb_app)  # sweeps as `eqhb sweep` sweeps
 set(EXPECT_EXIT ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh)
 set(CONTACT ${PROJECT_SOURCE_DIR}/problems/contact.toml)
 add_test(NAME cli.contact_needs_the_constant_term

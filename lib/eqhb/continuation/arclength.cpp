@@ -185,13 +185,9 @@ class ArclengthSweep {
         // jumps, as where a law switches regime, or the Jacobian gives a
         // spurious direction) does not shrink with the step: cross it along
         // the secant, the direction the curve actually took.
-        if (!kink.isKink(step.size(), turn)) {
-          if (step.halve() || bridgeOrStop("the tangent turns by " + formatNumber(degrees(turn)) + " degrees at " +
-                                            at(omega_new) + " even with the step at min_step = " +
-                                            formatNumber(options_.min_step) + ": give a smaller min_step"))
-            continue;
-          return;
-        }
+        // At min_step a turn this sharp is a kink whatever the halvings
+        // showed: no smooth bend the step can resolve turns so far so soon.
+        if (!kink.isKink(step.size(), turn) && step.halve()) continue;
         t_new = (y_new - y).normalized();
         turn = angleBetween(t, t_new);
         const double heading = folds_.direction();

@@ -33,7 +33,13 @@ bool KinkTest::isKink(double step, double turn_angle) {
     first_turn_ = turn_angle;
     return false;
   }
-  return step <= first_step_ / 4.0 && turn_angle >= first_turn_ / 2.0;
+  if (step > first_step_ / 4.0) return false;
+  if (turn_angle >= first_turn_ / 2.0) return true;
+  // Smooth so far; the bend may still end in a kink (the turn falls with the
+  // step, then holds): judge the next quartering against this one.
+  first_step_ = step;
+  first_turn_ = turn_angle;
+  return false;
 }
 
 int FoldWatch::watch(double omega_component, int index) {

@@ -32,8 +32,9 @@ class ArclengthStep {
 class KinkTest {
  public:
   void reset();
-  // True once the step has been quartered since the first rejection and the
-  // turn is still at least half of what it was (smooth bends turn ∝ Δs).
+  // True once the step has been quartered since the last reference (the
+  // first rejection, then each quartering whose turn fell) and the turn is
+  // still at least half of what it was there (smooth bends turn ∝ Δs).
   bool isKink(double step, double turn_angle);
 
  private:

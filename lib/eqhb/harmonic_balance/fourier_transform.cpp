@@ -2,6 +2,7 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -182,6 +183,25 @@ void FourierTransform::synthesize(const double* coefficients, double* samples) {
   std::memcpy(samples, p.real, sizeof(double) * p.n);
 }
 
+namespace {
+// 2^e with e the difference of the binary exponents of the largest
+// coefficients of `first` and `second` (0 when either is all zero): the
+// factor that brings the second channel to the first's magnitude exactly.
+int balancingExponent(const double* first, const double* second, int count) {
+  double most_first = 0.0, most_second = 0.0;
+  for (int i = 0; i < count; ++i) {
+    most_first = std::max(most_first, std::abs(first[i]));
+    most_second = std::max(most_second, std::abs(second[i]));
+  }
+  if (!(most_first > 0.0) || !(most_second > 0.0) || !std::isfinite(most_first) || !std::isfinite(most_second))
+    return 0;
+  int e_first = 0, e_second = 0;
+  std::frexp(most_first, &e_first);
+  std::frexp(most_second, &e_second);
+  return e_first - e_second;
+}
+}  // namespace
+
 void FourierTransform::synthesizePair(const double* first, const double* second, double* first_samples,
                                       double* second_samples) {
   if (!half_wave_) {
@@ -191,9 +211,11 @@ void FourierTransform::synthesizePair(const double* first, const double* second,
   }
   const auto& ks = basis_.harmonics();
   HalfWavePlans& w = *pairs_;
+  const int shift = balancingExponent(first, second, basis_.size());
   for (size_t h = 0; h < ks.size(); ++h) {
     const int o = basis_.offset(static_cast<int>(h));
-    const double a1 = first[o], b1 = first[o + 1], a2 = second[o], b2 = second[o + 1];
+    const double a1 = first[o], b1 = first[o + 1];
+    const double a2 = std::ldexp(second[o], shift), b2 = std::ldexp(second[o + 1], shift);
     // ½(C¹ + iC²) and ½(conj C¹ + i conj C²), C = a − ib
     const double ur = 0.5 * (a1 + b2), ui = 0.5 * (a2 - b1);
     const double vr = 0.5 * (a1 - b2), vi = 0.5 * (a2 + b1);
@@ -211,7 +233,7 @@ void FourierTransform::synthesizePair(const double* first, const double* second,
   for (int i = 0; i < w.m; ++i) {
     const double re = w.samples[i][0], im = w.samples[i][1];
     first_samples[i] = w.twist_cos[i] * re - w.twist_sin[i] * im;
-    second_samples[i] = w.twist_cos[i] * im + w.twist_sin[i] * re;
+    second_samples[i] = std::ldexp(w.twist_cos[i] * im + w.twist_sin[i] * re, -shift);
   }
 }
 

@@ -61,6 +61,11 @@ class FourierTransform {
   void synthesize(const double* coefficients, double* samples);
   // Two channels at once: with half-wave sampling, one complex transform
   // for both (the real and imaginary parts); otherwise two synthesize calls.
+  // The channels may differ by orders of magnitude (a velocity in m/s and a
+  // force in N): the second is brought to the first's binary exponent before
+  // the transform and back after it, both exact, so that the round-off of
+  // the larger does not swamp the smaller and a change of units (a time
+  // unit of 1/128 s) changes no bit of either.
   void synthesizePair(const double* first, const double* second, double* first_samples,
                       double* second_samples);
   void project(const double* samples, double* coefficients);
