@@ -17,7 +17,7 @@ const std::pair<const char*, const char*> kFlags[] = {
     {"form", "--form"}, {"rho", "--rho"},
     {"from_hb", "--from-hb"},
     {"from", "--from"}, {"to", "--to"}, {"step", "--step"},
-    {"min_step", "--min-step"}, {"max_step", "--max-step"}, {"stability", "--stability"},
+    {"min_step", "--min-step"}, {"max_step", "--max-step"}, {"stability", "--stability"}, {"stability_method", "--stability-method"},
     {"dof", "--dof"}, {"coarse_points", "--coarse-points"}, {"max_peaks", "--max-peaks"},
     {"vary", "--vary"}, {"lhs", "--lhs"}, {"out", "--out"}, {"threads", "--threads"},
     // Phrases, replaced wherever they begin a word.

@@ -34,6 +34,7 @@ struct SolveArguments {
   std::string linear_algebra = "auto";                      // auto, dense or sparse
   std::string fallback = app::SolveOptions{}.fallback;
   bool stability = false;
+  std::string stability_method = "hill";
   AccuracyArguments accuracy;  // --error-estimate, --accuracy (solve only)
   RefineArguments refine;      // --refine shoot (solve only)
 };

@@ -67,6 +67,7 @@ app::SweepOptions sweepOptions(const SolveArguments& s, const SweepArguments& w)
   o.max_step = w.max_step;
   o.max_points = w.max_points;
   o.stability = s.stability;
+  o.stability_method = s.stability_method;
   o.error_estimate = s.accuracy.error_estimate;
   o.accuracy = s.accuracy.tolerance;
   o.max_harmonics = s.accuracy.max_harmonics;
@@ -89,6 +90,10 @@ class SweepProgress {
     app::SweepCallbacks out;
     out.point = [this](const CurvePoint& p, int index) { point(p, index); };
     out.checked = [this](const CurvePoint& p, int index) { checked(p, index); };
+    out.stability = [this](int done, int total) {
+      line_.update(total > 0 ? static_cast<double>(done) / total : -1.0,
+                   "stability " + std::to_string(done) + "/" + std::to_string(total));
+    };
     return out;
   }
   void finish(const Curve& curve) {

@@ -9,6 +9,7 @@
 #include "eqhb/orbits/piecewise_linear_flow.h"
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/scenes/scene.h"
+#include "eqhb/stability/curve_stability.h"
 #include "test_support.h"
 
 namespace eqhb {
@@ -73,6 +74,30 @@ TEST(MonodromyStability, RejectsUnsupportedLawsAndBadInput) {
   MonodromyStability monodromy(friction);
   EXPECT_THROW(monodromy.analyse(0.4, Eigen::VectorXd::Zero(3)), InputError);
   EXPECT_THROW(monodromy.analyse(-1.0, Eigen::VectorXd::Zero(3)), InputError);
+}
+
+// "auto" takes the monodromy where it applies (small structures with
+// supported laws), Hill elsewhere; an unknown method names its field.
+TEST(MonodromyStability, MethodChoice) {
+  HbModel friction = loadScene(test::problem("friction-1d.toml")).model;
+  const Eigen::VectorXd hb = test::harmonicBalance(friction);
+  HillOptions options;
+  options.method = "auto";
+  EXPECT_EQ(analyseStability(friction, hb, options).method, "monodromy");
+  options.method = "hill";
+  EXPECT_EQ(analyseStability(friction, hb, options).method, "hill");
+  const HbModel cubic = loadScene(test::problem("cubic.toml")).model;
+  options.method = "auto";
+  EXPECT_EQ(analyseStability(cubic, test::harmonicBalance(cubic), options).method, "hill");
+  options.method = "monodromy";
+  EXPECT_THROW(analyseStability(cubic, test::harmonicBalance(cubic), options), InputError);
+  options.method = "floquet";
+  try {
+    analyseStability(friction, hb, options);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("stability_method"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -84,8 +84,8 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
 def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, solver="dogleg",
           system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0,
           options=None, linear_algebra="auto", initial=None, cold_start="coarse", fallback="default",
-          from_harmonics=None, repeat=1, stability=False, error_estimate=False, accuracy=None, max_harmonics=320,
-          refine=None, restitution=0.0, refine_harmonics=None):
+          from_harmonics=None, repeat=1, stability=False, stability_method="hill", error_estimate=False,
+          accuracy=None, max_harmonics=320, refine=None, restitution=0.0, refine_harmonics=None):
     """One harmonic-balance solve, as `eqhb solve` runs it. Returns a dict
     with every key of `eqhb solve --json` (converged, termination, iterations,
     residual/jacobian evaluations, residual_norm, seconds, cold_start,
@@ -103,8 +103,10 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     form and rho apply to every law that has them. linear_algebra: "auto",
     "dense" or "sparse". repeat: solves timed (the median is "seconds").
 
-    On the answer: stability (Floquet multipliers by Hill's method: the
-    "stability" dict, as eqhb.stability), error_estimate (one more solve at
+    On the answer: stability (Floquet multipliers: the "stability" dict, as
+    eqhb.stability; stability_method "hill", "monodromy" (grounded Coulomb
+    1D and Signorini laws: the monodromy over the solution with saltation at
+    the switching instants) or "auto"), error_estimate (one more solve at
     2H: "error_estimate"), accuracy (a relative error in (0, 1): the cheapest
     H, doubling from `harmonics` or 5 up to max_harmonics, and unless rho is
     given the rho among each law's times 1, 0.1, 0.01, whose estimated error
@@ -116,6 +118,7 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
                          linear_algebra, cold_start, fallback))
     args.update(initial=_vector(initial, "initial"), from_harmonics=_integer(from_harmonics, "from_harmonics", True),
                 repeat=_integer(repeat, "repeat"), stability=_flag(stability, "stability"),
+                stability_method=_text(stability_method, "stability_method"),
                 error_estimate=_flag(error_estimate, "error_estimate"), accuracy=_real(accuracy, "accuracy", True),
                 max_harmonics=_integer(max_harmonics, "max_harmonics"),
                 refine=None if refine is None else _text(refine, "refine"), restitution=_real(restitution, "restitution"),
@@ -144,7 +147,8 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
 def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmonics=None, samples=None, form=None,
           rho=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
-          max_step=None, stability=False, error_estimate=False, accuracy=None, max_harmonics=320):
+          max_step=None, stability=False, stability_method="hill", error_estimate=False, accuracy=None,
+          max_harmonics=320):
     """A frequency-response curve by continuation in omega, as `eqhb sweep`
     runs it ("sequential" on a grid of `step`, by default a hundredth of the
     range, or "arclength", which passes turning points, from a scaled step
@@ -161,7 +165,8 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     (omega, termination, iterations, residual_evaluations,
     jacobian_evaluations, residual_norm, seconds), never rows of NaN.
 
-    On the points: stability (Hill's method at every converged point:
+    On the points: stability (stability_method at every converged point,
+    "hill", "monodromy" or "auto" as for solve:
     per point "stable", "spectral_radius", "multipliers" (the leading four,
     complex) and "bifurcation"; "bifurcations", a list of dicts omega, kind,
     point; the folds confirmed by the multipliers), error_estimate (one more
@@ -178,7 +183,8 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     args.update(start=_real(start, "start", True), stop=_real(stop, "stop", True), step=_real(step, "step", True),
                 method=_text(method, "method"), max_points=_integer(max_points, "max_points"),
                 min_step=_real(min_step, "min_step", True), max_step=_real(max_step, "max_step", True),
-                stability=_flag(stability, "stability"), error_estimate=_flag(error_estimate, "error_estimate"),
+                stability=_flag(stability, "stability"), stability_method=_text(stability_method, "stability_method"),
+                error_estimate=_flag(error_estimate, "error_estimate"),
                 accuracy=_real(accuracy, "accuracy", True), max_harmonics=_integer(max_harmonics, "max_harmonics"))
     return _sweep(_model(model), args)
 

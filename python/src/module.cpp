@@ -128,6 +128,7 @@ py::dict solve(const PyModel& m, const py::dict& args) {
   o.from_harmonics = args["from_harmonics"].cast<std::optional<int>>();
   o.repeat = args["repeat"].cast<int>();
   o.stability = args["stability"].cast<bool>();
+  o.stability_method = args["stability_method"].cast<std::string>();
   o.error_estimate = args["error_estimate"].cast<bool>();
   o.accuracy = args["accuracy"].cast<std::optional<double>>();
   o.max_harmonics = args["max_harmonics"].cast<int>();
@@ -194,6 +195,7 @@ py::dict sweep(const PyModel& m, const py::dict& args) {
   o.max_step = args["max_step"].cast<std::optional<double>>();
   o.max_points = args["max_points"].cast<int>();
   o.stability = args["stability"].cast<bool>();
+  o.stability_method = args["stability_method"].cast<std::string>();
   o.error_estimate = args["error_estimate"].cast<bool>();
   o.accuracy = args["accuracy"].cast<std::optional<double>>();
   o.max_harmonics = args["max_harmonics"].cast<int>();

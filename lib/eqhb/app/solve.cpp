@@ -11,6 +11,7 @@
 #include "eqhb/error.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/solvers/deadline.h"
+#include "eqhb/stability/curve_stability.h"
 
 namespace eqhb::app {
 
@@ -212,7 +213,11 @@ Solution solve(const SceneSettings& given_scene, const SolveOptions& given) {
   }
   s.summary = refined ? refinedSummary(s.reported, *s.refinement) : s.plain;
   s.linear_algebra = linearAlgebraOf(s.run);
-  if (o.stability && s.converged()) s.stability = hillStability(model, hb_answer);
+  if (o.stability && s.converged()) {
+    HillOptions stability;
+    stability.method = o.stability_method;
+    s.stability = analyseStability(model, hb_answer, stability);
+  }
   if (s.accuracy && s.accuracy->choice.estimate.refined_harmonics) {
     s.error_estimate = s.accuracy->choice.estimate;
   } else if (o.error_estimate && s.converged()) {

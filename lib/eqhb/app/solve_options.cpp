@@ -19,6 +19,8 @@ bool SolveOptions::isValid(std::string* why) const {
     return fail(why, "from_harmonics", std::to_string(*from_harmonics), "must be >= 1");
   if (initial.size() && !initial.allFinite()) return fail(why, "initial", "(vector)", "must be finite");
   if (repeat < 1 || repeat > 100000) return fail(why, "repeat", std::to_string(repeat), "must be in [1, 100000]");
+  if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "auto")
+    return fail(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
   if (!refine.empty() && refine != "shoot") return fail(why, "refine", "\"" + refine + "\"", "must be \"shoot\" or empty");
   if (refine_harmonics < 0)
     return fail(why, "refine_harmonics", std::to_string(refine_harmonics), "must be >= 0");

@@ -31,7 +31,8 @@ struct SolveOptions {
   Eigen::VectorXd initial;
   int repeat = 1;  // solves timed (the median reported), in [1, 100000]
 
-  bool stability = false;       // Floquet multipliers by Hill's method (converged solutions)
+  bool stability = false;       // Floquet multipliers (converged solutions)
+  std::string stability_method = "hill";  // hill, monodromy or auto (HillOptions::method)
   bool error_estimate = false;  // the relative error of max|x| by one more solve at 2H
   // The cheapest H (and ρ unless the scene's settings fix one) whose
   // estimated relative error of max|x| is <= accuracy, in (0, 1).

@@ -47,6 +47,8 @@ bool SweepOptions::isValid(std::string* why) const {
   if (step && !positive(*step)) return fail(why, "step", formatNumber(*step), "must be finite and > 0");
   if (min_step && !positive(*min_step)) return fail(why, "min_step", formatNumber(*min_step), "must be finite and > 0");
   if (max_step && !positive(*max_step)) return fail(why, "max_step", formatNumber(*max_step), "must be finite and > 0");
+  if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "auto")
+    return fail(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
   if (accuracy && stability)
     return fail(why, "stability", "(set)", "not with accuracy: the points of such a curve differ in H");
   return solver_options.isValid(why);
@@ -112,7 +114,11 @@ SweepResult sweep(const SweepPlan& plan, const SweepCallbacks& callbacks) {
                      : sweepSequential(scene_model, *solver, o.solver_options, continuation, callbacks.point);
   result.model = scene_model;
   if (o.error_estimate) estimateCurveErrors(scene_model, *solver, o.solver_options, o.condensed, &result.curve);
-  if (o.stability) result.stability = analyseCurveStability(scene_model, result.curve);
+  if (o.stability) {
+    HillOptions stability;
+    stability.method = o.stability_method;
+    result.stability = analyseCurveStability(scene_model, result.curve, stability, callbacks.stability);
+  }
   return result;
 }
 

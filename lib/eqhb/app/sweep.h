@@ -36,7 +36,9 @@ struct SweepOptions {
   std::optional<double> min_step, max_step;
   int max_points = 20000;
 
-  bool stability = false;       // Floquet multipliers by Hill's method at every converged point
+  bool stability = false;       // Floquet multipliers at every converged point
+  // hill, monodromy or auto (HillOptions::method).
+  std::string stability_method = "hill";
   bool error_estimate = false;  // per converged point, the relative error of max|x| by one more solve at 2H
   // Every point's estimated relative error of max|x| <= accuracy, in (0, 1):
   // H (and ρ unless the scene settings fix one) chosen at the first point,
@@ -70,6 +72,7 @@ SweepPlan planSweep(const SceneSettings& scene, const SweepOptions& options);
 struct SweepCallbacks {
   Progress point;
   Progress checked;
+  std::function<void(int done, int total)> stability;  // after each point's stability
 };
 
 struct SweepResult {

@@ -95,6 +95,10 @@ nlohmann::json stabilityJson(const HillResult& hill) {
                         {"pencil_size", hill.pencil_size},
                         {"eigensolver", hill.sparse ? "sparse" : "dense"},
                         {"seconds", hill.seconds}};
+  if (hill.method != "hill") {  // Hill's outputs keep their keys
+    out["method"] = hill.method;
+    out["eigensolver"] = "monodromy";
+  }
   if (!hill.failure.empty()) out["failure"] = hill.failure;
   return out;
 }

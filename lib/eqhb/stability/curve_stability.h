@@ -11,6 +11,7 @@
 // crossing of +1 is reported as a fold.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,13 @@ struct CurveStability {
 // changed per point), sets each point's `stable` and `bifurcation`, and
 // replaces the curve's folds by the confirmed ones when the curve has
 // arclength tangents.
-CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const HillOptions& options = {});
+// options.method chooses Hill's method or the monodromy
+// (monodromy_stability.h); `progress`, if set, is told of each point.
+CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const HillOptions& options = {},
+                                     const std::function<void(int done, int total)>& progress = {});
+
+// One solution's stability by options.method: throws InputError
+// (stability_method) for "monodromy" on laws it does not support.
+HillResult analyseStability(const HbModel& model, const Eigen::VectorXd& full, const HillOptions& options = {});
 
 }  // namespace eqhb

@@ -56,6 +56,10 @@ struct HillOptions {
   // A multiplier counts as on the unit circle within this margin; stable
   // means spectral radius < 1 + unit_tolerance.
   double unit_tolerance = 1e-6;
+  // "hill" (this file), "monodromy" (monodromy_stability.h: only on the
+  // laws it supports) or "auto" (the monodromy where it applies on up to 20
+  // DOFs, else Hill; curve_stability.h).
+  std::string method = "hill";
   // Throws InputError naming the field.
   void validate() const;
 };

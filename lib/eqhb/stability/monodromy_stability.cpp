@@ -87,6 +87,13 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
     transform.synthesize(rate.data(), v_.col(l).data());
     transform.synthesize(full.data() + (n_ + model_.componentIndex(l, 0)) * nb, r_.col(l).data());
   }
+  x_.resize(samples, n_);
+  xdot_.resize(samples, n_);
+  for (int i = 0; i < n_; ++i) {
+    transform.synthesize(full.data() + i * nb, x_.col(i).data());
+    transform.differentiate(full.data() + i * nb, model_.omega, rate.data());
+    transform.synthesize(rate.data(), xdot_.col(i).data());
+  }
   states_.assign(samples, std::vector<State>(laws, State::kStick));
   for (int k = 0; k < samples; ++k)
     for (int l = 0; l < laws; ++l) {
@@ -113,12 +120,16 @@ double MonodromyStability::holdingForce(int l, int k, const Eigen::VectorXd& ful
   const double t = k * 2.0 * M_PI / model_.omega / model_.samples;
   std::vector<State> states = states_[k];
   states[l] = State::kStick;
-  Eigen::VectorXd y = orbits::harmonicState(model_, full, t).head(2 * n_);
+  Eigen::VectorXd y(2 * n_);
+  y.head(n_) = x_.row(k).transpose();
+  y.tail(n_) = xdot_.row(k).transpose();
   y[n_ + dofs_[l]] = 0.0;
   std::vector<int> dofs;
   for (size_t m = 0; m < states.size(); ++m)
     if (held(states[m])) dofs.push_back(dofs_[m]);
-  const Eigen::VectorXd lambda = orbits::holdDofs(mass_inverse_, dofs).multiplier * freeForce(states, t, y);
+  auto found = multipliers_.find(dofs);
+  if (found == multipliers_.end()) found = multipliers_.emplace(dofs, orbits::holdDofs(mass_inverse_, dofs).multiplier).first;
+  const Eigen::VectorXd lambda = found->second * freeForce(states, t, y);
   return lambda[std::find(dofs.begin(), dofs.end(), dofs_[l]) - dofs.begin()];
 }
 

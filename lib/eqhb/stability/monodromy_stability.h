@@ -88,6 +88,8 @@ class MonodromyStability {
   std::vector<double> limit_, rho_, gap_;          // per law: μN (friction), ρ in trial form, g0 (contact)
   std::vector<bool> contact_;
   Eigen::MatrixXd u_, v_, r_;                      // N x laws: displacement, velocity, force samples
+  Eigen::MatrixXd x_, xdot_;                       // N x n: the structure's samples
+  std::map<std::vector<int>, Eigen::MatrixXd> multipliers_;  // λ_G = multiplier · b by held DOFs
   std::vector<std::vector<State>> states_;         // per sample, per law
   std::vector<Switch> switches_;                   // increasing in time, within [0, T)
   std::map<std::vector<bool>, Eigen::MatrixXd> generators_;    // A_G by held DOFs
