@@ -119,7 +119,7 @@ void reportFailures(const app::Solution& s) {
   if (!result.converged() && !s.run.fallback.attempts.empty())
     std::cerr << "eqhb: fallbacks tried: " << describeFallbacks(s.run.fallback) << "\n";
   if (!result.converged())
-    for (const std::string& advice : rhoScaleAdvice(s.model())) std::cerr << "eqhb: " << advice << "\n";
+    for (const std::string& advice : scaleAdvice(s.model())) std::cerr << "eqhb: " << advice << "\n";
   if (s.accuracy && !s.accuracy->choice.reached) {
     std::cerr << "eqhb: --accuracy " << s.accuracy->tolerance
               << " not reached: " << withFlagNames(s.accuracy->choice.failure) << "\n";

@@ -223,9 +223,9 @@ TEST(ConvergenceScales, ScaleFreeRhoIsTheSameInAnyTimeUnit) {
 // A given ρ far from the scale-free one is named when asked why a solve failed.
 TEST(ConvergenceScales, BadlyScaledRhoIsNamed) {
   const Scene fine = loadScene(test::problem("friction-1d.toml"));
-  EXPECT_TRUE(rhoScaleAdvice(fine.model).empty());
+  EXPECT_TRUE(scaleAdvice(fine.model).empty());
   const Scene off = loadScene(test::problem("friction-1d.toml"), {"law[0].rho=1e-9"});
-  const auto advice = rhoScaleAdvice(off.model);
+  const auto advice = scaleAdvice(off.model);
   ASSERT_EQ(advice.size(), 1u);
   EXPECT_NE(advice[0].find("law[0] (coulomb-1d): rho = 1e-09"), std::string::npos) << advice[0];
   EXPECT_NE(advice[0].find("leave rho unset"), std::string::npos) << advice[0];

@@ -1,6 +1,6 @@
 # Verdicts to trust: model validation, convergence and invariants in the
 # problem's own scales, shipped scenes on their defaults, bounded runs.
-foreach(name hb_model_test convergence_scales_test unit_systems_test invariant_scales_test shipped_scenes_test)
+foreach(name hb_model_test convergence_scales_test unit_systems_test scale_free_width_test invariant_scales_test shipped_scenes_test)
   add_executable(${name} ${name}.cpp)
   target_link_libraries(${name} PRIVATE eqhb_test_support)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)

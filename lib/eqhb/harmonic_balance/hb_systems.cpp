@@ -52,9 +52,13 @@ std::string HbSystem::violatedPhysics(const Eigen::Ref<const Eigen::VectorXd>& z
   const PhysicalScales physical = physicalScales(model_, responseAtLaws());
   for (int l = 0; l < laws_.lawCount(); ++l)
     for (const auto& [name, value] : laws_.violations(l, physical))
-      if (name == "dissipation_deficit" && !(value < kGrossDissipationDeficit))
+      if (name == "dissipation_deficit" && !(value < kGrossDissipationDeficit)) {
+        // A regularised form's width far off the contact's slip velocities is the usual cause.
+        const std::string width = widthScaleAdvice(model_, l);
         return "law[" + std::to_string(l) + "] (" + model_.laws[l].law->type() + ") dissipates too little: " +
-               name + " = " + formatNumber(value) + " (0 when the friction force opposes the slip at its limit)";
+               name + " = " + formatNumber(value) + " (0 when the friction force opposes the slip at its limit)" +
+               (width.empty() ? "" : "; " + width);
+      }
   return "";
 }
 

@@ -152,7 +152,7 @@ std::vector<std::optional<LawScales>> lawScales(const HbModel& model, const std:
   for (int l : laws) {
     double largest = 0.0;
     for (int a = 0; a < model.laws[l].attachment.dimension(); ++a) largest = std::max(largest, compliance[next++]);
-    if (largest > 0.0 && std::isfinite(largest)) out.push_back(LawScales{model.omega, largest});
+    if (largest > 0.0 && std::isfinite(largest)) out.push_back(LawScales{model.omega, largest, model.samples});
     else out.push_back(std::nullopt);
   }
   return out;
@@ -180,20 +180,46 @@ HbModel withScaleFreeRhos(HbModel model) { return scaleFreeRhos(std::move(model)
 
 HbModel withStaticScaleFreeRhos(HbModel model) { return scaleFreeRhos(std::move(model), true); }
 
-std::vector<std::string> rhoScaleAdvice(const HbModel& scene_model) {
-  const HbModel model = withScaleFreeRhos(scene_model);  // the ρ a system would use
-  std::vector<int> with_rho;
+namespace {
+std::string widthSentence(const HbModel& model, int l, const LawScales& scales) {
+  const auto width = model.laws[l].law->compareWidth(scales);
+  if (!width) return "";
+  const double ratio = width->in_use / width->scale_free;
+  if (ratio <= kWidthMisscale && ratio >= 1.0 / kWidthMisscale) return "";
+  return "law[" + std::to_string(l) + "] (" + model.laws[l].law->type() + "): " + width->key + " = " +
+         formatNumber(width->in_use) + " is " + formatNumber(ratio) + " times the scale-free " + width->key + " = " +
+         formatNumber(width->scale_free) + " of this contact at omega = " + formatNumber(model.omega) +
+         " (a transition of max(1/100, 5 sample steps) of its slip velocity scale muN omega |G|); a width this far from it "
+         "can make the regularised friction a damper or too stiff to converge: leave " + width->key +
+         " unset (scale-free)";
+}
+}  // namespace
+
+std::string widthScaleAdvice(const HbModel& scene_model, int l) {
+  const HbModel model = withScaleFreeRhos(scene_model);  // the widths a system would use
+  if (!model.laws[l].law->compareWidth(LawScales{})) return "";
+  const auto scales = lawScales(model, {l});
+  return scales.front() ? widthSentence(model, l, *scales.front()) : "";
+}
+
+std::vector<std::string> scaleAdvice(const HbModel& scene_model) {
+  const HbModel model = withScaleFreeRhos(scene_model);  // the ρ and widths a system would use
+  std::vector<int> scaled;
   for (int l = 0; l < static_cast<int>(model.laws.size()); ++l)
-    if (model.laws[l].law->compareRho(LawScales{})) with_rho.push_back(l);
+    if (model.laws[l].law->compareRho(LawScales{}) || model.laws[l].law->compareWidth(LawScales{}))
+      scaled.push_back(l);
   std::vector<std::string> out;
-  if (with_rho.empty()) return out;
-  const auto scales = lawScales(model, with_rho);
-  for (size_t k = 0; k < with_rho.size(); ++k) {
+  if (scaled.empty()) return out;
+  const auto scales = lawScales(model, scaled);
+  for (size_t k = 0; k < scaled.size(); ++k) {
     if (!scales[k]) continue;
-    const auto rho = model.laws[with_rho[k]].law->compareRho(*scales[k]);
+    const Law& law = *model.laws[scaled[k]].law;
+    if (const std::string width = widthSentence(model, scaled[k], *scales[k]); !width.empty()) out.push_back(width);
+    const auto rho = law.compareRho(*scales[k]);
+    if (!rho) continue;
     const double ratio = rho->in_use / rho->scale_free;
     if (ratio <= kRhoMisscale && ratio >= 1.0 / kRhoMisscale) continue;
-    out.push_back("law[" + std::to_string(with_rho[k]) + "] (" + model.laws[with_rho[k]].law->type() +
+    out.push_back("law[" + std::to_string(scaled[k]) + "] (" + law.type() +
                   "): rho = " + formatNumber(rho->in_use) + " is " + formatNumber(ratio) +
                   " times the scale-free rho = " + formatNumber(rho->scale_free) +
                   " of this structure at omega = " + formatNumber(model.omega) +

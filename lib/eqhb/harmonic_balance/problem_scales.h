@@ -30,7 +30,7 @@ PhysicalScales physicalScales(const HbModel& model, double response);
 // √(a² + b²)), x_lin = A_k⁻¹ f_k; one dense or sparse factorisation per harmonic.
 double linearResponseAtLaws(const HbModel& model, bool sparse);
 
-// The model with every scale-free ρ set (Law::withScaleFreeRho) from the
+// The model with every scale-free ρ and width set (Law::withScaleFreeRho) from the
 // driving-point compliance of the structure at each law's DOFs (the largest
 // over them): the smaller of the static |(K⁻¹)_ii| and the dynamic
 // |(A₁⁻¹)_ii| at the fundamental, by one factorisation of K and A₁ and one
@@ -43,10 +43,16 @@ HbModel withScaleFreeRhos(HbModel model);
 // where K is singular.
 HbModel withStaticScaleFreeRhos(HbModel model);
 
-// Why a solve may have failed because of ρ: for every law whose ρ in use is
-// more than kRhoMisscale away from its scale-free value (either way), one
-// sentence naming the law, both values and what to change. Empty otherwise.
+// Why a solve may have failed because of a badly scaled constant: for every
+// law whose ρ in use is more than kRhoMisscale away from its scale-free
+// value (either way), or whose regularisation width is more than
+// kWidthMisscale away from its own (law.h), one sentence naming the law,
+// both values and what to change. Empty otherwise.
 inline constexpr double kRhoMisscale = 1e3;
-std::vector<std::string> rhoScaleAdvice(const HbModel& model);
+std::vector<std::string> scaleAdvice(const HbModel& model);
+
+// The width sentence of scaleAdvice for law `l` alone; empty when its width
+// is within kWidthMisscale of the scale-free one or it has none.
+std::string widthScaleAdvice(const HbModel& model, int l);
 
 }  // namespace eqhb

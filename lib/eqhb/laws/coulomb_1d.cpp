@@ -27,13 +27,23 @@ std::string coulombFormName(CoulombForm form) {
   return "?";
 }
 
-Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, RhoSetting rho, double beta)
-    : mu_n_(mu_n), form_(form), rho_setting_(rho), rho_(rho.value), beta_(beta) {
+namespace {
+// The scale-free slope: 1/β = the scale-free width (law.h).
+double scaleFreeBeta(const LawScales& scales, double mu_n) { return 1.0 / scaleFreeVelocityWidth(scales, mu_n); }
+}  // namespace
+
+Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, RhoSetting rho, std::optional<double> beta)
+    : mu_n_(mu_n),
+      form_(form),
+      rho_setting_(rho),
+      rho_(rho.value),
+      beta_scale_free_(!beta),
+      beta_(beta ? *beta : scaleFreeBeta(LawScales{}, mu_n)) {
   if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
     throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
   if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
-  if (!(beta > 0.0) || !std::isfinite(beta))
-    throwInputError("beta", formatNumber(beta), "regularisation slope must be finite and > 0");
+  if (!(beta_ > 0.0) || !std::isfinite(beta_))
+    throwInputError("beta", formatNumber(beta_), "regularisation slope must be finite and > 0");
 }
 
 double reversingStepForce(double v_start, double u_free, double delassus, double limit, double projected) {
@@ -144,11 +154,18 @@ std::optional<Law::RhoComparison> Coulomb1D::compareRho(const LawScales& scales)
   return RhoComparison{rho_, kScaleFreeRhoWeight * (form_ == CoulombForm::kMinMax ? mobility : 1.0 / mobility)};
 }
 
+std::optional<WidthComparison> Coulomb1D::compareWidth(const LawScales& scales) const {
+  if (!regularised()) return std::nullopt;
+  return WidthComparison{"beta", beta_, scaleFreeBeta(scales, mu_n_)};
+}
+
 std::shared_ptr<Law> Coulomb1D::withScaleFreeRho(const LawScales& scales) const {
   const auto rho = compareRho(scales);
-  if (!rho_setting_.scale_free || !rho) return nullptr;
+  const bool set_rho = rho_setting_.scale_free && rho, set_beta = beta_scale_free_ && regularised();
+  if (!set_rho && !set_beta) return nullptr;
   auto copy = std::make_shared<Coulomb1D>(*this);
-  copy->rho_ = rho_setting_.factor * rho->scale_free;
+  if (set_rho) copy->rho_ = rho_setting_.factor * rho->scale_free;
+  if (set_beta) copy->beta_ = scaleFreeBeta(scales, mu_n_);
   return copy;
 }
 

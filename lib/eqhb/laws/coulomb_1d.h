@@ -5,11 +5,14 @@
 // Regularised, single-valued forms (comparison only):
 //   tanh:       Ψ = r + μN tanh(β v)
 //   piecewise:  Ψ = r + μN clip(β v, −1, 1)
+// β (1/velocity) is scale-free unless given: 1/β = the scale-free width of
+// the contact (law.h, scaleFreeVelocityWidth).
 // Weak derivatives take, at a tie (argument exactly on a kink), the branch
 // that is constant: min(0, a) and max(0, b) count as 0, the projection as
 // inside, clip as saturated.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "eqhb/laws/law.h"
@@ -50,8 +53,10 @@ double reversingStepForce(double v_start, double u_free, double delassus, double
 
 class Coulomb1D : public Law {
  public:
-  // Throws InputError: μN >= 0, ρ > 0, β > 0, all finite.
-  Coulomb1D(double mu_n, CoulombForm form, RhoSetting rho = {}, double beta = 100.0);
+  // Throws InputError: μN >= 0, ρ > 0, β > 0, all finite. Without β the
+  // regularised forms take the scale-free one (at unit scales until a
+  // system sets it, withScaleFreeRho).
+  Coulomb1D(double mu_n, CoulombForm form, RhoSetting rho = {}, std::optional<double> beta = std::nullopt);
 
   std::string type() const override { return "coulomb-1d"; }
   int dimension() const override { return 1; }
@@ -70,20 +75,25 @@ class Coulomb1D : public Law {
   // slide; a reversal inside the step holds the mean force
   // (reversingStepForce).
   LocalVector solveStep(const StepProblem& step) const override;
-  // minmax: ρ = ω|G|; projection: ρ = 1/(ω|G|); tanh and piecewise have no ρ.
+  // minmax: ρ = ω|G|; projection: ρ = 1/(ω|G|); tanh and piecewise have no
+  // ρ but a slope β.
   std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const override;
   std::optional<RhoComparison> compareRho(const LawScales& scales) const override;
+  std::optional<WidthComparison> compareWidth(const LawScales& scales) const override;
 
   CoulombForm form() const { return form_; }
   double muN() const { return mu_n_; }
   double rho() const { return rho_; }
+  double beta() const { return beta_; }
 
  private:
   double mu_n_;
   CoulombForm form_;
   RhoSetting rho_setting_;
   double rho_;
+  bool beta_scale_free_;  // no β given: set from the scales (regularised forms)
   double beta_;
+  bool regularised() const { return form_ == CoulombForm::kTanh || form_ == CoulombForm::kPiecewise; }
 };
 
 }  // namespace eqhb

@@ -28,15 +28,23 @@ std::string coulomb2DFormName(Coulomb2DForm form) {
   return "?";
 }
 
-Coulomb2D::Coulomb2D(double mu_n, Coulomb2DForm form, RhoSetting rho, double epsilon, double alpha)
-    : mu_n_(mu_n), form_(form), rho_setting_(rho), rho_(rho.value), epsilon_(epsilon), alpha_(alpha) {
+Coulomb2D::Coulomb2D(double mu_n, Coulomb2DForm form, RhoSetting rho, std::optional<double> epsilon,
+                     std::optional<double> alpha)
+    : mu_n_(mu_n),
+      form_(form),
+      rho_setting_(rho),
+      rho_(rho.value),
+      width_scale_free_(form == Coulomb2DForm::kSmoothed ? !epsilon : form == Coulomb2DForm::kTanh && !alpha) {
+  const double unit = scaleFreeWidth(LawScales{});  // the form's own width, at unit scales
+  epsilon_ = epsilon ? *epsilon : form == Coulomb2DForm::kSmoothed ? unit : 1e-4;
+  alpha_ = alpha ? *alpha : form == Coulomb2DForm::kTanh ? unit : 1.0;
   if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
     throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
   if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
-  if (!(epsilon > 0.0) || !std::isfinite(epsilon))
-    throwInputError("epsilon", formatNumber(epsilon), "smoothing must be finite and > 0");
-  if (!(alpha > 0.0) || !std::isfinite(alpha))
-    throwInputError("alpha", formatNumber(alpha), "tanh slope must be finite and > 0");
+  if (!(epsilon_ > 0.0) || !std::isfinite(epsilon_))
+    throwInputError("epsilon", formatNumber(epsilon_), "smoothing must be finite and > 0");
+  if (!(alpha_ > 0.0) || !std::isfinite(alpha_))
+    throwInputError("alpha", formatNumber(alpha_), "tanh slope must be finite and > 0");
 }
 
 void Coulomb2D::evaluate(LawSamples& s, bool with_derivatives) const {
@@ -149,11 +157,25 @@ std::optional<Law::RhoComparison> Coulomb2D::compareRho(const LawScales& scales)
   return RhoComparison{rho_, kScaleFreeRhoWeight / scales.mobility()};
 }
 
+double Coulomb2D::scaleFreeWidth(const LawScales& scales) const {
+  if (form_ == Coulomb2DForm::kTanh) return 1.0 / scaleFreeVelocityWidth(scales, mu_n_);
+  const double rounding = kScaleFreeWidthFraction * mu_n_;  // smoothed: √ε, a force
+  return rounding > 0.0 && std::isfinite(rounding) ? rounding * rounding : 1e-4;  // μN = 0: immaterial
+}
+
+std::optional<WidthComparison> Coulomb2D::compareWidth(const LawScales& scales) const {
+  if (form_ == Coulomb2DForm::kSmoothed) return WidthComparison{"epsilon", epsilon_, scaleFreeWidth(scales)};
+  if (form_ == Coulomb2DForm::kTanh) return WidthComparison{"alpha", alpha_, scaleFreeWidth(scales)};
+  return std::nullopt;
+}
+
 std::shared_ptr<Law> Coulomb2D::withScaleFreeRho(const LawScales& scales) const {
   const auto rho = compareRho(scales);
-  if (!rho_setting_.scale_free || !rho) return nullptr;
+  const bool set_rho = rho_setting_.scale_free && rho;
+  if (!set_rho && !width_scale_free_) return nullptr;
   auto copy = std::make_shared<Coulomb2D>(*this);
-  copy->rho_ = rho_setting_.factor * rho->scale_free;
+  if (set_rho) copy->rho_ = rho_setting_.factor * rho->scale_free;
+  if (width_scale_free_) (form_ == Coulomb2DForm::kTanh ? copy->alpha_ : copy->epsilon_) = scaleFreeWidth(scales);
   return copy;
 }
 

@@ -20,4 +20,6 @@ std::shared_ptr<Law> Law::withScaleFreeRho(const LawScales&) const { return null
 
 std::optional<Law::RhoComparison> Law::compareRho(const LawScales&) const { return std::nullopt; }
 
+std::optional<WidthComparison> Law::compareWidth(const LawScales&) const { return std::nullopt; }
+
 }  // namespace eqhb

@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -63,6 +64,7 @@ struct PhysicalScales {
 struct LawScales {
   double omega = 1.0;       // rad per unit time, > 0
   double compliance = 1.0;  // |G_ii(ω)|, > 0 and finite
+  int samples = 0;          // N, time samples per period (0: not known)
   double mobility() const { return omega * compliance; }
 };
 // The balance above, times this weight on ρ: the contact stiffens the
@@ -90,6 +92,48 @@ struct RhoSetting {
   // The name of the scene key that set it, for messages.
   const char* field() const { return scale_free ? "rho_factor" : "rho"; }
 };
+
+// A regularised friction form (tanh, a ramp, a rounded norm) replaces the
+// jump of the force at zero slip by a transition of some width. That width
+// is a velocity and means nothing in itself: 0.01 is sharp for a mass that
+// slides at 1 and a viscous damper for a steel beam sliding at 1e-6 m/s.
+// Unless the scene gives it, it is set from the contact's own velocity scale
+//   V_c = L ω|G|,
+// the slip velocity that the force limit L drives through the structure's
+// mobility at the contact (LawScales; the slip amplitudes of friction-1d
+// and NLvib's cantilever are 2 and 3 times it), as the larger of
+//   kScaleFreeWidthFraction · V_c       sharp against any slip of that size;
+//   kWidthSampleSteps · (2π/N) · V_c    what N samples resolve: near a
+//                                       reversal v moves by about 2πV_c/N
+//                                       from one sample to the next.
+// A narrower transition is a jump between samples, which stalls the solver
+// without making the answer closer to Coulomb's (the cantilever at N = 128:
+// 1/100 of V_c not_progressing, 5 steps converged within 0.9 % of the exact
+// form's max|x| at the contact; friction-1d at N = 1024: within 1.3 %).
+inline constexpr double kScaleFreeWidthFraction = 1e-2;
+inline constexpr double kWidthSampleSteps = 5.0;
+// V_c for force limit L, or 1 (the absolute measure) where it is not > 0
+// and finite (L = 0: a law that applies no force, whose width is immaterial).
+inline double contactVelocityScale(const LawScales& scales, double force_limit) {
+  const double v = force_limit * scales.mobility();
+  return v > 0.0 && std::isfinite(v) ? v : 1.0;
+}
+// The scale-free width (a velocity) of a regularised form with force limit L.
+inline double scaleFreeVelocityWidth(const LawScales& scales, double force_limit) {
+  const double resolved = scales.samples > 0 ? kWidthSampleSteps * 2.0 * M_PI / scales.samples : 0.0;
+  return std::max(kScaleFreeWidthFraction, resolved) * contactVelocityScale(scales, force_limit);
+}
+// A width in use next to its scale-free value, both in the key's own terms
+// (a slope β, 1/velocity, or a width): what a failure blames on a badly
+// scaled width.
+struct WidthComparison {
+  const char* key;
+  double in_use, scale_free;
+};
+// Widths more than this factor from their scale-free value (either way) are
+// named when a solve fails (a slope 10 times too shallow already makes a
+// friction force a viscous damper over the slip it should limit).
+inline constexpr double kWidthMisscale = 10.0;
 
 // The least scale an invariant is measured against, as a fraction of the
 // problem's scale (the floor of compareWithReference's channels, 1e-3 of
@@ -149,8 +193,9 @@ class Law {
   // The exact (set-valued) law on one time step: the force λ over the step.
   // Regularised forms are ignored here: the reference is the exact law.
   virtual LocalVector solveStep(const StepProblem& step) const = 0;
-  // For a law whose ρ is scale-free (RhoSetting::scaleFree): a copy with ρ
-  // set from `scales`; nullptr when the law has no ρ or was given one.
+  // For a law whose ρ is scale-free (RhoSetting::scaleFree), or whose
+  // regularisation width is (none given): a copy with ρ and the width set
+  // from `scales`; nullptr when the law has neither or was given both.
   virtual std::shared_ptr<Law> withScaleFreeRho(const LawScales& scales) const;
   // The ρ in use next to the scale-free ρ (factor 1) for `scales`, of the
   // law's first equation: what a failure blames on a badly scaled ρ.
@@ -159,6 +204,11 @@ class Law {
     double in_use, scale_free;
   };
   virtual std::optional<RhoComparison> compareRho(const LawScales& scales) const;
+  // For a regularised form whose width the scene left unset: the width in
+  // use next to its scale-free value for `scales`
+  // (kScaleFreeWidthFraction); withScaleFreeRho sets it with ρ. nullopt for
+  // a law or form without a width.
+  virtual std::optional<WidthComparison> compareWidth(const LawScales& scales) const;
 };
 
 // A law attached to the structure through a map W (law_attachment.h): a DOF

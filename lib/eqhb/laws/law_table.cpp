@@ -12,6 +12,11 @@ double LawTable::positive(const std::string& key, std::optional<double> fallback
   return x;
 }
 
+std::optional<double> LawTable::optionalPositive(const std::string& key) {
+  if (!has(key)) return std::nullopt;
+  return positive(key, std::nullopt);
+}
+
 double LawTable::frictionLimit(const std::string& key) {
   const double x = number(key, std::nullopt);
   if (x < 0.0) fail(path(key), formatNumber(x), "friction limit must be >= 0");

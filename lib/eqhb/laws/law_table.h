@@ -49,6 +49,8 @@ class LawTable {
   // Reads shared by the laws, each with its message:
   // a number > 0 ("must be > 0");
   double positive(const std::string& key, std::optional<double> fallback);
+  // the same, nullopt when absent (a constant the law then sets scale-free);
+  std::optional<double> optionalPositive(const std::string& key);
   // a required friction limit >= 0 ("friction limit must be >= 0");
   double frictionLimit(const std::string& key);
   // ρ: `rho` in the problem's units or, without it, scale-free with

@@ -37,7 +37,7 @@ CurveRun curveRun(const app::SweepResult& r, const std::string& accuracy_option)
   run.condensed = r.plan.continuation.condensed;
   run.model = &r.model;
   run.stability = r.stability ? &*r.stability : nullptr;
-  if (!r.curve.complete) run.advice = rhoScaleAdvice(r.model);
+  if (!r.curve.complete) run.advice = scaleAdvice(r.model);
   run.error_estimate = r.plan.options.error_estimate;
   if (r.accurate) run.accuracy = accuracyLine(r, accuracy_option);
   return run;

@@ -11,11 +11,11 @@ LawEntry coulomb1DEntry() {
   e.forms = {"minmax", "projection", "tanh", "piecewise"};
   e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
                           {"form", "minmax", "minmax|projection|tanh|piecewise", "tanh, piecewise: regularised"},
-                          {"beta", "100", "> 0", "slope β of the regularised forms"}});
+                          {"beta", "", "> 0", "slope β (1/velocity) of the regularised forms; unset: scale-free (law.h)"}});
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
     const double mu_n = t.frictionLimit("muN");
     const RhoSetting rho = t.rho();
-    const double beta = t.positive("beta", 100.0);
+    const std::optional<double> beta = t.optionalPositive("beta");
     return std::make_shared<Coulomb1D>(mu_n, parseCoulombForm(t.form("minmax")), rho, beta);
   };
   e.examples = {{"coulomb1d-minmax", 1, "muN = 1.3\nform = \"minmax\"\nrho = 0.8"},

@@ -11,13 +11,13 @@ LawEntry coulomb2DEntry() {
   e.forms = {"max", "projection", "smoothed", "tanh"};
   e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
                           {"form", "max", "max|projection|smoothed|tanh", "smoothed, tanh: regularised"},
-                          {"epsilon", "1e-4", "> 0", "velocity of the smoothed form's rounding"},
-                          {"alpha", "100", "> 0", "slope of the tanh form"}});
+                          {"epsilon", "", "> 0", "the smoothed form's rounding ε (a force squared); unset: scale-free, (μN / 100)²"},
+                          {"alpha", "", "> 0", "slope α (1/velocity) of the tanh form; unset: scale-free (law.h)"}});
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
     const double mu_n = t.frictionLimit("muN");
     const RhoSetting rho = t.rho();
-    const double epsilon = t.positive("epsilon", 1e-4);
-    const double alpha = t.positive("alpha", 100.0);
+    const std::optional<double> epsilon = t.optionalPositive("epsilon");
+    const std::optional<double> alpha = t.optionalPositive("alpha");
     return std::make_shared<Coulomb2D>(mu_n, parseCoulomb2DForm(t.form("max")), rho, epsilon, alpha);
   };
   e.examples = {{"coulomb2d-max", 2, "muN = 1.5\nform = \"max\"\nrho = 0.7"},

@@ -1,0 +1,96 @@
+// A regularised friction form's width is made of the contact's own scales
+// (law.h, kScaleFreeWidthFraction): NLvib's cantilever with dry friction
+// (problems/cantilever-friction-si.toml) posed in SI units, in mm/N/ms and
+// nondimensional converges the same way in each, to the same answer. With
+// the old fixed slope β = 100 (1/velocity) its SI friction is a viscous
+// damper over slips of 1e-5 m/s: the solve ends law_violated and says that
+// β is the cause.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "eqhb/backends/registry.h"
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/scenes/scene.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+// A unit system: its length, time and force units in metres, seconds and newtons.
+struct Units {
+  const char* name;
+  double length, time, force;
+};
+
+// SI; mm/N/ms; the beam's length, the free first mode's period / 2π and the
+// friction limit as units.
+const std::vector<Units>& unitSystems() {
+  static const std::vector<Units> all = {
+      {"SI", 1.0, 1.0, 1.0}, {"mm/N/ms", 1e-3, 1e-3, 1.0}, {"nondimensional", 2.0, 1.0 / 123.34, 1.5}};
+  return all;
+}
+
+// The scene's parameters (SI, problems/cantilever-friction-si.toml) in `u`.
+std::vector<std::string> inUnits(const Units& u, std::vector<std::string> set) {
+  const double x = u.length, t = u.time, f = u.force;
+  const double mass = f * t * t / x;  // the unit of mass, in kg
+  auto put = [&](const std::string& key, double value) { set.push_back(key + "=" + formatNumber(value)); };
+  put("structure.E", 185e9 * x * x / f);
+  put("structure.I", 2.5e-5 / (x * x * x * x));
+  put("structure.rhoA", 234.9 * x / mass);
+  put("structure.L", 2.0 / x);
+  set.push_back("structure.rayleigh=[0.0, " + formatNumber(8.033e-5 / t) + "]");
+  put("forcing[0].cos", 0.2 / f);
+  put("law[0].muN", 1.5 / f);
+  put("harmonic_balance.omega", 230.0 * t);
+  return set;
+}
+
+struct Outcome {
+  SolverResult result;
+  double tip = 0.0;  // max|x| at the contact's DOF, in metres
+  double beta = 0.0;  // the slope in use, in s/m
+};
+
+Outcome solveIn(const Units& u, std::vector<std::string> set) {
+  const Scene scene = loadScene(test::problem("cantilever-friction-si.toml"), inUnits(u, std::move(set)));
+  auto system = makeHbSystem(scene.model, true);
+  Outcome o;
+  o.result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
+  const int dof = scene.model.laws[0].dofs[0];
+  o.tip = summarize(scene.model, system->fullCoefficients(o.result.solution)).displacements[dof].max_abs * u.length;
+  o.beta = static_cast<const Coulomb1D&>(*system->model().laws[0].law).beta() * u.time / u.length;
+  return o;
+}
+
+TEST(ScaleFreeWidth, RegularisedFrictionConvergesAlikeInAnyUnits) {
+  for (const char* form : {"tanh", "piecewise"}) {
+    const std::string set_form = "law[0].form=\"" + std::string(form) + "\"";
+    const Outcome si = solveIn(unitSystems()[0], {set_form});
+    ASSERT_TRUE(si.result.converged()) << form << ": " << si.result.summary();
+    for (const Units& u : unitSystems()) {
+      const Outcome o = solveIn(u, {set_form});
+      ASSERT_TRUE(o.result.converged()) << form << " in " << u.name << ": " << o.result.summary();
+      EXPECT_EQ(o.result.iterations, si.result.iterations) << form << " in " << u.name;
+      EXPECT_NEAR(o.tip, si.tip, 1e-8 * si.tip) << form << " in " << u.name;
+      EXPECT_NEAR(o.beta, si.beta, 1e-9 * si.beta) << form << " in " << u.name;
+    }
+  }
+}
+
+// The slope the fixed default was (β = 100 s/m in SI): the friction force
+// stays far below its limit while the contact slips, and the verdict names β.
+TEST(ScaleFreeWidth, AFixedSlopeInSiUnitsIsNamedAsTheCause) {
+  const Outcome o = solveIn(unitSystems()[0], {"law[0].form=\"tanh\"", "law[0].beta=100"});
+  EXPECT_EQ(o.result.termination, Termination::kLawViolated) << o.result.summary();
+  EXPECT_NE(o.result.native_message.find("beta = 100 is"), std::string::npos) << o.result.native_message;
+  EXPECT_NE(o.result.native_message.find("leave beta unset"), std::string::npos) << o.result.native_message;
+}
+
+}  // namespace
+}  // namespace eqhb
