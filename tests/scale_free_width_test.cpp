@@ -62,7 +62,7 @@ Outcome solveIn(const Units& u, std::vector<std::string> set) {
   auto system = makeHbSystem(scene.model, true);
   Outcome o;
   o.result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
-  const int dof = scene.model.laws[0].dofs[0];
+  const int dof = scene.model.laws[0].attachment.dof(0);
   o.tip = summarize(scene.model, system->fullCoefficients(o.result.solution)).displacements[dof].max_abs * u.length;
   o.beta = static_cast<const Coulomb1D&>(*system->model().laws[0].law).beta() * u.time / u.length;
   return o;

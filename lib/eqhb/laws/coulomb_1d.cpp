@@ -38,7 +38,8 @@ Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, RhoSetting rho, std::optiona
       rho_setting_(rho),
       rho_(rho.value),
       beta_scale_free_(!beta),
-      beta_(beta ? *beta : scaleFreeBeta(LawScales{}, mu_n)) {
+      beta_(beta ? *beta : scaleFreeBeta(LawScales{}, mu_n)),
+      creep_width_(1.0 / scaleFreeBeta(LawScales{}, mu_n)) {
   if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
     throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
   if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
@@ -69,12 +70,12 @@ LocalVector Coulomb1D::solveStep(const StepProblem& step) const {
 std::vector<std::pair<std::string, double>> Coulomb1D::violations(const LawSamples& s,
                                                                   const PhysicalScales& scales) const {
   return frictionViolations(s.velocity.col(0), s.force.col(0), Eigen::VectorXd::Constant(s.force.rows(), mu_n_),
-                            scales.velocity);
+                            scales.velocity, regularised() ? creep_width_ : 0.0);
 }
 
 std::vector<std::pair<std::string, double>> frictionViolations(
     const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r,
-    const Eigen::Ref<const Eigen::VectorXd>& limit, double velocity_scale) {
+    const Eigen::Ref<const Eigen::VectorXd>& limit, double velocity_scale, double creep) {
   // A fully stuck contact has v ≡ 0 up to rounding: against max|v| alone
   // every sample of that noise would count as sliding.
   const double v_scale = invariantScale(v.cwiseAbs().maxCoeff(), velocity_scale);
@@ -83,6 +84,7 @@ std::vector<std::pair<std::string, double>> frictionViolations(
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (limit[i] <= 0.0) continue;
     excess = std::max(excess, std::abs(r[i]) / limit[i] - 1.0);
+    if (std::abs(v[i]) <= creep) continue;  // a regularised form's stand-in for sticking
     if (std::abs(v[i]) > kSlidingFraction * v_scale)  // clearly sliding: r = −L sign(v)
       sliding = std::max(sliding, std::abs(r[i] + std::copysign(limit[i], v[i])) / limit[i]);
     deficit.add(r[i] * v[i], limit[i] * std::abs(v[i]));
@@ -161,11 +163,12 @@ std::optional<WidthComparison> Coulomb1D::compareWidth(const LawScales& scales) 
 
 std::shared_ptr<Law> Coulomb1D::withScaleFreeRho(const LawScales& scales) const {
   const auto rho = compareRho(scales);
-  const bool set_rho = rho_setting_.scale_free && rho, set_beta = beta_scale_free_ && regularised();
-  if (!set_rho && !set_beta) return nullptr;
+  const bool set_rho = rho_setting_.scale_free && rho;
+  if (!set_rho && !regularised()) return nullptr;
   auto copy = std::make_shared<Coulomb1D>(*this);
   if (set_rho) copy->rho_ = rho_setting_.factor * rho->scale_free;
-  if (set_beta) copy->beta_ = scaleFreeBeta(scales, mu_n_);
+  if (regularised()) copy->creep_width_ = 1.0 / scaleFreeBeta(scales, mu_n_);
+  if (regularised() && beta_scale_free_) copy->beta_ = scaleFreeBeta(scales, mu_n_);
   return copy;
 }
 

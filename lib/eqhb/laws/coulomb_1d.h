@@ -30,9 +30,11 @@ constexpr double kSlidingFraction = 0.05;
 
 // Checks shared by the 1D friction laws (limit per sample): see Coulomb1D.
 // `velocity_scale`: the problem's V, the floor of max|v| (Law::violations).
+// `creep`: slip speeds up to which a regularised form creeps where the exact
+// law sticks (its scale-free width); those samples are no slip to check.
 std::vector<std::pair<std::string, double>> frictionViolations(
     const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r,
-    const Eigen::Ref<const Eigen::VectorXd>& limit, double velocity_scale);
+    const Eigen::Ref<const Eigen::VectorXd>& limit, double velocity_scale, double creep = 0.0);
 std::string coulombFormName(CoulombForm form);
 
 // The force held over a time step (Law::solveStep) of a 1D friction contact
@@ -93,6 +95,11 @@ class Coulomb1D : public Law {
   double rho_;
   bool beta_scale_free_;  // no β given: set from the scales (regularised forms)
   double beta_;
+  // The scale-free width 1/β at the scales last set (withScaleFreeRho), also
+  // when β is given: a regularised form cannot stick, and below this speed
+  // its slip is the creep that stands for sticking, not a slip whose force
+  // must reach μN (violations).
+  double creep_width_;
   bool regularised() const { return form_ == CoulombForm::kTanh || form_ == CoulombForm::kPiecewise; }
 };
 

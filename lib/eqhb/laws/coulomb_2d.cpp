@@ -38,6 +38,7 @@ Coulomb2D::Coulomb2D(double mu_n, Coulomb2DForm form, RhoSetting rho, std::optio
   const double unit = scaleFreeWidth(LawScales{});  // the form's own width, at unit scales
   epsilon_ = epsilon ? *epsilon : form == Coulomb2DForm::kSmoothed ? unit : 1e-4;
   alpha_ = alpha ? *alpha : form == Coulomb2DForm::kTanh ? unit : 1.0;
+  if (form == Coulomb2DForm::kTanh) creep_width_ = 1.0 / unit;
   if (!(mu_n >= 0.0) || !std::isfinite(mu_n))
     throwInputError("muN", formatNumber(mu_n), "friction limit must be finite and >= 0");
   if (!(rho_ > 0.0) || !std::isfinite(rho_)) throwInputError(rho.field(), formatNumber(rho_), "must be finite and > 0");
@@ -142,6 +143,7 @@ std::vector<std::pair<std::string, double>> Coulomb2D::violations(const LawSampl
   for (Eigen::Index i = 0; i < s.force.rows(); ++i) {
     const Eigen::Vector2d r = s.force.row(i).transpose(), v = s.velocity.row(i).transpose();
     excess = std::max(excess, r.norm() / mu_n_ - 1.0);
+    if (v.norm() <= creep_width_) continue;  // tanh's stand-in for sticking
     if (v.norm() > kSlidingFraction * v_scale)  // clearly sliding: r = −μN v/‖v‖
       sliding = std::max(sliding, (r + mu_n_ * v / v.norm()).norm() / mu_n_);
     deficit.add(r.dot(v), mu_n_ * v.norm());
@@ -171,10 +173,11 @@ std::optional<WidthComparison> Coulomb2D::compareWidth(const LawScales& scales) 
 
 std::shared_ptr<Law> Coulomb2D::withScaleFreeRho(const LawScales& scales) const {
   const auto rho = compareRho(scales);
-  const bool set_rho = rho_setting_.scale_free && rho;
-  if (!set_rho && !width_scale_free_) return nullptr;
+  const bool set_rho = rho_setting_.scale_free && rho, tanh = form_ == Coulomb2DForm::kTanh;
+  if (!set_rho && !width_scale_free_ && !tanh) return nullptr;
   auto copy = std::make_shared<Coulomb2D>(*this);
   if (set_rho) copy->rho_ = rho_setting_.factor * rho->scale_free;
+  if (tanh) copy->creep_width_ = 1.0 / scaleFreeWidth(scales);
   if (width_scale_free_) (form_ == Coulomb2DForm::kTanh ? copy->alpha_ : copy->epsilon_) = scaleFreeWidth(scales);
   return copy;
 }

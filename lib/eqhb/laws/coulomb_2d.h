@@ -59,6 +59,9 @@ class Coulomb2D : public Law {
   double rho_;
   bool width_scale_free_;  // no ε or α given for the form: set from the scales
   double epsilon_, alpha_;
+  // tanh: the scale-free width 1/α at the scales last set, also when α is
+  // given; slower slip is the creep that stands for sticking (Coulomb1D).
+  double creep_width_ = 0.0;
   // The form's width (ε or α) from `scales` as the scale-free rule makes it.
   double scaleFreeWidth(const LawScales& scales) const;
 };
