@@ -152,7 +152,7 @@ std::vector<std::optional<LawScales>> lawScales(const HbModel& model, const std:
   for (int l : laws) {
     double largest = 0.0;
     for (int a = 0; a < model.laws[l].attachment.dimension(); ++a) largest = std::max(largest, compliance[next++]);
-    if (largest > 0.0 && std::isfinite(largest)) out.push_back(LawScales{model.omega, largest, model.samples});
+    if (largest > 0.0 && std::isfinite(largest)) out.push_back(LawScales{model.omega, largest});
     else out.push_back(std::nullopt);
   }
   return out;
@@ -189,7 +189,7 @@ std::string widthSentence(const HbModel& model, int l, const LawScales& scales) 
   return "law[" + std::to_string(l) + "] (" + model.laws[l].law->type() + "): " + width->key + " = " +
          formatNumber(width->in_use) + " is " + formatNumber(ratio) + " times the scale-free " + width->key + " = " +
          formatNumber(width->scale_free) + " of this contact at omega = " + formatNumber(model.omega) +
-         " (a transition of max(1/100, 5 sample steps) of its slip velocity scale muN omega |G|); a width this far from it "
+         " (a transition of 1/100 of its slip velocity scale muN omega |G|); a width this far from it "
          "can make the regularised friction a damper or too stiff to converge: leave " + width->key +
          " unset (scale-free)";
 }

@@ -64,7 +64,6 @@ struct PhysicalScales {
 struct LawScales {
   double omega = 1.0;       // rad per unit time, > 0
   double compliance = 1.0;  // |G_ii(ω)|, > 0 and finite
-  int samples = 0;          // N, time samples per period (0: not known)
   double mobility() const { return omega * compliance; }
 };
 // The balance above, times this weight on ρ: the contact stiffens the
@@ -101,17 +100,12 @@ struct RhoSetting {
 //   V_c = L ω|G|,
 // the slip velocity that the force limit L drives through the structure's
 // mobility at the contact (LawScales; the slip amplitudes of friction-1d
-// and NLvib's cantilever are 2 and 3 times it), as the larger of
-//   kScaleFreeWidthFraction · V_c       sharp against any slip of that size;
-//   kWidthSampleSteps · (2π/N) · V_c    what N samples resolve: near a
-//                                       reversal v moves by about 2πV_c/N
-//                                       from one sample to the next.
-// A narrower transition is a jump between samples, which stalls the solver
-// without making the answer closer to Coulomb's (the cantilever at N = 128:
-// 1/100 of V_c not_progressing, 5 steps converged within 0.9 % of the exact
-// form's max|x| at the contact; friction-1d at N = 1024: within 1.3 %).
+// and NLvib's cantilever are 2 and 3 times it), as kScaleFreeWidthFraction
+// of V_c: sharp against any slip of that size, and the old fixed default
+// (β = 100) wherever V_c is 1, as on friction-1d, whose answers it keeps.
+// Measured on the cantilever in SI (N = 128): both tanh and piecewise sweep
+// 101 of 101 points (β = 100 s/m: law_violated, a viscous damper).
 inline constexpr double kScaleFreeWidthFraction = 1e-2;
-inline constexpr double kWidthSampleSteps = 5.0;
 // V_c for force limit L, or 1 (the absolute measure) where it is not > 0
 // and finite (L = 0: a law that applies no force, whose width is immaterial).
 inline double contactVelocityScale(const LawScales& scales, double force_limit) {
@@ -120,8 +114,7 @@ inline double contactVelocityScale(const LawScales& scales, double force_limit) 
 }
 // The scale-free width (a velocity) of a regularised form with force limit L.
 inline double scaleFreeVelocityWidth(const LawScales& scales, double force_limit) {
-  const double resolved = scales.samples > 0 ? kWidthSampleSteps * 2.0 * M_PI / scales.samples : 0.0;
-  return std::max(kScaleFreeWidthFraction, resolved) * contactVelocityScale(scales, force_limit);
+  return kScaleFreeWidthFraction * contactVelocityScale(scales, force_limit);
 }
 // A width in use next to its scale-free value, both in the key's own terms
 // (a slope β, 1/velocity, or a width): what a failure blames on a badly
