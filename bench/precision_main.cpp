@@ -93,6 +93,7 @@ int main(int argc, char** argv) {
       {dir + "/friction-1d.toml", 0.55},  {dir + "/coulomb-oscillator.toml", 0.6},
       {dir + "/friction-2d.toml", 0.1},   {dir + "/friction-2d-sliding.toml", 0.6},
       {dir + "/stribeck.toml", 0.4},      {dir + "/cubic.toml", 0.5},
+      {dir + "/jenkins-1d.toml", 0.4},
       {dir + "/contact.toml", 0.5, 1.0}};
   const std::vector<int> harmonics =
       quick ? std::vector<int>{5, 10, 20} : std::vector<int>{5, 7, 10, 14, 20, 28, 40, 56, 80};

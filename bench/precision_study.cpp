@@ -33,10 +33,18 @@ bool exactForm(const std::string& form) {
 
 bool takesRho(const HbModel& model) { return lawEntry(*model.laws[0].law).takesRho(); }
 
+// The curve's form "aft" stands for the alternating frequency–time
+// formulation of the laws that have it (LawEntry::parse_aft).
+constexpr const char* kAftForm = "aft";
+
 Scene load(const PrecisionScene& scene, const std::string& form, std::optional<double> rho) {
   std::vector<std::string> overrides = {"harmonic_balance.omega=" + reportNumber(scene.omega, 17)};
   const Scene plain = loadScene(scene.file, overrides);
-  if (!form.empty())
+  if (form == kAftForm)
+    for (size_t l = 0; l < plain.model.laws.size(); ++l)
+      if (lawEntry(*plain.model.laws[l].law).parse_aft)
+        overrides.push_back("law[" + std::to_string(l) + "].formulation=\"aft\"");
+  if (!form.empty() && form != kAftForm)
     for (const auto& o : lawOverrides(plain.model, "form", form)) overrides.push_back(o);
   if (rho)
     for (const auto& o : lawOverrides(plain.model, "rho", reportNumber(*rho, 17))) overrides.push_back(o);
@@ -129,6 +137,8 @@ std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<st
     for (bool condensed : {true, false})
       if (backend != "dogleg" || condensed != base_condensed)
         curves.push_back({forms.front(), base_policy, condensed, backend, false});
+  // The alternating frequency–time form has no ρ (the scene's is unused).
+  if (lawEntry(*model.laws[0].law).parse_aft) curves.push_back({kAftForm, base_policy, base_condensed, "dogleg", false});
   for (const auto& form : forms) curves.push_back({form, base_policy, base_condensed, "dogleg", true});
   curves.push_back({forms.front(), base_policy, base_condensed, "dogleg", true, true});
   return curves;

@@ -13,6 +13,7 @@
 #include "eqhb/laws/cubic_stiffness.h"
 #include "eqhb/laws/joints/contact_friction.h"
 #include "eqhb/laws/joints/jenkins.h"
+#include "eqhb/laws/joints/jenkins_aft.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
@@ -57,6 +58,7 @@ TEST(Allocation, ResidualAndJacobianAllocateNothing) {
       std::make_shared<CubicStiffness>(0.5),
       std::make_shared<Jenkins>(1, 1.2, 2.0, FrictionForm::kMinMax),
       std::make_shared<Jenkins>(2, 1.2, 2.0, FrictionForm::kProjection),
+      std::make_shared<JenkinsAft>(std::vector<JenkinsAft::Slider>{{1.2, 2.0}}),
       contactFriction(1, NormalForm::kMin, std::nullopt),
       contactFriction(2, NormalForm::kFischerBurmeister, 2.5),
       contactFriction(1, NormalForm::kCompliant, std::nullopt)};

@@ -180,10 +180,10 @@ TEST(Scene, ANulInsideAStringIsRefused) {
 TEST(Scene, AnUnknownLawKeyListsTheKeysThatLawAllows) {
   // A typo of an optional key: the list holds the keys allowed, not only those present.
   expectError(replaced("muN = 7.2", "muN = 7.2\nrh0 = 2"),
-              "law[0].rh0 = 2: unknown key (allowed here: beta, between, dofs, form, muN, nodes, rho, rho_factor, type)");
+              "law[0].rh0 = 2: unknown key (allowed here: beta, between, dofs, form, formulation, muN, nodes, rho, rho_factor, type)");
   expectError(replaced("type = \"coulomb-1d\"\ndofs = [2]\nmuN = 7.2",
                        "type = \"cubic\"\ndofs = [2]\nepsilon = 1\nrho = 1"),
-              "law[0].rho = 1: unknown key (allowed here: between, dofs, epsilon, nodes, type)");
+              "law[0].rho = 1: unknown key (allowed here: between, dofs, epsilon, formulation, nodes, type)");
 }
 
 TEST(Scene, EveryShippedSceneLoads) {

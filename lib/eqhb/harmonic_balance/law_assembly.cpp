@@ -20,7 +20,7 @@ LawAssembly::LawAssembly(const HbModel& model)
   const int nb = model.basis.size();
   const int n = transform_.activeSamples();
   slots_.resize(laws_.size());
-  int most_channels = 0;
+  int most_channels = 0, history_terms = 0;
   for (size_t l = 0; l < laws_.size(); ++l) {
     const int d = laws_[l].law->dimension();
     Slot& s = slots_[l];
@@ -30,7 +30,8 @@ LawAssembly::LawAssembly(const HbModel& model)
     s.omega_coefficients.setZero(nb, d);
     s.derived_coefficients.setZero(nb, 2 * d);
     most_channels = std::max(most_channels, 4 * d);  // x, ẋ, λ, λ̇ per component
-    s.samples.resize(n, d);
+    s.samples.resize(n, d, laws_[l].law->historyTerms());
+    history_terms = std::max(history_terms, laws_[l].law->historyTerms());
     s.displacement_blocks.assign(d * d, Eigen::MatrixXd::Zero(nb, nb));
     s.force_blocks.assign(d * d, Eigen::MatrixXd::Zero(nb, nb));
   }
@@ -38,6 +39,47 @@ LawAssembly::LawAssembly(const HbModel& model)
   velocity_scratch_.setZero(nb, nb);
   sample_scratch_.setZero(n);
   channels_.resize(most_channels);
+  if (history_terms > 0) {  // a history law is never odd: the full period is sampled
+    synthesis_.setZero(n, nb);
+    projection_.setZero(nb, n);
+    // P by synthesising each basis function; Q = diag(w) Pᵀ, the trapezoidal
+    // projection (w = 1/N for the constant, 2/N for the others).
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(nb);
+    for (int c = 0; c < nb; ++c) {
+      unit[c] = 1.0;
+      transform_.synthesize(unit.data(), synthesis_.col(c).data());
+      unit[c] = 0.0;
+    }
+    const auto& ks = model.basis.harmonics();
+    for (size_t h = 0; h < ks.size(); ++h) {
+      const int o = model.basis.offset(static_cast<int>(h));
+      for (int r = 0; r < (ks[h] == 0 ? 1 : 2); ++r)
+        projection_.row(o + r) = (ks[h] == 0 ? 1.0 : 2.0) / n * synthesis_.col(o + r).transpose();
+    }
+    basis_mean_ = synthesis_.colwise().mean();
+    history_rows_.setZero(n, nb);
+  }
+}
+
+void LawAssembly::addHistoryBlock(const LawSamples& samples, int first_term, int terms, Eigen::MatrixXd& block) {
+  const Eigen::Index n = samples.psi.rows();
+  history_rows_.setZero();
+  for (int k = first_term; k < first_term + terms; ++k)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double weight = samples.history_weight(i, k);
+      if (weight == 0.0) continue;
+      const int j = samples.history_sample(i, k);
+      if (j == LawSamples::kPeriodMean)
+        history_rows_.row(i) += weight * basis_mean_;
+      else
+        history_rows_.row(i) += weight * synthesis_.row(j);
+    }
+  // block += Q (H P), column by column over the rows that have terms.
+  for (Eigen::Index c = 0; c < history_rows_.cols(); ++c)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double g = history_rows_(i, c);
+      if (g != 0.0) block.col(c) += g * projection_.col(i);
+    }
 }
 
 void LawAssembly::replaceLaws(const std::vector<AttachedLaw>& laws) {
@@ -93,6 +135,7 @@ bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
         transform_.gram(s.samples.dpsi_ddisplacement.col(ab).data(), block);
       else
         block.setZero();
+      if (law.historyTerms() > 0) addHistoryBlock(s.samples, ab * law.historyTerms(), law.historyTerms(), block);
       if (law.usesVelocity()) {
         transform_.gram(s.samples.dpsi_dvelocity.col(ab).data(), gram_scratch_);
         transform_.rightMultiplyDerivative(gram_scratch_, omega, velocity_scratch_);

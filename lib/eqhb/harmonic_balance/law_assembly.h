@@ -9,6 +9,12 @@
 // every law is odd and the basis has odd harmonics only, the laws are
 // evaluated on the first half of the period (FourierTransform's half-wave
 // sampling): the same projections for half the samples.
+//
+// A history law (Law::historyTerms() > 0, the alternating frequency–time
+// forms) adds to the diagonal part Q diag(∂Ψ/∂x) P its terms across samples,
+// Q H P with H sparse (K entries per row): the rows of P gathered into
+// history_rows_ (N x nb), then Q times them, from the explicit Q and P made
+// once at construction when some law needs them.
 #pragma once
 
 #include <Eigen/Dense>
@@ -70,7 +76,13 @@ class LawAssembly {
   std::vector<AttachedLaw> laws_;
   FourierTransform transform_;
   std::vector<Slot> slots_;
+  // Q H P of a history law's terms (columns ab K .. ab K + K − 1) into block.
+  void addHistoryBlock(const LawSamples& samples, int first_term, int terms, Eigen::MatrixXd& block);
   Eigen::MatrixXd gram_scratch_, velocity_scratch_;
+  // History laws only (else empty): P (N x nb), Q (nb x N), the period's mean
+  // of each basis function, and the gathered rows H P.
+  Eigen::MatrixXd synthesis_, projection_, history_rows_;
+  Eigen::RowVectorXd basis_mean_;
   Eigen::VectorXd sample_scratch_;  // one channel's samples: omegaDerivative
   std::vector<std::pair<const double*, double*>> channels_;  // (coefficients, samples) to synthesise
 };

@@ -2,7 +2,9 @@
 
 namespace eqhb {
 
-void LawSamples::resize(int samples, int dimension) {
+void LawSamples::resize(int samples, int dimension, int history_terms) {
+  history_sample.setConstant(samples, dimension * dimension * history_terms, kPeriodMean);
+  history_weight.setZero(samples, dimension * dimension * history_terms);
   displacement.setZero(samples, dimension);
   velocity.setZero(samples, dimension);
   force.setZero(samples, dimension);

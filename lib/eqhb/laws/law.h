@@ -22,14 +22,24 @@ namespace eqhb {
 
 // Column layout: component a of a quantity is column a; partial ∂Ψ_a/∂q_b is
 // column a * d + b. Rows are the N time samples.
+//
+// A history law (Law::historyTerms() = K > 0, the alternating frequency–time
+// forms) has Ψ at sample i depend on the displacement at other samples too:
+//   ∂Ψ_a(t_i)/∂x_b(t_j) = dpsi_ddisplacement(i, ab) δ_ij
+//                         + Σ_k history_weight(i, ab K + k) [j = history_sample(i, ab K + k)],
+// where a sample index kPeriodMean stands for the mean over the period (the
+// weight spread as 1/N on every sample). A term of weight 0 is unused.
 struct LawSamples {
+  static constexpr int kPeriodMean = -1;
   Eigen::MatrixXd displacement, velocity, force;  // N x d inputs
   Eigen::MatrixXd force_rate;                     // N x d input, λ̇ (laws with usesForceRate)
   Eigen::MatrixXd psi;                            // N x d output
   Eigen::MatrixXd dpsi_ddisplacement, dpsi_dvelocity, dpsi_dforce;  // N x d² outputs
   Eigen::MatrixXd dpsi_dforce_rate;                                 // N x d² output
+  Eigen::MatrixXi history_sample;                                   // N x d² K output (history laws)
+  Eigen::MatrixXd history_weight;                                   // N x d² K output (history laws)
 
-  void resize(int samples, int dimension);
+  void resize(int samples, int dimension, int history_terms = 0);
 };
 
 // One time step of the nonsmooth reference integrator, seen by one law
@@ -171,6 +181,11 @@ class Law {
   // (q(t + T/2) = −q(t)); then so is Ψ, and the assembly evaluates the law on
   // the first half of the period only (FourierTransform's half-wave sampling).
   virtual bool oddSymmetric() const { return false; }
+  // K > 0 for a history law (LawSamples): Ψ at a sample reads the
+  // displacement over the whole period, with K terms per sample and pair of
+  // components in its Jacobian besides the diagonal. Such a law is never
+  // oddSymmetric (its period is not sampled by halves).
+  virtual int historyTerms() const { return 0; }
   // Fills psi and, if with_derivatives, the partials of the used inputs.
   virtual void evaluate(LawSamples& samples, bool with_derivatives) const = 0;
   // Physical checks on samples of a solution (inputs filled, densely in

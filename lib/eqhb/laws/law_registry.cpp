@@ -33,6 +33,21 @@ bool LawEntry::hasForm(const std::string& form) const {
   return std::find(forms.begin(), forms.end(), form) != forms.end();
 }
 
+std::shared_ptr<Law> parseLaw(const LawEntry& entry, LawTable& table) {
+  const std::string formulation = table.text("formulation", std::string("equality"));
+  if (formulation == "equality") return entry.parse(table);
+  if (formulation != "aft")
+    table.fail(table.path("formulation"), "\"" + formulation + "\"", "must be \"equality\" or \"aft\"");
+  if (!entry.parse_aft) {
+    std::string with;
+    for (const LawEntry& e : lawRegistry())
+      if (e.parse_aft) with += (with.empty() ? "" : ", ") + e.type;
+    table.fail(table.path("formulation"), "\"aft\"",
+               "a " + entry.type + " law has no alternating frequency-time form (laws with one: " + with + ")");
+  }
+  return entry.parse_aft(table);
+}
+
 const LawEntry* findLaw(const std::string& type) {
   for (const LawEntry& entry : lawRegistry())
     if (entry.type == type) return &entry;

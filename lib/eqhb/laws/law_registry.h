@@ -55,6 +55,10 @@ struct LawEntry {
   // Scene table → law, with InputErrors naming the field; the DOF count is
   // checked against Law::dimension() by the caller.
   std::function<std::shared_ptr<Law>(LawTable&)> parse;
+  // The alternating frequency–time form (formulation = "aft": the force
+  // computed in time from the displacement and projected, Ψ = λ − F[x]);
+  // empty when the law has none.
+  std::function<std::shared_ptr<Law>(LawTable&)> parse_aft;
   LawSystem system = LawSystem::kCondensed;
   std::vector<LawExample> examples;
   // Optional capabilities (law_capabilities.h); empty when the law has none,
@@ -66,6 +70,12 @@ struct LawEntry {
   bool takesRho() const;
   bool hasForm(const std::string& form) const;
 };
+
+// The law of a scene table through its entry: the key `formulation`,
+// "equality" (the default: the entry's parse) or "aft" (parse_aft), is read
+// here for every law; an unknown name, or "aft" on a law without that form,
+// is an InputError naming the field.
+std::shared_ptr<Law> parseLaw(const LawEntry& entry, LawTable& table);
 
 // Every law, in the order they are listed to users.
 const std::vector<LawEntry>& lawRegistry();

@@ -16,7 +16,7 @@ struct RestPartials {
 RestPartials partialsAtRest(const Law& law, int component) {
   const int d = law.dimension();
   LawSamples samples;
-  samples.resize(1, d);
+  samples.resize(1, d, law.historyTerms());
   law.evaluate(samples, true);
   const int ab = component * d + component;
   RestPartials p;

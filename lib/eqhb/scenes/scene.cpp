@@ -526,7 +526,7 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
     attached.attachment = readElement(t, field, node_map, &text);
     const int d = attached.attachment.dimension();
     SceneLawTable table(t, field, *entry, d, t.has("tangents") ? "tangents" : "normal", {}, text);
-    attached.law = entry->parse(table);
+    attached.law = parseLaw(*entry, table);
     if (d != attached.law->dimension())
       t.fail(field + ".tangents", text,
              "a " + type + " law reads " + std::to_string(attached.law->dimension()) +
@@ -556,7 +556,7 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
     law_dofs.push_back(by_node ? beamTransverseDof(static_cast<int>(number)) : static_cast<int>(number) - 1);
   }
   SceneLawTable table(t, field, *entry, static_cast<int>(law_dofs.size()), key, law_dofs, describe(list));
-  attached.law = entry->parse(table);
+  attached.law = parseLaw(*entry, table);
   attached.attachment = LawAttachment(law_dofs);
   if (attached.attachment.dimension() != attached.law->dimension())
     t.fail(field + ".dofs", describe(list),

@@ -1,5 +1,6 @@
 // jenkins: a Coulomb slider behind a spring k_t, on 1 or 2 DOFs (laws/joints/jenkins.h).
 #include "eqhb/laws/joints/jenkins.h"
+#include "eqhb/laws/joints/jenkins_aft.h"
 #include "eqhb/laws/registry/entry_support.h"
 
 namespace eqhb {
@@ -11,7 +12,9 @@ LawEntry jenkinsEntry() {
   e.forms = {"minmax", "projection", "max"};
   e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
                           {"k_t", "", "> 0", "tangential stiffness"},
-                          {"form", "minmax (1 DOF), max (2)", "minmax|projection|max", "minmax: one DOF"}});
+                          {"form", "minmax (1 DOF), max (2)", "minmax|projection|max", "minmax: one DOF"},
+                          {"formulation", "equality", "equality|aft",
+                           "aft: the force by the return map over the period (1 DOF; form and ρ unused)"}});
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
     const double mu_n = t.frictionLimit("muN");
     const double k_t = t.positive("k_t", std::nullopt);
@@ -23,15 +26,31 @@ LawEntry jenkinsEntry() {
       t.fail(t.path("form"), "\"minmax\"", "the minmax form is one-dimensional; use max or projection");
     return std::make_shared<Jenkins>(m, mu_n, k_t, parseFrictionForm(name, t.path("form")), rho);
   };
+  e.parse_aft = [](LawTable& t) -> std::shared_ptr<Law> {
+    const double mu_n = t.frictionLimit("muN");
+    const double k_t = t.positive("k_t", std::nullopt);
+    // form and ρ belong to the equality form; read (and checked) so that a
+    // scene switches formulation by one key.
+    t.rho();
+    t.form("minmax");
+    if (t.components() != 1)
+      t.fail(t.path(t.componentsKey()), t.dofsText(), "the aft formulation of a jenkins law acts on 1 DOF");
+    return std::make_shared<JenkinsAft>(std::vector<JenkinsAft::Slider>{{mu_n, k_t}});
+  };
   e.examples = {{"jenkins1_minmax", 1, "muN = 1.2\nk_t = 2.0\nform = \"minmax\"\nrho = 0.9"},
                 {"jenkins1_projection", 1, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"},
                 {"jenkins2_max", 2, "muN = 1.2\nk_t = 2.0\nform = \"max\"\nrho = 0.9"},
                 {"jenkins2_projection", 2, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"}};
   // On one DOF: a slider behind a spring, closed form between events.
   e.piecewise_linear_flow = [](const Law& law) -> std::optional<PiecewiseLinearSite> {
+    PiecewiseLinearSite site;
+    if (const auto* aft = dynamic_cast<const JenkinsAft*>(&law)) {
+      site.limit = aft->muN();
+      site.stiffness = aft->sliders().front().k_t;
+      return site;
+    }
     const auto& jenkins = static_cast<const Jenkins&>(law);
     if (jenkins.dimension() != 1) return std::nullopt;
-    PiecewiseLinearSite site;
     site.limit = jenkins.muN();
     site.stiffness = jenkins.stiffness();
     return site;

@@ -1,0 +1,63 @@
+// Elastic dry friction on one DOF in the alternating frequency–time form
+// (formulation = "aft"): the force is computed from the displacement over the
+// period by the return map of sliders in parallel, each a spring k_s in
+// series with a Coulomb slider of limit μN_s (one slider: the Jenkins
+// element of jenkins.h; several: an Iwan element), and the law is
+//   Ψ(t_i) = λ(t_i) − F[x](t_i),   F = Σ_s F_s,
+// which is not pointwise in time: F at t_i reads x back to the slider's last
+// slip. Per slider, with state w (the slider's position):
+//   trial  T = −k_s (x_i − w);
+//   stick  |T| <= μN_s: F_s = T;
+//   slip   |T| >  μN_s: F_s = μN_s sign T and w = x_i + F_s/k_s.
+// The map runs over the period twice from w = x̄ (the period's mean of x):
+// one pass with a slip leaves a state that no longer depends on where it
+// started (a slider is a play operator: a slip sets w from x alone), so the
+// second pass is periodic. A slider that never slips keeps w = x̄: its force
+// is −k_s (x − x̄), mean-free, so a period that sticks throughout is the
+// linear structure with k_s added at every harmonic but the constant one
+// (the stuck slider's position is not fixed by a periodic orbit; the mean is
+// the choice that adds no static force of its own).
+//
+// Jacobian (exact, almost everywhere): stick since the slip at sample s,
+// ∂F_i/∂x_j = −k_s (δ_ij − δ_js) (δ_js → 1/N for a slider that never
+// slipped); slip, 0. The law thus has one history term per slider.
+#pragma once
+
+#include <vector>
+
+#include "eqhb/laws/law.h"
+
+namespace eqhb {
+
+class JenkinsAft : public Law {
+ public:
+  struct Slider {
+    double mu_n, k_t;
+  };
+  // Throws InputError naming the field: at least one slider; each μN >= 0,
+  // k_t > 0, all finite.
+  explicit JenkinsAft(std::vector<Slider> sliders);
+  // type: "jenkins" for one slider (its registered name); "iwan" for more.
+  std::string type() const override { return sliders_.size() == 1 ? "jenkins" : "iwan"; }
+  int dimension() const override { return 1; }
+  bool usesDisplacement() const override { return true; }
+  bool usesVelocity() const override { return false; }
+  int historyTerms() const override { return static_cast<int>(sliders_.size()); }
+  double forceLevel() const override { return total_limit_; }
+  void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  // aft_force_error max |λ − F[x]| and force_limit_excess max(|λ|/ΣμN − 1, 0),
+  // relative to the larger of max|λ| and the problem's force scale's floor.
+  std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
+                                                         const PhysicalScales& scales) const override;
+  // One slider: the Jenkins element's exact step (jenkins.h); more sliders
+  // need a state each, which the reference integrator does not carry.
+  LocalVector solveStep(const StepProblem& step) const override;
+  const std::vector<Slider>& sliders() const { return sliders_; }
+  double muN() const { return total_limit_; }
+
+ private:
+  std::vector<Slider> sliders_;
+  double total_limit_ = 0.0;
+};
+
+}  // namespace eqhb
