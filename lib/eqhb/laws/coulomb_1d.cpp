@@ -29,7 +29,12 @@ std::string coulombFormName(CoulombForm form) {
 
 namespace {
 // The scale-free slope: 1/β = the scale-free width (law.h).
-double scaleFreeBeta(const LawScales& scales, double mu_n) { return 1.0 / scaleFreeVelocityWidth(scales, mu_n); }
+// A limit so small that the slope overflows (μN = 5e-320) applies no force a
+// width could matter for: the absolute measure's slope then.
+double scaleFreeBeta(const LawScales& scales, double mu_n) {
+  const double beta = 1.0 / scaleFreeVelocityWidth(scales, mu_n);
+  return std::isfinite(beta) ? beta : 1.0 / kScaleFreeWidthFraction;
+}
 }  // namespace
 
 Coulomb1D::Coulomb1D(double mu_n, CoulombForm form, RhoSetting rho, std::optional<double> beta)

@@ -160,9 +160,13 @@ std::optional<Law::RhoComparison> Coulomb2D::compareRho(const LawScales& scales)
 }
 
 double Coulomb2D::scaleFreeWidth(const LawScales& scales) const {
-  if (form_ == Coulomb2DForm::kTanh) return 1.0 / scaleFreeVelocityWidth(scales, mu_n_);
+  if (form_ == Coulomb2DForm::kTanh) {
+    const double alpha = 1.0 / scaleFreeVelocityWidth(scales, mu_n_);
+    return std::isfinite(alpha) ? alpha : 1.0 / kScaleFreeWidthFraction;  // μN ~ 1e-320: immaterial
+  }
   const double rounding = kScaleFreeWidthFraction * mu_n_;  // smoothed: √ε, a force
-  return rounding > 0.0 && std::isfinite(rounding) ? rounding * rounding : 1e-4;  // μN = 0: immaterial
+  const double epsilon = rounding * rounding;
+  return epsilon > 0.0 && std::isfinite(epsilon) ? epsilon : 1e-4;  // μN = 0 (or ~1e-160): immaterial
 }
 
 std::optional<WidthComparison> Coulomb2D::compareWidth(const LawScales& scales) const {
