@@ -160,7 +160,9 @@ void writeCurveSummary(std::ostream& out, const Curve& curve, const CurveRun& s)
       stable += p->stable.value_or(false);
     }
     const CurveStability& st = *s.stability;
-    out << "  stability (Hill): " << stable << " of " << analysed << " points stable, " << st.seconds << " s ("
+    // One method serves a whole curve (auto chooses it from the model).
+    const bool monodromy = !st.points.empty() && st.points.front().method == "monodromy";
+    out << "  stability (" << (monodromy ? "monodromy" : "Hill") << "): " << stable << " of " << analysed << " points stable, " << st.seconds << " s ("
         << (st.solve_seconds > 0 ? 100.0 * st.seconds / st.solve_seconds : 0.0) << " % of the solve time)\n";
     for (const auto& b : st.bifurcations) out << "  " << b.kind << " at omega = " << b.omega << "\n";
   }

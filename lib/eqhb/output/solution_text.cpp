@@ -34,7 +34,8 @@ void writeStability(std::ostream& out, const HillResult& hill) {
     return;
   }
   out << "stability: " << (hill.stable ? "stable" : "UNSTABLE") << ", spectral radius " << hill.spectral_radius
-      << " (Hill, " << hill.pencil_size << " unknowns, " << hill.seconds << " s); leading multipliers:";
+      << " (" << (hill.method == "monodromy" ? std::string("monodromy") : "Hill, " + std::to_string(hill.pencil_size) + " unknowns")
+      << ", " << hill.seconds << " s); leading multipliers:";
   for (size_t i = 0; i < hill.exponents.size() && i < 8; ++i) {
     const auto& e = hill.exponents[i];
     out << " " << e.multiplier.real() << (e.multiplier.imag() < 0 ? "" : "+") << e.multiplier.imag() << "i";
