@@ -4,9 +4,16 @@
 #pragma once
 
 #include <iomanip>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "eqhb/backends/registry.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/scenes/scene.h"
+#include "test_support.h"
 
 namespace eqhb {
 namespace test {
@@ -55,6 +62,23 @@ inline std::vector<std::string> cantileverInUnits(const Units& u, double omega_s
   put("sweep.from", 370.0 * t);
   put("sweep.to", 110.0 * t);
   return set;
+}
+
+// One dogleg solve from zero of the scene in `u` at omega_si with `set`.
+struct UnitsOutcome {
+  SolverResult result;
+  double contact = 0.0;      // max|x| at the contact's DOF, in metres
+  std::shared_ptr<Law> law;  // the law as the system used it (scale-free constants set)
+};
+inline UnitsOutcome solveCantileverIn(const Units& u, double omega_si, std::vector<std::string> set = {}) {
+  const Scene scene = loadScene(problem("cantilever-friction-si.toml"), cantileverInUnits(u, omega_si, std::move(set)));
+  auto system = makeHbSystem(scene.model, true);
+  UnitsOutcome o;
+  o.result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
+  const int dof = scene.model.laws[0].attachment.dof(0);
+  o.contact = summarize(scene.model, system->fullCoefficients(o.result.solution)).displacements[dof].max_abs * u.length;
+  o.law = system->model().laws[0].law;
+  return o;
 }
 
 }  // namespace test

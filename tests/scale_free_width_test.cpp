@@ -10,12 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
-#include "eqhb/harmonic_balance/hb_solution.h"
-#include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/coulomb_1d.h"
-#include "eqhb/scenes/scene.h"
 #include "cantilever_units.h"
 #include "test_support.h"
 
@@ -27,19 +23,14 @@ using test::unitSystems;
 
 struct Outcome {
   SolverResult result;
-  double tip = 0.0;  // max|x| at the contact's DOF, in metres
+  double tip = 0.0;   // max|x| at the contact's DOF, in metres
   double beta = 0.0;  // the slope in use, in s/m
 };
 
 Outcome solveIn(const Units& u, std::vector<std::string> set) {
-  const Scene scene = loadScene(test::problem("cantilever-friction-si.toml"), test::cantileverInUnits(u, 230.0, std::move(set)));
-  auto system = makeHbSystem(scene.model, true);
-  Outcome o;
-  o.result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
-  const int dof = scene.model.laws[0].attachment.dof(0);
-  o.tip = summarize(scene.model, system->fullCoefficients(o.result.solution)).displacements[dof].max_abs * u.length;
-  o.beta = static_cast<const Coulomb1D&>(*system->model().laws[0].law).beta() * u.time / u.length;
-  return o;
+  const test::UnitsOutcome solved = test::solveCantileverIn(u, 230.0, std::move(set));
+  return {solved.result, solved.contact,
+          static_cast<const Coulomb1D&>(*solved.law).beta() * u.time / u.length};
 }
 
 TEST(ScaleFreeWidth, RegularisedFrictionConvergesAlikeInAnyUnits) {

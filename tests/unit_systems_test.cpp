@@ -8,10 +8,6 @@
 #include <vector>
 
 #include "eqhb/app/sweep.h"
-#include "eqhb/backends/registry.h"
-#include "eqhb/harmonic_balance/hb_solution.h"
-#include "eqhb/harmonic_balance/hb_systems.h"
-#include "eqhb/scenes/scene.h"
 #include "cantilever_units.h"
 #include "test_support.h"
 
@@ -21,27 +17,13 @@ namespace {
 using test::Units;
 using test::unitSystems;
 
-struct Outcome {
-  SolverResult result;
-  double contact = 0.0;  // max|x| at the contact's DOF, in metres
-};
-
-Outcome solveIn(const Units& u) {
-  const Scene scene = loadScene(test::problem("cantilever-friction-si.toml"), test::cantileverInUnits(u, 256.0));
-  auto system = makeHbSystem(scene.model, true);
-  Outcome o;
-  o.result = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
-  const int dof = scene.model.laws[0].attachment.dof(0);
-  o.contact =
-      summarize(scene.model, system->fullCoefficients(o.result.solution)).displacements[dof].max_abs * u.length;
-  return o;
-}
+test::UnitsOutcome solveIn(const Units& u) { return test::solveCantileverIn(u, 256.0); }
 
 TEST(UnitSystems, OneSolveInEveryUnitSystem) {
-  const Outcome si = solveIn(unitSystems()[0]);
+  const test::UnitsOutcome si = solveIn(unitSystems()[0]);
   ASSERT_TRUE(si.result.converged()) << si.result.summary();
   for (const Units& u : unitSystems()) {
-    const Outcome o = solveIn(u);
+    const test::UnitsOutcome o = solveIn(u);
     ASSERT_TRUE(o.result.converged()) << u.name << ": " << o.result.summary();
     // Where the units are powers of two the solve is the same bit for bit;
     // elsewhere round-off may change a step or two of the path.
