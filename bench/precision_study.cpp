@@ -41,9 +41,7 @@ Scene load(const PrecisionScene& scene, const std::string& form, std::optional<d
   std::vector<std::string> overrides = {"harmonic_balance.omega=" + reportNumber(scene.omega, 17)};
   const Scene plain = loadScene(scene.file, overrides);
   if (form == kAftForm)
-    for (size_t l = 0; l < plain.model.laws.size(); ++l)
-      if (lawEntry(*plain.model.laws[l].law).parse_aft)
-        overrides.push_back("law[" + std::to_string(l) + "].formulation=\"aft\"");
+    for (const auto& o : lawFormulationOverrides(plain.model, kAftForm)) overrides.push_back(o);
   if (!form.empty() && form != kAftForm)
     for (const auto& o : lawOverrides(plain.model, "form", form)) overrides.push_back(o);
   if (rho)

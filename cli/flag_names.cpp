@@ -14,7 +14,7 @@ const std::pair<const char*, const char*> kFlags[] = {
     {"linear_algebra", "--linear-algebra"}, 
     {"accuracy", "--accuracy"}, {"fallback", "--fallback"},
     {"options", "--option"}, {"repeat", "--repeat"},
-    {"form", "--form"}, {"rho", "--rho"},
+    {"form", "--form"}, {"formulation", "--formulation"}, {"rho", "--rho"},
     {"from_hb", "--from-hb"},
     {"from", "--from"}, {"to", "--to"}, {"step", "--step"},
     {"min_step", "--min-step"}, {"max_step", "--max-step"}, {"stability", "--stability"}, {"stability_method", "--stability-method"},

@@ -13,6 +13,8 @@ void addSceneOptions(CLI::App* cmd, SceneArguments& a) {
                   "Time samples N per period (>= 2 k_max + 1; default the scene's, raised in proportion to k_max "
                   "where --harmonics needs more)");
   cmd->add_option("--form", a.form, "Law form, for every law that has it (e.g. minmax, projection, min)");
+  cmd->add_option("--formulation", a.formulation,
+                  "equality or aft (the force in time from the displacement, projected): for every law that has it");
   cmd->add_option("--rho", a.rho, "Scaling ρ > 0 of every law that has one")->check(representableNumber());
   cmd->add_option("--set", a.overrides, "Override a scene value: PATH=VALUE, e.g. law[0].muN=5");
 }

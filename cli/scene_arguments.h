@@ -1,5 +1,6 @@
 // Options shared by the commands that load a scene: the file, the common
-// overrides (--omega, --harmonics, --samples, --form, --rho) and --set,
+// overrides (--omega, --harmonics, --samples, --form,
+// --formulation, --rho) and --set,
 // read into the application layer's scene settings.
 #pragma once
 

@@ -2,9 +2,10 @@
 // its Jacobian across samples against finite differences on both systems,
 // a period that never slips against the linear structure, and harmonic
 // balance on jenkins-1d against the exact orbit; the formulation key's
-// errors.
+// errors and the setting that sets it on a whole scene.
 #include <gtest/gtest.h>
 
+#include "eqhb/app/scene_settings.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/joints/jenkins_aft.h"
@@ -197,6 +198,42 @@ TEST(JenkinsAft, FormulationKeyErrorsNameTheField) {
             std::string::npos);
   EXPECT_EQ(message({"law.formulation=\"equality\""}), "");
   EXPECT_EQ(message({"law.formulation=\"aft\""}), "");
+}
+
+// The scene-wide setting (--formulation, Python's formulation=) sets every
+// law that has the formulation and no other; a scene without one refuses it.
+TEST(JenkinsAft, FormulationSettingSetsEveryLawThatHasIt) {
+  app::SceneSettings settings;
+  settings.path = test::problem("beam-damper-elastic.toml");
+  settings.formulation = "aft";
+  const Scene aft = app::loadScene(settings);
+  ASSERT_EQ(aft.model.laws.size(), 5u);
+  for (const AttachedLaw& a : aft.model.laws) EXPECT_NE(dynamic_cast<const JenkinsAft*>(a.law.get()), nullptr);
+  // Back to the equality form over a scene that sets aft.
+  settings.formulation = "equality";
+  settings.overrides = {"law[2].formulation=\"aft\""};
+  for (const AttachedLaw& a : app::loadScene(settings).model.laws)
+    EXPECT_EQ(dynamic_cast<const JenkinsAft*>(a.law.get()), nullptr);
+  // A scene mixing laws: the one without an AFT form keeps its equality form.
+  settings.path = test::problem("jenkins-1d.toml");
+  settings.overrides = {};
+  settings.formulation = "aft";
+  EXPECT_NE(dynamic_cast<const JenkinsAft*>(app::loadScene(settings).model.laws[0].law.get()), nullptr);
+  auto message = [&](const std::string& scene, const std::string& formulation) {
+    settings.path = test::problem(scene);
+    settings.formulation = formulation;
+    try {
+      app::loadScene(settings);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string none = message("friction-1d.toml", "aft");
+  EXPECT_EQ(none.rfind("formulation = aft", 0), 0u) << none;
+  EXPECT_NE(none.find("laws with it: jenkins"), std::string::npos) << none;
+  EXPECT_EQ(message("friction-1d.toml", "equality"), "");
+  EXPECT_NE(message("jenkins-1d.toml", "fft").find("must be equality or aft"), std::string::npos);
 }
 
 }  // namespace

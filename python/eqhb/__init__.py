@@ -81,7 +81,7 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
     return Model._from_arrays("\n".join(lines) + "\n", mass, damping, stiffness)
 
 
-def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, solver="dogleg",
+def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, formulation=None, solver="dogleg",
           system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0,
           options=None, linear_algebra="auto", initial=None, cold_start="coarse", fallback="default",
           from_harmonics=None, repeat=1, stability=False, stability_method="hill", error_estimate=False,
@@ -100,7 +100,9 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     cold_start="zero": from zero). A solve that fails gets the `fallback`
     steps in order ("cold", "full", a backend name; comma-separated, or
     "none"; "default": cold, full, then Ipopt's least squares, else ceres-lm).
-    form and rho apply to every law that has them. linear_algebra: "auto",
+    form and rho apply to every law that has them, and formulation
+    ("equality" or "aft": the force in time from the displacement, projected)
+    to every law that has that formulation. linear_algebra: "auto",
     "dense" or "sparse". repeat: solves timed (the median is "seconds").
 
     On the answer: stability (Floquet multipliers: the "stability" dict, as
@@ -113,7 +115,7 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     of max|x| is <= accuracy: "accuracy" and "rho"), refine="shoot" (the exact
     periodic orbit replaces the answer, on refine_harmonics harmonics if
     given, restitution e of contact laws: "refinement")."""
-    args = _scene_args(omega, harmonics, samples, form, rho)
+    args = _scene_args(omega, harmonics, samples, form, rho, formulation)
     args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
                          linear_algebra, cold_start, fallback))
     args.update(initial=_vector(initial, "initial"), from_harmonics=_integer(from_harmonics, "from_harmonics", True),
@@ -145,7 +147,7 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
 
 
 def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmonics=None, samples=None, form=None,
-          rho=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
+          rho=None, formulation=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
           max_step=None, stability=False, stability_method="hill", error_estimate=False, accuracy=None,
           max_harmonics=320):
@@ -177,7 +179,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     "accuracy_met", "accuracy_seconds", "accuracy_failure", and "accuracy"
     and "rho"). Per-point lists hold None where a point has no value.
     form and rho apply to every law that has them."""
-    args = _scene_args(None, harmonics, samples, form, rho)
+    args = _scene_args(None, harmonics, samples, form, rho, formulation)
     args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
                          linear_algebra, "coarse", fallback))
     args.update(start=_real(start, "start", True), stop=_real(stop, "stop", True), step=_real(step, "step", True),
@@ -190,7 +192,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
 
 
 def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=None, step=0.01, dof=1,
-          coarse_points=41, max_peaks=4, threads=0, harmonics=None, samples=None, form=None, rho=None,
+          coarse_points=41, max_peaks=4, threads=0, harmonics=None, samples=None, form=None, rho=None, formulation=None,
           solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", fallback="default"):
     """A parameter study, as `eqhb study` runs it on threads: over a grid of
@@ -212,7 +214,7 @@ def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=N
     computed, failed, succeeded, seconds and threads of this run."""
     if isinstance(vary, str):
         vary = [vary]
-    args = _scene_args(None, harmonics, samples, form, rho)
+    args = _scene_args(None, harmonics, samples, form, rho, formulation)
     args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
                          linear_algebra, "coarse", fallback))
     if not isinstance(vary, (list, tuple)):
@@ -229,6 +231,7 @@ def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=N
 
 def simulate(model, omega=None, *, step=None, periods=None, theta=None, periodic_tolerance=None, max_seconds=0.0,
              restitution=0.0, initial=None, from_hb=False, harmonics=None, samples=None, form=None, rho=None,
+             formulation=None,
              solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
              time_limit=0.0, options=None, linear_algebra="auto", cold_start="coarse", fallback="default"):
     """The time-domain reference, as `eqhb simulate`: Moreau-Jean integration
@@ -241,7 +244,7 @@ def simulate(model, omega=None, *, step=None, periods=None, theta=None, periodic
     periodicity_error, seconds, the last period (t, x, v, lambda: one row per
     DOF or law component), max_abs_x, "dofs" and "law_forces" (as `eqhb
     simulate --json`) and the Fourier "coefficients"."""
-    args = _scene_args(omega, harmonics, samples, form, rho)
+    args = _scene_args(omega, harmonics, samples, form, rho, formulation)
     args.update(_time_args(step, periods, theta, periodic_tolerance, max_seconds, restitution))
     args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
                          linear_algebra, cold_start, fallback))
@@ -249,7 +252,8 @@ def simulate(model, omega=None, *, step=None, periods=None, theta=None, periodic
     return _simulate(_model(model), args)
 
 
-def compare(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, step=None, periods=None,
+def compare(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, formulation=None, step=None,
+            periods=None,
             theta=None, periodic_tolerance=None, max_seconds=0.0, restitution=0.0, from_rest=False,
             solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
             time_limit=0.0, options=None, linear_algebra="auto", cold_start="coarse", fallback="default"):
@@ -260,7 +264,7 @@ def compare(model, omega=None, *, harmonics=None, samples=None, form=None, rho=N
     "errors": per channel (x1.., law1.lambda..) relative_l2,
     relative_l2_velocity, relative_max_abs, first_harmonic_error, max_abs_hb,
     max_abs_reference. The time settings are simulate's."""
-    args = _scene_args(omega, harmonics, samples, form, rho)
+    args = _scene_args(omega, harmonics, samples, form, rho, formulation)
     args.update(_time_args(step, periods, theta, periodic_tolerance, max_seconds, restitution))
     args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
                          linear_algebra, cold_start, fallback))
@@ -268,7 +272,8 @@ def compare(model, omega=None, *, harmonics=None, samples=None, form=None, rho=N
     return _compare(_model(model), args)
 
 
-def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, from_hb=None, solver="dogleg",
+def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, formulation=None, from_hb=None,
+          solver="dogleg",
           fallback="default", restitution=0.0, tolerance=1e-11, max_iterations=40, time_limit=0.0):
     """The exact periodic orbit by shooting, as `eqhb shoot` (Coulomb 1D,
     Jenkins on one DOF and Signorini laws in closed form, cubic, planar
@@ -286,7 +291,7 @@ def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     period residual, Newton steps). time_limit: seconds for the whole call
     (0: none); shooting that runs out of it returns converged False, a
     harmonic-balance start that does raises."""
-    args = _scene_args(omega, harmonics, samples, form, rho)
+    args = _scene_args(omega, harmonics, samples, form, rho, formulation)
     args.update(_hb_args(solver, "condensed", 1e-10, 1000, 10000, time_limit, None, "auto", "coarse", fallback))
     args.update(from_hb=_integer(from_hb, "from_hb", True), restitution=_real(restitution, "restitution"),
                 shooting_tolerance=_real(tolerance, "tolerance"),
@@ -295,6 +300,7 @@ def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
 
 
 def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, samples=None, form=None, rho=None,
+          formulation=None,
           solver="dogleg", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
           linear_algebra="auto"):
     """The nonlinear mode `mode` (K, from 1, of the structure linearised about
@@ -314,17 +320,18 @@ def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, sa
             raise InputError(f"{field} = {value!r}: must be finite and > 0 (a modal amplitude)")
     if start is not None and stop is not None and not stop > start:
         raise InputError(f"stop = {stop!r}: must be > start ({start!r})")
-    args = _scene_args(None, harmonics, samples, form, rho)
+    args = _scene_args(None, harmonics, samples, form, rho, formulation)
     args.update(mode=_integer(mode, "mode"), points=_integer(points, "points"), **{"from": start, "to": stop})
     args.update(_hb_args(solver, "full", tolerance, max_iterations, max_evaluations, time_limit, options,
                          linear_algebra, "coarse", "none"))
     return _modes(_model(model), args)
 
 
-def _scene_args(omega, harmonics, samples, form, rho):
+def _scene_args(omega, harmonics, samples, form, rho, formulation):
     return {"omega": _real(omega, "omega", True), "harmonics": _integer(harmonics, "harmonics", True),
             "samples": _integer(samples, "samples", True), "form": None if form is None else _text(form, "form"),
-            "rho": _real(rho, "rho", True)}
+            "rho": _real(rho, "rho", True),
+            "formulation": None if formulation is None else _text(formulation, "formulation")}
 
 
 def _hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options, linear_algebra,

@@ -73,13 +73,17 @@ bool condensedSystem(const std::string& system) {
   return system == "condensed";
 }
 
-// The scene settings of one call: ω, H, N, form and ρ over the model's document.
+// The scene settings of one call: ω, H, N, form, ρ and formulation over the
+// model's document.
 struct SceneArgs {
   std::optional<double> omega;
   std::optional<int> harmonics, samples;
   std::optional<std::string> form;
   std::optional<double> rho;
-  app::SceneSettings of(const PyModel& m) const { return sceneSettings(m, omega, harmonics, samples, form, rho); }
+  std::optional<std::string> formulation;
+  app::SceneSettings of(const PyModel& m) const {
+    return sceneSettings(m, omega, harmonics, samples, form, rho, formulation);
+  }
 };
 
 // The harmonic-balance options every call that solves takes.
@@ -108,6 +112,7 @@ SceneArgs sceneArgs(const py::dict& a) {
   s.samples = a["samples"].cast<std::optional<int>>();
   s.form = a["form"].cast<std::optional<std::string>>();
   s.rho = a["rho"].cast<std::optional<double>>();
+  s.formulation = a["formulation"].cast<std::optional<std::string>>();
   return s;
 }
 

@@ -56,7 +56,7 @@ PyModel modelFromArrays(const std::string& text, const py::object& mass, const p
 
 app::SceneSettings sceneSettings(const PyModel& m, std::optional<double> omega, std::optional<int> harmonics,
                                  std::optional<int> samples, const std::optional<std::string>& form,
-                                 std::optional<double> rho) {
+                                 std::optional<double> rho, const std::optional<std::string>& formulation) {
   if (omega && !(std::isfinite(*omega) && *omega > 0)) throwInputError("omega", formatNumber(*omega), "must be > 0");
   if (rho && !(std::isfinite(*rho) && *rho > 0)) throwInputError("rho", formatNumber(*rho), "must be > 0");
   app::SceneSettings s = m.settings;
@@ -65,6 +65,7 @@ app::SceneSettings sceneSettings(const PyModel& m, std::optional<double> omega, 
   s.samples = samples;
   s.form = form;
   s.rho = rho;
+  s.formulation = formulation;
   return s;
 }
 

@@ -29,10 +29,11 @@ PyModel modelFromText(const std::string& text, const std::string& source);
 PyModel modelFromArrays(const std::string& text, const py::object& mass, const py::object& damping,
                         const py::object& stiffness);
 
-// The model's settings with ω, H, N, form and ρ of one call.
+// The model's settings with ω, H, N, form, ρ and formulation of one call.
 app::SceneSettings sceneSettings(const PyModel& model, std::optional<double> omega, std::optional<int> harmonics,
                                  std::optional<int> samples, const std::optional<std::string>& form = std::nullopt,
-                                 std::optional<double> rho = std::nullopt);
+                                 std::optional<double> rho = std::nullopt,
+                                 const std::optional<std::string>& formulation = std::nullopt);
 
 // The model with another ω, H or N, validated (sweeps and stability).
 HbModel withSettings(const HbModel& base, std::optional<double> omega, std::optional<int> harmonics,

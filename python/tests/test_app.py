@@ -114,6 +114,16 @@ def test_starts_and_repeats_are_eqhb_solves():
         eqhb.solve(model, 0.4, repeat=0)
 
 
+def test_formulation_is_eqhb_solves_formulation():
+    scene = PROBLEMS / "jenkins-1d.toml"
+    aft = eqhb.solve(eqhb.load_scene(scene), formulation="aft")
+    same_answer(cli_json("solve", scene, "--formulation", "aft"), aft)
+    equality = eqhb.solve(eqhb.load_scene(scene), formulation="equality")
+    assert aft["solution"]["max_abs_x"] != pytest.approx(equality["solution"]["max_abs_x"], rel=1e-6)
+    with pytest.raises(eqhb.InputError, match="formulation = aft: no law of the scene has this formulation"):
+        eqhb.solve(eqhb.load_scene(SCENE), formulation="aft")
+
+
 def test_shoot_starts_from_the_solve_that_eqhb_shoot_starts_from():
     cli = cli_json("shoot", SCENE, "--omega", 0.308, "--trajectory")
     py = eqhb.shoot(eqhb.load_scene(SCENE), 0.308)

@@ -48,6 +48,10 @@ Scene loadScene(const SceneSettings& s) {
     if (laws.empty())
       throwInputError(s.form ? "form" : "rho", s.form ? *s.form : num(*s.rho), "no law of the scene takes it");
   }
+  if (s.formulation) {
+    const auto laws = lawFormulationOverrides(loadDocument(s, s.overrides).model, *s.formulation);
+    o.insert(o.end(), laws.begin(), laws.end());
+  }
   return loadDocument(s, o);
 }
 

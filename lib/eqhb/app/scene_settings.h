@@ -1,6 +1,7 @@
 // Which scene a run is on and what is changed in it: the document (a file,
 // or a loader for a model built in memory), "PATH=VALUE" overrides, and the
-// common settings ω, H, N, form and ρ that apply to the whole scene. Every
+// common settings ω, H, N, form, formulation and ρ that apply to the whole
+// scene. Every
 // interface (the eqhb command, Python) describes its scene this way, so an
 // option that reloads the scene (the ρ candidates of an accuracy target)
 // works the same in each.
@@ -24,6 +25,9 @@ struct SceneSettings {
   std::optional<int> samples;          // N
   std::optional<std::string> form;     // every law that has a form
   std::optional<double> rho;           // every law that has ρ, > 0
+  // "equality" or "aft", for every law that has that formulation
+  // (lawFormulationOverrides, scenes/scene.h).
+  std::optional<std::string> formulation;
 
   // A scene held in memory rather than in `path`: the scene and each law's ρ
   // as its document sets them, with the given overrides applied.

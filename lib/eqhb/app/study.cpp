@@ -29,6 +29,10 @@ std::vector<std::string> commonOverrides(const SceneSettings& s, const Scene& sc
     const auto o = lawOverrides(scene.model, "rho", formatNumber(*s.rho));
     overrides.insert(overrides.end(), o.begin(), o.end());
   }
+  if (s.formulation) {
+    const auto o = lawFormulationOverrides(scene.model, *s.formulation);
+    overrides.insert(overrides.end(), o.begin(), o.end());
+  }
   return overrides;
 }
 

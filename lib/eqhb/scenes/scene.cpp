@@ -792,6 +792,24 @@ std::vector<std::string> lawOverrides(const HbModel& model, const std::string& k
   return out;
 }
 
+std::vector<std::string> lawFormulationOverrides(const HbModel& model, const std::string& formulation) {
+  if (formulation != "equality" && formulation != "aft")
+    throwInputError("formulation", "\"" + formulation + "\"", "must be equality or aft");
+  const auto has = [&](const LawEntry& e) { return formulation == "aft" ? bool(e.parse_aft) : bool(e.parse); };
+  std::vector<std::string> out;
+  for (size_t l = 0; l < model.laws.size(); ++l) {
+    const LawEntry* entry = findLaw(model.laws[l].law->type());
+    if (entry && has(*entry)) out.push_back("law[" + std::to_string(l) + "].formulation=\"" + formulation + "\"");
+  }
+  if (out.empty()) {
+    std::string with;
+    for (const LawEntry& e : lawRegistry())
+      if (has(e)) with += (with.empty() ? "" : ", ") + e.type;
+    throwInputError("formulation", formulation, "no law of the scene has this formulation (laws with it: " + with + ")");
+  }
+  return out;
+}
+
 Scene parseScene(const std::string& text, const std::string& source_name,
                  const std::vector<std::string>& overrides) {
   checkTomlText(text, source_name);

@@ -58,6 +58,12 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 // KEY "form" (laws having that form) or "rho" (laws having ρ), as the law
 // registry (laws/law_registry.h) declares them.
 std::vector<std::string> lawOverrides(const HbModel& model, const std::string& key, const std::string& value);
+// The overrides "law[i].formulation=..." that set `formulation` on every law
+// of `model` having it ("aft": an alternating frequency–time form, law
+// registry); the others keep theirs, as a form is set only on the laws that
+// have it. An unknown name, or one that no law of the scene has, is an
+// InputError naming "formulation".
+std::vector<std::string> lawFormulationOverrides(const HbModel& model, const std::string& formulation);
 
 Scene parseScene(const std::string& text, const std::string& source_name,
                  const std::vector<std::string>& overrides = {});
