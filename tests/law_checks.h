@@ -50,8 +50,11 @@ inline std::vector<LawCase> registeredExamples() {
 // ∂ψ/∂(displacement, velocity, force, force rate), whichever the law uses,
 // at `samples` random points in [-2, 2]; the partials are checked column by
 // column (a * d + b: component a of ψ, component b of the input).
+inline void expectHistoryPartialsMatch(const Law& law, const std::string& label, unsigned seed, int samples);
+
 inline void expectPointwisePartialsMatch(const Law& law, const std::string& label, unsigned seed,
                                          int samples) {
+  if (law.historyTerms() > 0) return expectHistoryPartialsMatch(law, label, seed, samples);
   const int d = law.dimension();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-2.0, 2.0);
@@ -89,6 +92,74 @@ inline void expectPointwisePartialsMatch(const Law& law, const std::string& labe
         }
     }
   }
+  EXPECT_GT(checked, 0) << label;
+}
+
+// A history law (Law::historyTerms): Ψ over all samples against central
+// differences in the displacement of each sample in turn, at random inputs
+// in [-2, 2] read as one period. Its Jacobian is ∂Ψ/∂λ = dpsi_dforce
+// pointwise, and across samples the diagonal plus the history terms
+// (LawSamples). Each column of the displacement Jacobian is checked whole.
+inline void expectHistoryPartialsMatch(const Law& law, const std::string& label, unsigned seed, int samples) {
+  const int d = law.dimension(), terms = law.historyTerms();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  LawSamples s;
+  s.resize(samples, d, terms);
+  for (int i = 0; i < samples; ++i)
+    for (int a = 0; a < d; ++a) {
+      s.displacement(i, a) = u(rng);
+      s.velocity(i, a) = u(rng);
+      s.force(i, a) = u(rng);
+      s.force_rate(i, a) = u(rng);
+    }
+  law.evaluate(s, true);
+  // The assembled ∂Ψ_a(t_i)/∂x_b(t_j), rows (i, a), columns (j, b).
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(samples * d, samples * d);
+  for (int i = 0; i < samples; ++i)
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b) {
+        const int ab = a * d + b;
+        jacobian(i * d + a, i * d + b) += s.dpsi_ddisplacement(i, ab);
+        for (int k = 0; k < terms; ++k) {
+          const double w = s.history_weight(i, ab * terms + k);
+          const int j = s.history_sample(i, ab * terms + k);
+          if (w == 0.0) continue;
+          if (j == LawSamples::kPeriodMean)
+            for (int m = 0; m < samples; ++m) jacobian(i * d + a, m * d + b) += w / samples;
+          else
+            jacobian(i * d + a, j * d + b) += w;
+        }
+      }
+  const double h = 1e-7;
+  int checked = 0;
+  for (int j = 0; j < samples; ++j)
+    for (int b = 0; b < d; ++b) {
+      LawSamples plus = s, minus = s;
+      plus.displacement(j, b) += h;
+      minus.displacement(j, b) -= h;
+      law.evaluate(plus, false);
+      law.evaluate(minus, false);
+      for (int i = 0; i < samples; ++i)
+        for (int a = 0; a < d; ++a) {
+          const double fd = (plus.psi(i, a) - minus.psi(i, a)) / (2 * h);
+          ASSERT_NEAR(jacobian(i * d + a, j * d + b), fd, 1e-5 * (1 + std::abs(fd)))
+              << label << " row (" << i << ", " << a << ") column (" << j << ", " << b << ")";
+          ++checked;
+        }
+    }
+  for (int b = 0; b < d; ++b) {  // ∂Ψ/∂λ, pointwise
+    LawSamples plus = s, minus = s;
+    plus.force.col(b).array() += h;
+    minus.force.col(b).array() -= h;
+    law.evaluate(plus, false);
+    law.evaluate(minus, false);
+    for (int i = 0; i < samples; ++i)
+      for (int a = 0; a < d; ++a)
+        EXPECT_NEAR(s.dpsi_dforce(i, a * d + b), (plus.psi(i, a) - minus.psi(i, a)) / (2 * h), 1e-6) << label;
+  }
+  // Not all zero: some sample's force reads another sample's displacement.
+  EXPECT_GT((jacobian - Eigen::MatrixXd(jacobian.diagonal().asDiagonal())).cwiseAbs().maxCoeff(), 0.0) << label;
   EXPECT_GT(checked, 0) << label;
 }
 

@@ -94,7 +94,7 @@ TEST(LawRegistry, EveryLawHasExamplesAndItsFormsAreCovered) {
   for (const LawEntry& entry : lawRegistry()) {
     EXPECT_FALSE(entry.examples.empty()) << entry.type;
     EXPECT_FALSE(entry.summary.empty()) << entry.type;
-    EXPECT_TRUE(entry.parse) << entry.type;
+    EXPECT_TRUE(entry.parse || entry.parse_aft) << entry.type;
     for (const auto& form : entry.forms) {
       bool covered = false;
       for (const auto& example : entry.examples)

@@ -13,6 +13,7 @@ LawEntry stribeckEntry();
 LawEntry cubicEntry();
 LawEntry contactFrictionEntry();
 LawEntry jenkinsEntry();
+LawEntry iwanEntry();
 LawEntry penaltyContactEntry();
 LawEntry polynomialEntry();
 LawEntry quadraticDampingEntry();
@@ -20,8 +21,8 @@ LawEntry quadraticDampingEntry();
 const std::vector<LawEntry>& lawRegistry() {
   static const std::vector<LawEntry> entries = {coulomb1DEntry(), coulomb2DEntry(),       signoriniEntry(),
                                                 stribeckEntry(),  cubicEntry(),           contactFrictionEntry(),
-                                                jenkinsEntry(),   penaltyContactEntry(),  polynomialEntry(),
-                                                quadraticDampingEntry()};
+                                                jenkinsEntry(),   iwanEntry(),            penaltyContactEntry(),
+                                                polynomialEntry(), quadraticDampingEntry()};
   return entries;
 }
 
@@ -34,18 +35,19 @@ bool LawEntry::hasForm(const std::string& form) const {
 }
 
 std::shared_ptr<Law> parseLaw(const LawEntry& entry, LawTable& table) {
-  const std::string formulation = table.text("formulation", std::string("equality"));
-  if (formulation == "equality") return entry.parse(table);
-  if (formulation != "aft")
+  const std::string formulation = table.text("formulation", std::string(entry.parse ? "equality" : "aft"));
+  if (formulation != "equality" && formulation != "aft")
     table.fail(table.path("formulation"), "\"" + formulation + "\"", "must be \"equality\" or \"aft\"");
-  if (!entry.parse_aft) {
+  const bool aft = formulation == "aft";
+  if (aft ? !entry.parse_aft : !entry.parse) {
     std::string with;
     for (const LawEntry& e : lawRegistry())
-      if (e.parse_aft) with += (with.empty() ? "" : ", ") + e.type;
-    table.fail(table.path("formulation"), "\"aft\"",
-               "a " + entry.type + " law has no alternating frequency-time form (laws with one: " + with + ")");
+      if (aft ? bool(e.parse_aft) : bool(e.parse)) with += (with.empty() ? "" : ", ") + e.type;
+    table.fail(table.path("formulation"), "\"" + formulation + "\"",
+               "a " + entry.type + " law has no " + (aft ? "alternating frequency-time" : "equality") +
+                   " form (laws with one: " + with + ")");
   }
-  return entry.parse_aft(table);
+  return aft ? entry.parse_aft(table) : entry.parse(table);
 }
 
 const LawEntry* findLaw(const std::string& type) {

@@ -53,7 +53,8 @@ struct LawEntry {
   std::vector<std::string> forms;
   std::vector<LawParameter> parameters;  // every key the parser reads
   // Scene table → law, with InputErrors naming the field; the DOF count is
-  // checked against Law::dimension() by the caller.
+  // checked against Law::dimension() by the caller. Empty for a law that has
+  // only the alternating frequency–time form (its default formulation).
   std::function<std::shared_ptr<Law>(LawTable&)> parse;
   // The alternating frequency–time form (formulation = "aft": the force
   // computed in time from the displacement and projected, Ψ = λ − F[x]);
@@ -72,9 +73,9 @@ struct LawEntry {
 };
 
 // The law of a scene table through its entry: the key `formulation`,
-// "equality" (the default: the entry's parse) or "aft" (parse_aft), is read
-// here for every law; an unknown name, or "aft" on a law without that form,
-// is an InputError naming the field.
+// "equality" (the entry's parse) or "aft" (parse_aft), is read here for every
+// law, by default "equality" where the law has it; an unknown name, or a
+// formulation the law has not, is an InputError naming the field.
 std::shared_ptr<Law> parseLaw(const LawEntry& entry, LawTable& table);
 
 // Every law, in the order they are listed to users.

@@ -9,7 +9,8 @@
 
 namespace eqhb {
 
-JenkinsAft::JenkinsAft(std::vector<Slider> sliders) : sliders_(std::move(sliders)) {
+JenkinsAft::JenkinsAft(std::vector<Slider> sliders, std::string type)
+    : sliders_(std::move(sliders)), type_(std::move(type)) {
   if (sliders_.empty()) throwInputError("sliders", "0", "an element needs at least one slider");
   for (const Slider& s : sliders_) {
     if (!(s.mu_n >= 0.0) || !std::isfinite(s.mu_n))
@@ -80,7 +81,8 @@ std::vector<std::pair<std::string, double>> JenkinsAft::violations(const LawSamp
 
 LocalVector JenkinsAft::solveStep(const StepProblem& step) const {
   if (sliders_.size() != 1)
-    throw std::invalid_argument("the reference integrator has one state per law: an Iwan element has several");
+    throw InputError("law " + type_ + ": the time reference carries one state per law, and an element of " +
+                     std::to_string(sliders_.size()) + " sliders has as many");
   return Jenkins(1, sliders_[0].mu_n, sliders_[0].k_t, FrictionForm::kMinMax).solveStep(step);
 }
 

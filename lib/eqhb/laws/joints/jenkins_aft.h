@@ -35,10 +35,10 @@ class JenkinsAft : public Law {
     double mu_n, k_t;
   };
   // Throws InputError naming the field: at least one slider; each μN >= 0,
-  // k_t > 0, all finite.
-  explicit JenkinsAft(std::vector<Slider> sliders);
-  // type: "jenkins" for one slider (its registered name); "iwan" for more.
-  std::string type() const override { return sliders_.size() == 1 ? "jenkins" : "iwan"; }
+  // k_t > 0, all finite. `type`: the registered name of the law it is the
+  // form of ("jenkins"; "iwan", laws/joints/iwan_sliders.h).
+  explicit JenkinsAft(std::vector<Slider> sliders, std::string type = "jenkins");
+  std::string type() const override { return type_; }
   int dimension() const override { return 1; }
   bool usesDisplacement() const override { return true; }
   bool usesVelocity() const override { return false; }
@@ -57,6 +57,7 @@ class JenkinsAft : public Law {
 
  private:
   std::vector<Slider> sliders_;
+  std::string type_;
   double total_limit_ = 0.0;
 };
 
