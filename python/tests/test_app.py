@@ -278,3 +278,42 @@ def test_study_fallback_reaches_every_sample(tmp_path):
     assert helped["succeeded"] and helped["failed"] == 0
     with pytest.raises(eqhb.InputError, match="^fallback = bogus: has an unknown step bogus"):
         eqhb.study(duffing, "law[0].epsilon=0.1:0.1:1", out=str(tmp_path / "bad"), mode="sweep", fallback="bogus")
+
+
+PRELOADED = """name = "preloaded"
+[structure]
+type = "chain"
+dofs = 1
+m = 1.0
+k = 1.0
+d = 0.02
+[[law]]
+type = "penalty-contact"
+dofs = [1]
+stiffness = 10.0
+gap = 0.5
+[[preload]]
+dof = 1
+force = 2.0
+[[forcing]]
+dof = 1
+cos = 0.01
+[harmonic_balance]
+harmonics = 5
+set = "all"
+samples = 64
+omega = 1.5
+"""
+
+
+def test_preload_static_state_is_eqhb_solves(tmp_path):
+    scene = tmp_path / "preloaded.toml"
+    scene.write_text(PRELOADED)
+    cli = cli_json("solve", scene)
+    py = eqhb.solve(eqhb.load_scene(scene))
+    same_answer(cli, py)
+    element = py["preload"]["elements"][0]
+    assert element["state"] == "closed"
+    # Pressed on the wall: x = (F + k_n g0)/(k + k_n) = 7/11, p = k_n (x − g0).
+    assert py["preload"]["displacement"][0] == pytest.approx(7 / 11, rel=1e-12)
+    assert element["normal_force"] == pytest.approx(10 * (7 / 11 - 0.5), rel=1e-12)

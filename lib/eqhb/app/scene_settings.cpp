@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "eqhb/app/static_preload.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/law_rho.h"
 
@@ -52,7 +53,9 @@ Scene loadScene(const SceneSettings& s) {
     const auto laws = lawFormulationOverrides(loadDocument(s, s.overrides).model, *s.formulation);
     o.insert(o.end(), laws.begin(), laws.end());
   }
-  return loadDocument(s, o);
+  Scene scene = loadDocument(s, o);
+  settleUnderPreload(scene);
+  return scene;
 }
 
 }  // namespace eqhb::app

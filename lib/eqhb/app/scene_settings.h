@@ -38,7 +38,8 @@ struct SceneSettings {
   std::optional<Document> document;
 };
 
-// The scene with every override and setting applied; throws InputError
+// The scene with every override and setting applied, settled under its
+// preload (static_preload.h); throws InputError
 // naming the setting ("form", "rho") or the scene's field.
 Scene loadScene(const SceneSettings& settings);
 // The scene's document with `overrides` only (no common settings).

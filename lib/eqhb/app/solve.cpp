@@ -10,6 +10,7 @@
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
 #include "eqhb/orbits/smooth_flow.h"
+#include "eqhb/preload/operating_point.h"
 #include "eqhb/solvers/deadline.h"
 #include "eqhb/stability/curve_stability.h"
 
@@ -90,6 +91,11 @@ HbRun solveHarmonicBalance(const SceneSettings& scene, const SolveOptions& o) {
 
   Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system.size());
   run.start = "zero";
+  // Under a preload the start is the static state (its operating point).
+  if (run.scene.at_rest) {
+    z0 = system.fromFullCoefficients(operatingPoint(model, *run.scene.at_rest));
+    run.start = "preload";
+  }
   if (o.from_harmonics) {
     z0 = system.fromFullCoefficients(
         seedByHarmonics(model, *o.from_harmonics, o, *solver, withinLimit("set-up, before the seed"), &run));
@@ -101,7 +107,7 @@ HbRun solveHarmonicBalance(const SceneSettings& scene, const SolveOptions& o) {
     run.start = "given";
   }
   // A cold start begins at a coarse harmonic balance, made once here.
-  const bool started_cold = !o.from_harmonics && !o.initial.size();
+  const bool started_cold = !o.from_harmonics && !o.initial.size() && !run.scene.at_rest;
   std::unique_ptr<CoarseStart> coarse;
   if (o.cold_start == "coarse" && started_cold) {
     const auto coarse_setup = std::chrono::steady_clock::now();

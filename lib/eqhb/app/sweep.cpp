@@ -6,6 +6,7 @@
 #include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
+#include "eqhb/preload/operating_point.h"
 
 namespace eqhb::app {
 
@@ -70,6 +71,8 @@ SweepPlan planSweep(const SceneSettings& settings, const SweepOptions& o) {
   resolveSteps(o, &c);
   c.max_points = o.max_points;
   c.condensed = o.condensed;
+  // Under a preload the first point starts at the static state.
+  if (plan.scene.at_rest) c.start_full = operatingPoint(plan.scene.model, *plan.scene.at_rest);
   // Every option checked before any count is derived from them.
   if (o.arclength) c.validate();
   else c.validateGrid();

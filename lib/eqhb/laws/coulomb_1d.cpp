@@ -187,4 +187,8 @@ double Coulomb1D::residualScale(const PhysicalScales& s, int) const {
   return s.force;  // r + μN φ(v)
 }
 
+std::optional<StaticStatus> Coulomb1D::staticStatus(const LawSamples& rest) const {
+  return frictionStatus(std::abs(rest.force(0, 0)), mu_n_);
+}
+
 }  // namespace eqhb

@@ -64,6 +64,8 @@ class Coulomb1D : public Law {
   int dimension() const override { return 1; }
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
+  bool rateIndependent() const override { return true; }
+  std::optional<StaticStatus> staticStatus(const LawSamples& rest) const override;
   bool oddSymmetric() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   double forceLevel() const override { return mu_n_; }

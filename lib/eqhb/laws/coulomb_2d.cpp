@@ -196,4 +196,8 @@ double Coulomb2D::residualScale(const PhysicalScales& s, int) const {
   return s.force * s.velocity;  // r‖v‖ + μN tanh(α‖v‖) v
 }
 
+std::optional<StaticStatus> Coulomb2D::staticStatus(const LawSamples& rest) const {
+  return frictionStatus(rest.force.row(0).norm(), mu_n_);
+}
+
 }  // namespace eqhb

@@ -25,3 +25,25 @@ std::optional<Law::RhoComparison> Law::compareRho(const LawScales&) const { retu
 std::optional<WidthComparison> Law::compareWidth(const LawScales&) const { return std::nullopt; }
 
 }  // namespace eqhb
+
+namespace eqhb {
+
+StaticStatus frictionStatus(double force, double limit) {
+  StaticStatus s;
+  s.state = limit > 0.0 && force < (1.0 - 1e-8) * limit ? StaticStatus::State::kStuck : StaticStatus::State::kSlipping;
+  s.tangential_force = force;
+  s.friction_limit = limit;
+  return s;
+}
+
+const char* staticStateName(StaticStatus::State state) {
+  switch (state) {
+    case StaticStatus::State::kOpen: return "open";
+    case StaticStatus::State::kClosed: return "closed";
+    case StaticStatus::State::kStuck: return "stuck";
+    case StaticStatus::State::kSlipping: return "slipping";
+  }
+  return "?";
+}
+
+}  // namespace eqhb

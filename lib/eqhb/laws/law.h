@@ -147,6 +147,21 @@ inline double invariantScale(double observed, double problem) {
   return std::max(observed, kInvariantScaleFloor * problem);
 }
 
+// A law's state at rest under static loads (preload/static_contact.h): a
+// contact open or closed (its gap g, positive open, and normal force p >= 0
+// pressing), a friction stuck or slipping (its tangential force and limit).
+// Fields a law does not have stay unset.
+struct StaticStatus {
+  enum class State { kOpen, kClosed, kStuck, kSlipping };
+  State state = State::kClosed;
+  std::optional<double> gap, normal_force;
+  std::optional<double> tangential_force, friction_limit;  // ‖r_t‖ and μN (or μp)
+};
+const char* staticStateName(StaticStatus::State state);
+// A friction force of size `force` against its limit: slipping at the limit
+// (to a relative 1e-8, the solve's round-off) or where there is none.
+StaticStatus frictionStatus(double force, double limit);
+
 class Law {
  public:
   virtual ~Law() = default;
@@ -186,6 +201,29 @@ class Law {
   // components in its Jacobian besides the diagonal. Such a law is never
   // oddSymmetric (its period is not sampled by halves).
   virtual int historyTerms() const { return 0; }
+  // True for rate-independent friction: its static step from the unloaded
+  // state (preload/static_contact.h) reads the displacement increment as the
+  // velocity and the force increment as the force rate (one implicit step of
+  // unit length from rest: a contact sticks unless the static load makes it
+  // slip). False: the law is seen at rest (velocity 0: a damper adds no
+  // static force).
+  virtual bool rateIndependent() const { return false; }
+  // The law's state on one sample at rest (inputs filled as the static step
+  // fills them); nullopt for a law that is not a contact or a friction.
+  virtual std::optional<StaticStatus> staticStatus(const LawSamples& rest) const {
+    static_cast<void>(rest);
+    return std::nullopt;
+  }
+  // A law whose stuck state a periodic orbit cannot fix by itself (the
+  // slider of an alternating frequency–time friction stays anywhere it
+  // stuck): a copy anchored at the static state `rest` (one sample, as
+  // staticStatus reads it), so that a period that never slips keeps the
+  // slider where the static load left it. nullptr for laws without such a
+  // state.
+  virtual std::shared_ptr<Law> anchoredAt(const LawSamples& rest) const {
+    static_cast<void>(rest);
+    return nullptr;
+  }
   // Fills psi and, if with_derivatives, the partials of the used inputs.
   virtual void evaluate(LawSamples& samples, bool with_derivatives) const = 0;
   // Physical checks on samples of a solution (inputs filled, densely in

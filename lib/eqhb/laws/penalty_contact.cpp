@@ -48,4 +48,12 @@ std::vector<std::pair<std::string, double>> PenaltyContact::violations(const Law
   return {{"penalty_law", law.abs().maxCoeff() / scale}, {"negative_pressure", std::max(0.0, -p.minCoeff()) / scale}};
 }
 
+std::optional<StaticStatus> PenaltyContact::staticStatus(const LawSamples& rest) const {
+  StaticStatus s;
+  s.gap = gap_ - rest.displacement(0, 0);
+  s.normal_force = rest.force(0, 0);
+  s.state = *s.normal_force > 0.0 ? StaticStatus::State::kClosed : StaticStatus::State::kOpen;
+  return s;
+}
+
 }  // namespace eqhb

@@ -25,6 +25,7 @@ class PenaltyContact : public Law {
   double forceSign() const override { return -1.0; }
   bool usesDisplacement() const override { return true; }
   bool usesVelocity() const override { return false; }
+  std::optional<StaticStatus> staticStatus(const LawSamples& rest) const override;
   // A pressure p >= 0 that is not zero has a positive mean.
   bool needsConstantTerm() const override { return true; }
   // The wall's position is the law's length; it has no force of its own.

@@ -110,4 +110,12 @@ double Signorini::residualScale(const PhysicalScales& s, int) const {
   return form_ == SignoriniForm::kSignSquare ? scale * scale : scale;
 }
 
+std::optional<StaticStatus> Signorini::staticStatus(const LawSamples& rest) const {
+  StaticStatus s;
+  s.gap = gap_ - rest.displacement(0, 0);
+  s.normal_force = rest.force(0, 0);
+  s.state = *s.normal_force > 0.0 ? StaticStatus::State::kClosed : StaticStatus::State::kOpen;
+  return s;
+}
+
 }  // namespace eqhb

@@ -28,6 +28,7 @@ class Signorini : public Law {
   double forceSign() const override { return -1.0; }
   bool usesDisplacement() const override { return true; }
   bool usesVelocity() const override { return false; }
+  std::optional<StaticStatus> staticStatus(const LawSamples& rest) const override;
   bool needsConstantTerm() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   double displacementLevel() const override { return std::abs(gap_); }

@@ -16,6 +16,9 @@ class Stribeck : public Law {
   int dimension() const override { return 1; }
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
+  // Its static step reads the increment as a speed over a unit time: a stuck
+  // contact (increment 0) is held to the static limit μ(0).
+  bool rateIndependent() const override { return true; }
   bool oddSymmetric() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
   double forceLevel() const override { return dynamic_ + drop_; }

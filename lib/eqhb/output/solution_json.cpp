@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "eqhb/output/static_state_json.h"
+
 namespace eqhb::output {
 
 nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd& c) {
@@ -241,6 +243,7 @@ nlohmann::json solutionJson(const app::Solution& s, bool trajectory) {
   out["dofs"] = channels["dofs"];
   out["laws"] = channels["laws"];
   out["invariants"] = invariantsJson(s.invariants);
+  if (run.scene.at_rest) out["preload"] = staticStateJson(model, *run.scene.at_rest);
   if (s.stability) out["stability"] = stabilityJson(*s.stability);
   if (s.accuracy) {
     out["rho"] = rhoJson(s.accuracy->candidates.scene_rho, s.accuracy->rhoFactor());
@@ -253,3 +256,4 @@ nlohmann::json solutionJson(const app::Solution& s, bool trajectory) {
 }
 
 }  // namespace eqhb::output
+

@@ -727,6 +727,30 @@ Scene buildScene(toml::value root, const std::string& source,
       scene.model.structure.loads.push_back(load);
     }
   }
+  if (top.has("preload")) {
+    const auto& loads = arrayOfTables(top, "preload");
+    for (size_t i = 0; i < loads.size(); ++i) {
+      const std::string field = "preload[" + std::to_string(i) + "]";
+      TableReader f(loads[i], field, source);
+      if (f.has("dof") == f.has("node")) f.fail(field, "(dof and node)", "give exactly one of dof or node");
+      const bool by_node = f.has("node");
+      const int number = f.integer(by_node ? "node" : "dof");
+      const int count = by_node ? structure.nodes : dofs;
+      if (number < 1 || number > count)
+        f.fail(field + (by_node ? ".node" : ".dof"), std::to_string(number),
+               std::string(by_node ? "no such node" : "no such DOF") + " (the structure has " +
+                   std::to_string(count) + ", numbered from 1)");
+      HarmonicLoad load;
+      load.harmonic = 0;
+      load.dof = by_node ? beamTransverseDof(number) : number - 1;
+      load.cos_amplitude = f.number("force");
+      f.requireKnownKeys();
+      if (!scene.model.basis.contains(0))
+        f.fail(field, "(harmonic_balance.set = \"odd\")", "a static load needs the constant term: set = \"all\"");
+      scene.preload.push_back(load);
+      scene.model.structure.loads.push_back(load);
+    }
+  }
   if (top.has("law")) {
     const auto& laws = arrayOfTables(top, "law");
     for (size_t i = 0; i < laws.size(); ++i)
@@ -768,7 +792,7 @@ Scene buildScene(toml::value root, const std::string& source,
     }
     t.requireKnownKeys();
   }
-  top.allow({"forcing", "law"});
+  top.allow({"forcing", "preload", "law"});
   top.requireKnownKeys();
   try {
     scene.model.validate();

@@ -10,6 +10,10 @@
 //                                              T = tridiag(−1, 2, −1) with T_nn = 1
 //   [structure] type = "matrices"              mass, damping, stiffness (arrays of rows)
 //   [[forcing]] dof, harmonic (1), cos (0), sin (0)
+//   [[preload]] dof or node, force: a static load (a bolt's), solved first as
+//               a static contact problem (preload/static_contact.h) whose
+//               state is the dynamic solve's operating point; it stays
+//               applied as a constant load (needs set = "all")
 //   [[law]]     type, dofs (one per component) or between = [node, node] with
 //               normal and tangents (an element between two nodes; nodes from
 //               [structure] node_table, a beam's nodes, else one per DOF), and
@@ -34,6 +38,7 @@
 #include <vector>
 
 #include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/preload/static_contact.h"
 
 namespace eqhb {
 
@@ -50,6 +55,11 @@ struct Scene {
   HbModel model;
   std::optional<double> sweep_from, sweep_to;
   TimeReferenceDefaults time_reference;
+  // [[preload]]'s loads (harmonic 0, also among the model's loads).
+  std::vector<HarmonicLoad> preload;
+  // The static state under them, once solved (app::loadScene does): the
+  // model's laws are then anchored at it (preload/operating_point.h).
+  std::optional<StaticContactState> at_rest;
 };
 
 // Throws InputError with the file name and the field.

@@ -248,4 +248,13 @@ std::shared_ptr<Law> ContactFriction::withScaleFreeRho(const LawScales& scales) 
   return copy;
 }
 
+std::optional<StaticStatus> ContactFriction::staticStatus(const LawSamples& rest) const {
+  const double pressure = p_.preload - rest.force(0, 0);  // λ_n = N0 − p
+  StaticStatus s = frictionStatus(rest.force.row(0).tail(p_.tangential).norm(), p_.mu * std::max(pressure, 0.0));
+  if (!(pressure > 0.0)) s.state = StaticStatus::State::kOpen;
+  s.gap = p_.gap - rest.displacement(0, 0);
+  s.normal_force = pressure;
+  return s;
+}
+
 }  // namespace eqhb

@@ -53,6 +53,8 @@ class ContactFriction : public Law {
   int dimension() const override { return 1 + p_.tangential; }
   bool usesDisplacement() const override { return true; }
   bool usesVelocity() const override { return true; }
+  bool rateIndependent() const override { return true; }
+  std::optional<StaticStatus> staticStatus(const LawSamples& rest) const override;
   bool usesForceRate() const override { return p_.tangential_stiffness.has_value(); }
   bool needsConstantTerm() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;

@@ -97,4 +97,8 @@ double Jenkins::residualScale(const PhysicalScales& s, int) const {
   return frictionResidualScale(form_, rho_, s);  // the slip velocity u in the velocity scale
 }
 
+std::optional<StaticStatus> Jenkins::staticStatus(const LawSamples& rest) const {
+  return frictionStatus(rest.force.row(0).norm(), mu_n_);
+}
+
 }  // namespace eqhb

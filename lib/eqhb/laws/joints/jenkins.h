@@ -21,6 +21,8 @@ class Jenkins : public Law {
   int dimension() const override { return dimension_; }
   bool usesDisplacement() const override { return false; }
   bool usesVelocity() const override { return true; }
+  bool rateIndependent() const override { return true; }
+  std::optional<StaticStatus> staticStatus(const LawSamples& rest) const override;
   bool oddSymmetric() const override { return true; }
   bool usesForceRate() const override { return true; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;

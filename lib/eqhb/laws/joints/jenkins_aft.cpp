@@ -49,9 +49,12 @@ void JenkinsAft::evaluate(LawSamples& s, bool with_derivatives) const {
   }
   for (int k = 0; k < terms; ++k) {
     const Slider& slider = sliders_[k];
-    // Pass 1 from the mean: only the state at its end matters.
-    double w = mean;
-    int anchor = LawSamples::kPeriodMean;
+    // Pass 1 from the mean, or from the static anchor: only the state at
+    // its end matters. kFixed: w is a constant (no dependence on x).
+    constexpr int kFixed = -2;
+    const bool anchored = !anchors_.empty();
+    double w = anchored ? anchors_[k] : mean;
+    int anchor = anchored ? kFixed : LawSamples::kPeriodMean;
     bool slipped = false;
     for (int i = 0; i < n; ++i) returnMap(slider, x[i], i, w, anchor, slipped);
     // Pass 2: periodic (see the header); Ψ = λ − F.
@@ -62,9 +65,10 @@ void JenkinsAft::evaluate(LawSamples& s, bool with_derivatives) const {
       // Stick: ∂Ψ_i/∂x_i = k, ∂Ψ_i/∂x_anchor = −k (the anchor may be i
       // itself, a slip of the first pass at this sample: the force is the
       // limit, its derivative 0 as the two terms cancel).
+      const bool moved = !slipped && anchor != kFixed;  // stuck since a slip or x̄
       s.dpsi_ddisplacement(i, 0) += slipped ? 0.0 : slider.k_t;
-      s.history_sample(i, k) = slipped ? i : anchor;
-      s.history_weight(i, k) = slipped ? 0.0 : -slider.k_t;
+      s.history_sample(i, k) = moved ? anchor : i;
+      s.history_weight(i, k) = moved ? -slider.k_t : 0.0;
     }
   }
 }
@@ -84,6 +88,33 @@ LocalVector JenkinsAft::solveStep(const StepProblem& step) const {
     throw InputError("law " + type_ + ": the time reference carries one state per law, and an element of " +
                      std::to_string(sliders_.size()) + " sliders has as many");
   return Jenkins(1, sliders_[0].mu_n, sliders_[0].k_t, FrictionForm::kMinMax).solveStep(step);
+}
+
+std::shared_ptr<JenkinsAft> JenkinsAft::withAnchors(std::vector<double> positions) const {
+  if (positions.size() != sliders_.size())
+    throw std::invalid_argument("JenkinsAft::withAnchors: one position per slider");
+  for (double w : positions)
+    if (!std::isfinite(w)) throwInputError("preload", formatNumber(w), "a slider's static position must be finite");
+  auto out = std::make_shared<JenkinsAft>(*this);
+  out->anchors_ = std::move(positions);
+  return out;
+}
+
+std::shared_ptr<Law> JenkinsAft::anchoredAt(const LawSamples& rest) const {
+  std::vector<double> positions;
+  const double x = rest.displacement(0, 0);
+  for (const Slider& slider : sliders_) {
+    double w = 0.0;
+    int anchor = 0;
+    bool slipped = false;
+    returnMap(slider, x, 0, w, anchor, slipped);
+    positions.push_back(w);
+  }
+  return withAnchors(std::move(positions));
+}
+
+std::optional<StaticStatus> JenkinsAft::staticStatus(const LawSamples& rest) const {
+  return frictionStatus(std::abs(rest.force(0, 0)), total_limit_);
 }
 
 }  // namespace eqhb

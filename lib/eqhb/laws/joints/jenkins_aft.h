@@ -18,6 +18,11 @@
 // (the stuck slider's position is not fixed by a periodic orbit; the mean is
 // the choice that adds no static force of its own).
 //
+// Anchored (anchoredAt, after a static preload): each slider starts the
+// first pass at its static position w_s instead of x̄, so a slider that
+// never slips keeps w_s and its force −k_s (x − w_s) carries the static
+// force; a slider that slips forgets w_s as above.
+//
 // Jacobian (exact, almost everywhere): stick since the slip at sample s,
 // ∂F_i/∂x_j = −k_s (δ_ij − δ_js) (δ_js → 1/N for a slider that never
 // slipped); slip, 0. The law thus has one history term per slider.
@@ -52,13 +57,24 @@ class JenkinsAft : public Law {
   // One slider: the Jenkins element's exact step (jenkins.h); more sliders
   // need a state each, which the reference integrator does not carry.
   LocalVector solveStep(const StepProblem& step) const override;
+  // The static step from rest is the anchored law at w = 0 (anchors of
+  // zeros): on one sample, a slider sticks with −k_s x or slips at ±μN_s.
+  bool rateIndependent() const override { return true; }
+  std::optional<StaticStatus> staticStatus(const LawSamples& rest) const override;
+  // A copy whose sliders start at their state after the static step from
+  // w = 0 to the displacement of `rest` (the return map of one sample).
+  std::shared_ptr<Law> anchoredAt(const LawSamples& rest) const override;
+  // The same with the sliders' positions given (one per slider, finite).
+  std::shared_ptr<JenkinsAft> withAnchors(std::vector<double> positions) const;
   const std::vector<Slider>& sliders() const { return sliders_; }
+  const std::vector<double>& anchors() const { return anchors_; }
   double muN() const { return total_limit_; }
 
  private:
   std::vector<Slider> sliders_;
   std::string type_;
   double total_limit_ = 0.0;
+  std::vector<double> anchors_;  // empty: not anchored (start at x̄)
 };
 
 }  // namespace eqhb

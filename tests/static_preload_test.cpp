@@ -1,0 +1,162 @@
+// Static preload (preload/static_contact.h, [[preload]] in scenes): the
+// static contact solve against closed forms (a spring pressed on a penalty
+// wall, a Jenkins slider that sticks or slips), the operating point of the
+// dynamic solve (a preloaded stuck joint under small forcing is the linear
+// stuck system, its mean fixed by the static state) and the input errors.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "eqhb/app/solve.h"
+#include "eqhb/error.h"
+#include "eqhb/output/solution_json.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+// A 1-DOF oscillator (m = 1, k = 1, d = 0.02) with one law and `extra` TOML.
+std::string oscillator(const std::string& law, const std::string& extra, const std::string& set = "all") {
+  return "name = \"preloaded\"\n[structure]\ntype = \"chain\"\ndofs = 1\nm = 1.0\nk = 1.0\nd = 0.02\n" + law +
+         extra + "[harmonic_balance]\nharmonics = 5\nset = \"" + set + "\"\nsamples = 64\nomega = 1.5\n";
+}
+
+const char* kWall = "[[law]]\ntype = \"penalty-contact\"\ndofs = [1]\nstiffness = 10.0\ngap = 0.5\n";
+const char* kJenkins = "[[law]]\ntype = \"jenkins\"\nformulation = \"aft\"\ndofs = [1]\nmuN = 1.0\nk_t = 4.0\n";
+
+std::string preload(double force) { return "[[preload]]\ndof = 1\nforce = " + formatNumber(force) + "\n"; }
+std::string forcing(double amplitude, int harmonic = 1) {
+  return "[[forcing]]\ndof = 1\nharmonic = " + std::to_string(harmonic) + "\ncos = " + formatNumber(amplitude) + "\n";
+}
+
+app::SceneSettings written(const std::string& text) {
+  // Each test runs in its own process (ctest -j): the file names carry the test's.
+  static int count = 0;
+  const std::string path = ::testing::TempDir() + "/preload_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+                           std::to_string(count++) + ".toml";
+  std::ofstream(path) << text;
+  app::SceneSettings s;
+  s.path = path;
+  return s;
+}
+
+Scene settled(const std::string& text) { return app::loadScene(written(text)); }
+
+// The message of the InputError that loading `text` throws ("" if none).
+std::string refusal(const std::string& text) {
+  try {
+    settled(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Pressed on the wall: k x = F − k_n (x − g0), x = (F + k_n g0)/(k + k_n).
+TEST(StaticPreload, SpringOnPenaltyWallIsTheClosedForm) {
+  const double k = 1.0, k_n = 10.0, g0 = 0.5, force = 2.0;
+  const Scene s = settled(oscillator(kWall, preload(force)));
+  ASSERT_TRUE(s.at_rest);
+  const double x = (force + k_n * g0) / (k + k_n);
+  EXPECT_NEAR(s.at_rest->displacement[0], x, 1e-12);
+  const StaticStatus& status = *s.at_rest->status[0];
+  EXPECT_EQ(std::string(staticStateName(status.state)), "closed");
+  EXPECT_NEAR(*status.normal_force, k_n * (x - g0), 1e-12);
+  EXPECT_NEAR(*status.gap, g0 - x, 1e-12);
+  // Below the gap the wall is not reached: x = F/k, no force.
+  const Scene open = settled(oscillator(kWall, preload(0.3)));
+  EXPECT_NEAR(open.at_rest->displacement[0], 0.3, 1e-12);
+  EXPECT_EQ(std::string(staticStateName(open.at_rest->status[0]->state)), "open");
+  EXPECT_NEAR(*open.at_rest->status[0]->normal_force, 0.0, 1e-12);
+  EXPECT_NEAR(*open.at_rest->status[0]->gap, 0.2, 1e-12);
+}
+
+// A slider loaded from rest sticks while k_t x <= μN (x = F/(k + k_t)), and
+// slips to the limit beyond (k x = F − μN).
+TEST(StaticPreload, JenkinsSticksOrSlipsFromRest) {
+  const Scene stuck = settled(oscillator(kJenkins, preload(1.0)));
+  EXPECT_NEAR(stuck.at_rest->displacement[0], 1.0 / 5.0, 1e-12);
+  EXPECT_EQ(std::string(staticStateName(stuck.at_rest->status[0]->state)), "stuck");
+  EXPECT_NEAR(*stuck.at_rest->status[0]->tangential_force, 0.8, 1e-12);
+  const Scene slipping = settled(oscillator(kJenkins, preload(2.0)));
+  EXPECT_NEAR(slipping.at_rest->displacement[0], 1.0, 1e-12);
+  EXPECT_EQ(std::string(staticStateName(slipping.at_rest->status[0]->state)), "slipping");
+  EXPECT_NEAR(*slipping.at_rest->status[0]->tangential_force, 1.0, 1e-12);
+}
+
+// The coefficients of x on the one DOF: [x0, a1, b1, a2, b2, ...].
+Eigen::VectorXd solveDisplacement(const std::string& text, std::string* start = nullptr) {
+  app::SolveOptions o;
+  const app::Solution s = app::solve(written(text), o);
+  EXPECT_TRUE(s.converged()) << terminationName(s.run.result.termination);
+  if (start) *start = s.run.start;
+  return s.full.head(s.model().basis.size());
+}
+
+// The linear 1-DOF response to f cos ωt with stiffness k: (a1, b1).
+Eigen::Vector2d linear(double k, double f, double omega = 1.5, double d = 0.02) {
+  Eigen::Matrix2d a;
+  a << k - omega * omega, omega * d, -omega * d, k - omega * omega;
+  return a.fullPivLu().solve(Eigen::Vector2d(f, 0.0));
+}
+
+// Preloaded and stuck, a small forcing never slips the slider: the response
+// is the linear system with k + k_t about the static state (mean F/(k + k_t)).
+// The unanchored slider (the same constant load as forcing, no static
+// solve) sticks at the period's mean instead and carries no static force:
+// mean F/k.
+TEST(StaticPreload, StuckJointUnderSmallForcingIsTheLinearStuckSystem) {
+  const double f = 0.01;
+  std::string start;
+  const Eigen::VectorXd x = solveDisplacement(oscillator(kJenkins, preload(1.0) + forcing(f)), &start);
+  EXPECT_EQ(start, "preload");
+  EXPECT_NEAR(x[0], 1.0 / 5.0, 1e-10);
+  const Eigen::Vector2d stuck = linear(5.0, f);
+  EXPECT_NEAR(x[1], stuck[0], 1e-10);
+  EXPECT_NEAR(x[2], stuck[1], 1e-10);
+  EXPECT_LT(x.tail(x.size() - 3).cwiseAbs().maxCoeff(), 1e-10);
+  const Eigen::VectorXd free_mean = solveDisplacement(oscillator(kJenkins, forcing(1.0, 0) + forcing(f)));
+  EXPECT_NEAR(free_mean[0], 1.0, 1e-10);
+}
+
+// Pressed on the wall and shaken gently, the contact stays closed: the
+// linear system with k + k_n about the static state.
+TEST(StaticPreload, PressedWallUnderSmallForcingIsTheLinearSystem) {
+  const double f = 0.01;
+  const Eigen::VectorXd x = solveDisplacement(oscillator(kWall, preload(2.0) + forcing(f)));
+  EXPECT_NEAR(x[0], 7.0 / 11.0, 1e-10);
+  const Eigen::Vector2d pressed = linear(11.0, f);
+  EXPECT_NEAR(x[1], pressed[0], 1e-10);
+  EXPECT_NEAR(x[2], pressed[1], 1e-10);
+}
+
+TEST(StaticPreload, SolveJsonReportsTheStaticState) {
+  app::SolveOptions o;
+  const app::Solution s = app::solve(written(oscillator(kWall, preload(2.0) + forcing(0.01))), o);
+  const nlohmann::json j = output::solutionJson(s, false);
+  ASSERT_TRUE(j.contains("preload"));
+  EXPECT_TRUE(j["preload"]["converged"].get<bool>());
+  EXPECT_EQ(j["preload"]["elements"][0]["state"], "closed");
+  EXPECT_NEAR(j["preload"]["elements"][0]["normal_force"].get<double>(), 10.0 * (7.0 / 11.0 - 0.5), 1e-12);
+  EXPECT_NEAR(j["preload"]["elements"][0]["gap"].get<double>(), 0.5 - 7.0 / 11.0, 1e-12);
+}
+
+TEST(StaticPreload, BadInputNamesTheField) {
+  EXPECT_NE(refusal(oscillator(kWall, "[[preload]]\ndof = 2\nforce = 1.0\n")).find("preload[0].dof"),
+            std::string::npos);
+  EXPECT_NE(refusal(oscillator(kWall, "[[preload]]\ndof = 1\nforce = nan\n")).find("preload[0].force"),
+            std::string::npos);
+  EXPECT_NE(refusal(oscillator(kWall, "[[preload]]\ndof = 1\n")).find("preload[0].force"), std::string::npos);
+  EXPECT_NE(refusal(oscillator(kWall, preload(1.0), "odd")).find("preload[0]"), std::string::npos);
+  // A free mass pulled away from its wall: nothing holds it.
+  std::string free_mass = oscillator(kWall, preload(-1.0));
+  free_mass.replace(free_mass.find("k = 1.0"), 7, "k = 0.0");
+  const std::string held = refusal(free_mass);
+  EXPECT_NE(held.find("preload"), std::string::npos) << held;
+  EXPECT_NE(held.find("no contact holds"), std::string::npos) << held;
+}
+
+}  // namespace
+}  // namespace eqhb
