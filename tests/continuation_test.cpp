@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "eqhb/continuation/arclength_steps.h"
+#include "eqhb/continuation/bordered_system.h"
 #include "eqhb/continuation/coarse_start.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
@@ -225,6 +226,32 @@ TEST(Continuation, ArclengthDoesNotTurnBackAtASpuriousFold) {
   for (const auto& p : curve.points) EXPECT_TRUE(p.omega >= 0.8 && p.omega <= 1.4) << p.omega;
 }
 
+// NLvib's example 03 as posed (a unilateral spring k = 100 at gap 1): the
+// contact closes at ω = 0.6534 and the curve turns back at once, a fold with
+// no smooth turn. The condensed unknowns (the contact force) are all zero
+// before it, so no point lies ahead of the last one there: the sweep went on
+// on the full system, where the curve turned back at a kink and was taken
+// for a spurious fold; it stopped after 14 points. Now complete, with that
+// fold and the resonance's own (past the peak's tip, the upper branch).
+TEST(Continuation, ArclengthFollowsAContactThatClosesIntoAFold) {
+  const Scene scene = loadScene(test::problem("field/nlvib-03-unilateral-spring.toml"));
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.from = *scene.sweep_from;
+  options.to = *scene.sweep_to;
+  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  ASSERT_TRUE(curve.complete) << curve.stop_reason << " after " << curve.points.size() << " points";
+  EXPECT_NE(curve.stop_reason.find("full system"), std::string::npos) << curve.stop_reason;
+  ASSERT_EQ(curve.fold_omegas.size(), 2u) << curve.stop_reason;
+  EXPECT_NEAR(curve.fold_omegas[0], 0.6534, 1e-3);  // the contact closes
+  EXPECT_NEAR(curve.fold_omegas[1], 0.7556, 1e-3);  // the peak's tip
+  EXPECT_GT(curve.points.size(), 100u);
+  EXPECT_NEAR(peakOmega(curve, 1), 0.7536, 2e-3);
+  double peak = 0.0;
+  for (const auto& p : curve.points) peak = std::max(peak, p.max_abs[1]);
+  EXPECT_NEAR(peak, 1.238, 2e-3);
+}
+
 // Past Duffing's upper fold the branch the sequential sweep followed ends:
 // from the previous point the dogleg stalls (12 points lost), the fallback
 // chain's cold start finds the remaining branch, and the whole grid converges
@@ -306,6 +333,20 @@ TEST(ArclengthSteps, AFoldIsAReversalThatHolds) {
   EXPECT_EQ(watch.watch(-0.2, 4), -1);
   EXPECT_EQ(watch.watch(-0.3, 5), 3);
   EXPECT_EQ(watch.direction(), -1.0);
+}
+
+TEST(ArclengthSteps, ARetraceLiesOnThePathANewBranchOffIt) {
+  TracedPath path;
+  for (int i = 0; i < 4; ++i) path.add(Eigen::VectorXd::Constant(1, 0.1 * i), 1.0 - 0.1 * i);  // (z, ω)
+  ArcScales unit;
+  Eigen::VectorXd last(2), back(2), away(2);
+  last << 0.3, 0.7;
+  back << 0.25, 0.75;  // halfway back along the last segment
+  away << 0.35, 0.75;  // ω back up, z on: off the path by 0.07 for a move of 0.07
+  EXPECT_TRUE(path.retraces(unit, last, back));
+  EXPECT_FALSE(path.retraces(unit, last, away));
+  path.clear();
+  EXPECT_FALSE(path.retraces(unit, last, back));
 }
 
 TEST(Continuation, StepBoundsAreValidated) {

@@ -4,6 +4,7 @@
 // point's magnitude, predict along the tangent, correct on the bordered
 // system, then test the new point (did it leave the range? did the tangent
 // turn too far?) before accepting it and adapting the step.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -17,8 +18,18 @@ namespace eqhb {
 namespace {
 
 // The scale of z never drops below this fraction of the largest magnitude
-// met so far: near rest (an antiresonance) a relative scale would blow up.
+// met so far, or of the problem's own size of z (HbSystem::unknownScale):
+// near rest (an antiresonance) a relative scale would blow up, and on a
+// stretch where every law is idle (a contact not yet reached) the condensed
+// unknowns are exactly zero: a floor from ‖z‖ alone would make the first
+// contact force infinitely large in the scaled unknowns.
 constexpr double kScaleFloorFraction = 1e-3;
+
+// The bordered corrector and the tangent are dense: the full system takes
+// over from a condensed one (switchToFullSystem) only up to this size (an LU
+// of 2000 unknowns, ~3 GFLOP and 32 MB; a beam's full system of 10⁵ would
+// need 80 GB).
+constexpr int kMostDenseUnknowns = 2000;
 
 // Where a bridge tries its fixed-ω point: these fractions of the range ahead.
 constexpr double kBridgeFractions[] = {1e-3, 1e-2, 3e-2};
@@ -60,6 +71,7 @@ class ArclengthSweep {
     model_.omega = options.from;
     system_ = makeHbSystem(model_, options.condensed, solver_options.linear_algebra);
     n_ = system_->size();
+    unknown_scale_ = system_->unknownScale();
   }
 
   Curve run() {
@@ -119,7 +131,7 @@ class ArclengthSweep {
              " times already: arclength cannot follow it here, sweep it sequentially");
         return false;
       }
-      if (bridge()) {
+      if (switchToFullSystem() || bridge()) {
         step = ArclengthStep(options_);
         kink.reset();
         if (current_.omega != options_.to) return true;
@@ -168,7 +180,8 @@ class ArclengthSweep {
         continue;
       }
       Eigen::VectorXd t_new;
-      if (!tangentAt(*system_, s, y_new, t, &t_new)) {
+      const bool regular = tangentAt(*system_, s, y_new, t, &t_new);
+      if (!regular) {
         // A singular Jacobian along the curve (a stuck slider's undetermined
         // mean): the secant is the direction the curve took.
         t_new = (y_new - y).normalized();
@@ -188,16 +201,37 @@ class ArclengthSweep {
         // At min_step a turn this sharp is a kink whatever the halvings
         // showed: no smooth bend the step can resolve turns so far so soon.
         if (!kink.isKink(step.size(), turn) && step.halve()) continue;
+        const Eigen::VectorXd along_jacobian = t_new;
         t_new = (y_new - y).normalized();
         turn = angleBetween(t, t_new);
+        // Turning back in ω at a kink is a fold where the point found lies on
+        // a branch of its own that goes on smoothly (a contact closing bends
+        // the curve back at once: the curve's own tangent there follows the
+        // secant); back on the traced path, or off it in a direction the
+        // curve does not take there, the corrector did not follow the curve.
+        // Where the Jacobian is singular (a slider stuck over the period: its
+        // mean is free) the points off the path are that freedom, not a branch.
         const double heading = folds_.direction();
-        if (heading != 0.0 && t_new[n_] * heading < 0.0) {
+        const bool new_branch = regular && !traced_.retraces(s, y, y_new) &&
+                                std::abs(along_jacobian.dot(t_new)) >= std::cos(options_.max_turn);
+        if (heading != 0.0 && t_new[n_] * heading < 0.0 && !new_branch) {
           if (bridgeOrStop("the curve turns back at a kink at " + at(omega_new) +
-                           " (the tangent's omega-component changes sign without passing through zero: not a "
-                           "fold); try system = full, more samples or a smaller max_step"))
+                           " (the tangent's omega-component changes sign without passing through zero, and the "
+                           "point found starts no branch of its own: not a fold); try system = full, more "
+                           "samples or a smaller max_step"))
             continue;
           return;
         }
+      }
+      // However it turned, a curve that goes back onto the path it traced
+      // (a corrector hovering where the curve ends, then retracing) has not
+      // passed a fold.
+      const double heading = folds_.direction();
+      if (heading != 0.0 && (omega_new - current_.omega) * heading < 0.0 && traced_.retraces(s, y, y_new)) {
+        if (bridgeOrStop("the curve turns back onto the path already traced at " + at(omega_new) +
+                         " (not a fold); try system = full, more samples or a smaller max_step"))
+          continue;
+        return;
       }
       kink.reset();
       current_.z = y_new.head(n_) * s.z;
@@ -235,8 +269,9 @@ class ArclengthSweep {
         if (!r.converged()) continue;
         taken += " (" + tried.taken + ")";
       }
-      const double floor = std::max(kScaleFloorFraction * std::max(largest_norm_, r.solution.norm()), 1e-12);
-      const ArcScales s = ArcScales::at(r.solution, floor, hi_ - lo_);
+      const ArcScales s = ArcScales::at(r.solution, scaleFloor(r.solution.norm()), hi_ - lo_);
+      // Landed back on the path traced (a heading reversed by a spurious fold): no way on.
+      if (traced_.retraces(s, s.scaled(current_.z, current_.omega), s.scaled(r.solution, target))) continue;
       Eigen::VectorXd ahead = Eigen::VectorXd::Zero(n_ + 1), tangent;
       ahead[n_] = heading;
       if (!tangentAt(*system_, s, s.scaled(r.solution, target), ahead, &tangent))
@@ -250,6 +285,52 @@ class ArclengthSweep {
       return true;
     }
     return false;
+  }
+
+  // While every law is idle (a contact not yet reached: ‖z‖ below the scale
+  // floor) the condensed
+  // unknowns, the law forces, are all zero: at the first touch the curve's
+  // tangent there holds nothing of the motion that brought it, and where
+  // the curve turns back at once (a stiff contact closing) no point lies
+  // ahead of it. The full system's unknowns keep x: the curve goes on there,
+  // from the same point (once, when the fallback chain has its "full" step).
+  bool switchToFullSystem() {
+    const auto& steps = options_.fallbacks.steps;
+    if (!system_->condensed() || std::find(steps.begin(), steps.end(), "full") == steps.end()) return false;
+    if (current_.z.norm() > scaleFloor(0.0)) return false;  // a law acts: bridging is the remedy there
+    const HbModel& m = system_->model();
+    if ((m.structure.dofs() + m.lawComponents()) * static_cast<double>(m.basis.size()) > kMostDenseUnknowns)
+      return false;
+    std::unique_ptr<HbSystem> full_system;
+    Eigen::VectorXd full, full_before;
+    try {
+      system_->setOmega(current_.omega);  // the condensed x follows from λ at this ω
+      full = system_->fullCoefficients(current_.z);
+      model_.omega = current_.omega;
+      full_system = makeHbSystem(model_, false, solver_options_.linear_algebra);
+    } catch (const std::exception&) {
+      return false;  // the full system does not fit, or is singular here
+    }
+    const Eigen::VectorXd z = full_system->fromFullCoefficients(full);
+    const ArcScales s = ArcScales::at(z, std::max(kScaleFloorFraction * full_system->unknownScale(), 1e-300), hi_ - lo_);
+    // Oriented along the way the curve came (the secant from the point before).
+    Eigen::VectorXd came = Eigen::VectorXd::Zero(z.size() + 1), tangent;
+    came[z.size()] = folds_.direction() != 0.0 ? folds_.direction() : direction_;
+    if (curve_.points.size() >= 2) {
+      const CurvePoint& before = curve_.points[curve_.points.size() - 2];
+      came = s.scaled(z, current_.omega) - s.scaled(full_system->fromFullCoefficients(before.full), before.omega);
+    }
+    if (!tangentAt(*full_system, s, s.scaled(z, current_.omega), came, &tangent)) tangent = came.normalized();
+    if (!tangent.allFinite()) return false;
+    system_ = std::move(full_system);
+    n_ = system_->size();
+    unknown_scale_ = system_->unknownScale();
+    current_ = {z, current_.omega, s.physicalDirection(tangent)};
+    largest_norm_ = z.norm();
+    by_omega_ = false;
+    traced_.clear();
+    full_from_ = formatNumber(current_.omega);
+    return true;
   }
 
   // The bordered corrector can stall just above the tolerance where a
@@ -345,7 +426,11 @@ class ArclengthSweep {
   }
 
   ArcScales scales() const {
-    return ArcScales::at(current_.z, std::max(kScaleFloorFraction * largest_norm_, 1e-12), hi_ - lo_);
+    return ArcScales::at(current_.z, scaleFloor(0.0), hi_ - lo_);
+  }
+
+  double scaleFloor(double also) const {
+    return std::max(kScaleFloorFraction * std::max({largest_norm_, also, unknown_scale_}), 1e-300);
   }
 
   void record(const ArcPoint& point, const SolverResult& r, double tangent_omega, const std::string& fallback = "") {
@@ -355,9 +440,17 @@ class ArclengthSweep {
     p.fallback = fallback;
     if (!std::isnan(tangent_omega)) p.tangent_omega = tangent_omega;
     curve_.points.push_back(p);
+    traced_.add(point.z, point.omega);
     const int index = static_cast<int>(curve_.points.size()) - 1;
-    if (!std::isnan(tangent_omega)) {
-      const int fold = folds_.watch(tangent_omega, index);
+    // Folds from the way ω actually moved between points (the secant): on a
+    // nonsmooth law the Jacobian's tangent can point back in ω for a few
+    // points while ω goes on (measured on a sampled penalty contact's
+    // upper branch: four such "folds" after the real one). The first point
+    // has only its tangent; a move ends at the point before, where a fold is.
+    const bool moved = index > 0 && point.omega != curve_.points[index - 1].omega;
+    if (moved || (index == 0 && !std::isnan(tangent_omega))) {
+      const int fold = moved ? folds_.watch(point.omega - curve_.points[index - 1].omega, index - 1)
+                             : folds_.watch(tangent_omega, index);
       if (fold >= 0) {
         curve_.points[fold].fold = true;
         curve_.fold_omegas.push_back(curve_.points[fold].omega);
@@ -368,6 +461,7 @@ class ArclengthSweep {
 
   void stop(const std::string& reason) {
     curve_.stop_reason = reason;
+    if (!full_from_.empty()) curve_.stop_reason += " (on the full system from omega = " + full_from_ + ")";
     if (bridged_.empty()) return;
     curve_.stop_reason += " (" + std::to_string(bridged_.size()) + " bridge(s), the curve not traced between: ";
     for (size_t i = 0; i < bridged_.size(); ++i) curve_.stop_reason += (i ? ", " : "") + bridged_[i];
@@ -384,9 +478,12 @@ class ArclengthSweep {
   int n_ = 0;
   ArcPoint current_;
   double largest_norm_ = 0.0;
+  double unknown_scale_ = 0.0;  // HbSystem::unknownScale at the start
   FoldWatch folds_;
+  TracedPath traced_;
   bool by_omega_ = false;  // the corrector holds ω (correctAtFixedOmega)
   std::vector<std::string> bridged_;  // "ω_from -> ω_to" of each bridge
+  std::string full_from_;             // ω where the sweep went on on the full system
   Curve curve_;
 };
 

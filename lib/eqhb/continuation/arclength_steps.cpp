@@ -2,9 +2,23 @@
 
 #include <algorithm>
 
+#include "eqhb/continuation/bordered_system.h"
 #include "eqhb/continuation/continuation.h"
 
 namespace eqhb {
+namespace {
+// A retrace lands on the path within this many points behind the current
+// one (a corrector hovering where a curve ends can take hundreds there).
+constexpr size_t kRetraceMemory = 512;
+constexpr double kRetraceFraction = 0.25;
+
+double distanceToSegment(const Eigen::VectorXd& y, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const Eigen::VectorXd ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((y - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (y - a - t * ab).norm();
+}
+}  // namespace
 
 ArclengthStep::ArclengthStep(const ContinuationOptions& options)
     : size_(std::clamp(options.step, options.min_step, options.max_step)),
@@ -39,6 +53,26 @@ bool KinkTest::isKink(double step, double turn_angle) {
   // step, then holds): judge the next quartering against this one.
   first_step_ = step;
   first_turn_ = turn_angle;
+  return false;
+}
+
+void TracedPath::add(const Eigen::VectorXd& z, double omega) {
+  Eigen::VectorXd point(z.size() + 1);
+  point << z, omega;
+  if (!points_.empty() && points_.back().size() != point.size()) points_.clear();  // another system's unknowns
+  points_.push_back(std::move(point));
+  if (points_.size() > kRetraceMemory) points_.pop_front();
+}
+
+bool TracedPath::retraces(const ArcScales& scales, const Eigen::VectorXd& y, const Eigen::VectorXd& y_new) const {
+  const double tolerance = kRetraceFraction * (y_new - y).norm();
+  std::vector<Eigen::VectorXd> scaled;
+  for (const Eigen::VectorXd& p : points_) {
+    if (p.size() != y_new.size()) return false;
+    scaled.push_back(scales.scaled(p.head(p.size() - 1), p[p.size() - 1]));
+  }
+  for (size_t i = 1; i < scaled.size(); ++i)
+    if (distanceToSegment(y_new, scaled[i - 1], scaled[i]) <= tolerance) return true;
   return false;
 }
 

@@ -2,9 +2,14 @@
 // small strategy the sweep's loop consults once per attempt or point.
 #pragma once
 
+#include <deque>
 #include <vector>
 
+#include <Eigen/Dense>
+
 namespace eqhb {
+
+struct ArcScales;
 
 struct ContinuationOptions;
 
@@ -41,15 +46,15 @@ class KinkTest {
   double first_step_ = 0.0, first_turn_ = 0.0;
 };
 
-// Folds: lasting reversals of the ω-direction of the tangent. On nonsmooth
-// laws the tangent's ω-component can flicker near zero, so a reversal counts
+// Folds: lasting reversals of the ω-direction of travel. On nonsmooth laws
+// the direction can flicker near a fold, so a reversal counts
 // only once it has held for `confirmation` points; the fold is placed at
 // the point where it began.
 class FoldWatch {
  public:
   explicit FoldWatch(int confirmation = 3) : confirmation_(confirmation) {}
-  // The ω-component of the tangent at point `index`; returns the index of
-  // the point just after a newly confirmed fold, or −1.
+  // The ω-direction of travel (its sign) from point `index` on; returns the
+  // index where a newly confirmed reversal began (the fold), or −1.
   int watch(double omega_component, int index);
   // The confirmed direction of travel in ω (+1, −1; 0 before the first point).
   double direction() const { return confirmed_; }
@@ -58,6 +63,24 @@ class FoldWatch {
   int confirmation_;
   double confirmed_ = 0.0;
   int candidate_ = -1, held_ = 0;
+};
+
+// The last points traced, to tell at a kink where the curve turns back in ω
+// a nonsmooth fold (a contact closing: the point found lies on a new branch,
+// away from the traced one) from a retrace (the point found lies back on the
+// traced branch: the curve did not turn, the corrector went back).
+class TracedPath {
+ public:
+  void add(const Eigen::VectorXd& z, double omega);
+  void clear() { points_.clear(); }
+  // True when `y_new`, found from the last point `y` (both scaled by
+  // `scales`), lies closer to the traced path than a quarter of its distance
+  // from `y`: back on the path (a chord of a bend within max_turn is off
+  // its arc by less than a sixth of that), not on a branch of its own.
+  bool retraces(const ArcScales& scales, const Eigen::VectorXd& y, const Eigen::VectorXd& y_new) const;
+
+ private:
+  std::deque<Eigen::VectorXd> points_;  // [z; ω] in physical units
 };
 
 }  // namespace eqhb

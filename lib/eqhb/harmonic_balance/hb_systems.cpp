@@ -46,6 +46,11 @@ void HbSystem::residualScales(Eigen::Ref<Eigen::VectorXd> scales) const {
           .setConstant(model_.laws[l].law->residualScale(physical, a));
 }
 
+double HbSystem::unknownScale() const {
+  const PhysicalScales physical = physicalScales(model_, responseAtLaws());
+  return condensed() ? physical.force : std::hypot(physical.displacement, physical.force);
+}
+
 std::string HbSystem::violatedPhysics(const Eigen::Ref<const Eigen::VectorXd>& z) {
   Eigen::VectorXd g(size());
   if (!residual(z, g)) return "";  // not finite: the solver's verdict already refused it

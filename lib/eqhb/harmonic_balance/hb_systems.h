@@ -56,6 +56,11 @@ class HbSystem : public SquareSystem {
   // residual scale, in the model's physical scales at the current ω
   // (problem_scales.h).
   void residualScales(Eigen::Ref<Eigen::VectorXd> scales) const override;
+  // The size of a solution vector in the problem's own scales
+  // (problem_scales.h): F for the condensed system's law forces, √(X² + F²)
+  // for the full [x; λ]. A measure of z where z itself is nil, as on a
+  // curve whose laws are idle (a contact not yet reached).
+  double unknownScale() const;
   // A friction law that dissipates half the energy its limit demands, or
   // less, at z (dissipation_deficit >= kGrossDissipationDeficit, measured on
   // the model's samples): "law[l] (type): dissipation_deficit = value".
