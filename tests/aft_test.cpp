@@ -9,6 +9,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/joints/jenkins_aft.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/scenes/scene.h"
@@ -234,6 +235,28 @@ TEST(JenkinsAft, FormulationSettingSetsEveryLawThatHasIt) {
   EXPECT_NE(none.find("laws with it: jenkins"), std::string::npos) << none;
   EXPECT_EQ(message("friction-1d.toml", "equality"), "");
   EXPECT_NE(message("jenkins-1d.toml", "fft").find("must be equality or aft"), std::string::npos);
+}
+
+// A 1-DOF jenkins law takes the AFT form unless the scene asks for the
+// equality form, by name or by one of its keys (form, rho, rho_factor, as
+// --form and --rho set them); on 2 DOFs it has only the equality form. The
+// accuracy target's ρ candidates then leave it alone.
+TEST(JenkinsAft, OneDofJenkinsDefaultsToAftUnlessTheEqualityFormIsAskedFor) {
+  const std::string field = test::problem("field/tmdsimpy-sdof-jenkins-f33.toml");  // muN and k_t only
+  auto aft = [&](const std::vector<std::string>& set) { return inAftForm(*loadScene(field, set).model.laws[0].law); };
+  EXPECT_TRUE(aft({}));
+  EXPECT_FALSE(aft({"law[0].formulation=\"equality\""}));
+  EXPECT_FALSE(aft({"law[0].rho=0.5"}));
+  EXPECT_FALSE(aft({"law[0].rho_factor=0.1"}));
+  EXPECT_FALSE(aft({"law[0].form=\"projection\""}));
+  EXPECT_TRUE(aft({"law[0].rho=0.5", "law[0].formulation=\"aft\""}));
+  // Shipped scenes that name form and rho keep their equality form.
+  EXPECT_FALSE(inAftForm(*loadScene(test::problem("jenkins-1d.toml")).model.laws[0].law));
+  app::SceneSettings settings;
+  settings.path = field;
+  EXPECT_FALSE(app::documentRhos(settings, {})[0].has_value());
+  settings.rho = 0.5;  // --rho asks for the equality form's ρ
+  EXPECT_FALSE(inAftForm(*app::loadScene(settings).model.laws[0].law));
 }
 
 }  // namespace

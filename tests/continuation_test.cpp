@@ -252,6 +252,20 @@ TEST(Continuation, ArclengthFollowsAContactThatClosesIntoAFold) {
   EXPECT_NEAR(peak, 1.238, 2e-3);
 }
 
+// NLvib's example 07 with its grounded elastic dry friction, in the AFT form
+// it takes by default (as NLvib computes it): the arclength sweep reaches
+// the end of the range; the equality form's kinks stopped it at 0.678.
+TEST(Continuation, ArclengthCrossesNlvib07WithElasticFrictionByDefault) {
+  const Scene scene = loadScene(test::problem("field/nlvib-07-grounded-jenkins-cubic.toml"));
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.from = *scene.sweep_from;
+  options.to = *scene.sweep_to;
+  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  ASSERT_TRUE(curve.complete) << curve.stop_reason << " after " << curve.points.size() << " points";
+  EXPECT_EQ(curve.points.back().omega, 2.0);
+}
+
 // Past Duffing's upper fold the branch the sequential sweep followed ends:
 // from the previous point the dogleg stalls (12 points lost), the fallback
 // chain's cold start finds the remaining branch, and the whole grid converges

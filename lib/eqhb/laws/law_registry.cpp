@@ -34,8 +34,22 @@ bool LawEntry::hasForm(const std::string& form) const {
   return std::find(forms.begin(), forms.end(), form) != forms.end();
 }
 
+std::string defaultFormulation(const LawEntry& entry, const LawTable& table) {
+  if (!entry.parse) return "aft";
+  // Asked only of laws that have these keys: the unknown-key message lists
+  // every key a parser asked about.
+  if (!entry.aft_by_default || !entry.aft_by_default(table)) return "equality";
+  const bool equality_keys = table.has("form") || table.has("rho") || table.has("rho_factor");
+  return equality_keys ? "equality" : "aft";
+}
+
+bool inAftForm(const Law& law) {
+  const LawEntry& entry = lawEntry(law);
+  return !entry.parse || (entry.in_aft_form && entry.in_aft_form(law));
+}
+
 std::shared_ptr<Law> parseLaw(const LawEntry& entry, LawTable& table) {
-  const std::string formulation = table.text("formulation", std::string(entry.parse ? "equality" : "aft"));
+  const std::string formulation = table.text("formulation", defaultFormulation(entry, table));
   if (formulation != "equality" && formulation != "aft")
     table.fail(table.path("formulation"), "\"" + formulation + "\"", "must be \"equality\" or \"aft\"");
   const bool aft = formulation == "aft";

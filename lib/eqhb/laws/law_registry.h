@@ -60,6 +60,16 @@ struct LawEntry {
   // computed in time from the displacement and projected, Ψ = λ − F[x]);
   // empty when the law has none.
   std::function<std::shared_ptr<Law>(LawTable&)> parse_aft;
+  // The tables whose default formulation is "aft" (empty: none beyond a law
+  // without an equality form): the force then comes exact for the
+  // displacement by the return map, 10-400x closer per harmonic than the
+  // equality form on elastic dry friction and faster. A table naming one
+  // of the equality form's own keys (form, rho, rho_factor) asks for that
+  // form and keeps it.
+  std::function<bool(const LawTable&)> aft_by_default;
+  // True for an instance built by parse_aft (empty: a law without an
+  // equality form is always in its AFT form).
+  std::function<bool(const Law&)> in_aft_form;
   LawSystem system = LawSystem::kCondensed;
   std::vector<LawExample> examples;
   // Optional capabilities (law_capabilities.h); empty when the law has none,
@@ -77,6 +87,12 @@ struct LawEntry {
 // law, by default "equality" where the law has it; an unknown name, or a
 // formulation the law has not, is an InputError naming the field.
 std::shared_ptr<Law> parseLaw(const LawEntry& entry, LawTable& table);
+
+// The formulation parseLaw takes for `table` when it names none.
+std::string defaultFormulation(const LawEntry& entry, const LawTable& table);
+
+// The law is in its alternating frequency-time form (it has no ρ or form).
+bool inAftForm(const Law& law);
 
 // Every law, in the order they are listed to users.
 const std::vector<LawEntry>& lawRegistry();

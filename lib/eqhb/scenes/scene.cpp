@@ -874,10 +874,11 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 }
 
 namespace {
-// Each law's ρ in the document `text` with `overrides`, which loads as a
-// scene of `laws` laws.
+// Each law's ρ in the document `text` with `overrides`, which loads as
+// `model` (a law in its AFT form has none).
 std::vector<std::optional<RhoSetting>> documentRhos(const std::string& text, const std::string& source,
-                                                    const std::vector<std::string>& overrides, size_t laws) {
+                                                    const std::vector<std::string>& overrides, const HbModel& model) {
+  const size_t laws = model.laws.size();
   toml::value root;
   std::istringstream in(text);
   root = toml::parse(in, source);
@@ -890,7 +891,7 @@ std::vector<std::optional<RhoSetting>> documentRhos(const std::string& text, con
   for (const auto& law : root.at("law").as_array()) {
     const std::string type = toml::find<std::string>(law, "type");
     std::optional<RhoSetting> rho;
-    if (findLaw(type)->takesRho()) {
+    if (findLaw(type)->takesRho() && out.size() < laws && !inAftForm(*model.laws[out.size()].law)) {
       const auto& table = law.as_table();
       if (table.count("rho")) rho = RhoSetting(number(law.at("rho")));
       else rho = RhoSetting::scaleFree(table.count("rho_factor") ? number(law.at("rho_factor")) : 1.0);
@@ -905,13 +906,13 @@ std::vector<std::optional<RhoSetting>> documentRhos(const std::string& text, con
 std::vector<std::optional<RhoSetting>> lawRhos(const std::string& path, const std::vector<std::string>& overrides) {
   // Validated as a whole first: the document below is then well formed.
   const Scene scene = loadScene(path, overrides);
-  return documentRhos(readSceneText(path), path, overrides, scene.model.laws.size());
+  return documentRhos(readSceneText(path), path, overrides, scene.model);
 }
 
 std::vector<std::optional<RhoSetting>> lawRhosOfText(const std::string& text, const std::string& source,
                                                      const std::vector<std::string>& overrides) {
   const Scene scene = parseScene(text, source, overrides);
-  return documentRhos(text, source, overrides, scene.model.laws.size());
+  return documentRhos(text, source, overrides, scene.model);
 }
 
 std::string scaledRhoOverride(int l, const RhoSetting& setting, double factor) {

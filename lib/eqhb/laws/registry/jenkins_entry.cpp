@@ -13,7 +13,7 @@ LawEntry jenkinsEntry() {
   e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
                           {"k_t", "", "> 0", "tangential stiffness"},
                           {"form", "minmax (1 DOF), max (2)", "minmax|projection|max", "minmax: one DOF"},
-                          {"formulation", "equality", "equality|aft",
+                          {"formulation", "aft on 1 DOF without form or rho, else equality", "equality|aft",
                            "aft: the force by the return map over the period (1 DOF; form and ρ unused)"}});
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
     const double mu_n = t.frictionLimit("muN");
@@ -26,6 +26,11 @@ LawEntry jenkinsEntry() {
       t.fail(t.path("form"), "\"minmax\"", "the minmax form is one-dimensional; use max or projection");
     return std::make_shared<Jenkins>(m, mu_n, k_t, parseFrictionForm(name, t.path("form")), rho);
   };
+  // On one DOF the AFT form by default (law_registry.h: exact force, and on
+  // NLvib's example 07 the arclength sweep completes where the equality
+  // form's kinks stop it).
+  e.aft_by_default = [](const LawTable& t) { return t.components() == 1; };
+  e.in_aft_form = [](const Law& law) { return dynamic_cast<const JenkinsAft*>(&law) != nullptr; };
   e.parse_aft = [](LawTable& t) -> std::shared_ptr<Law> {
     const double mu_n = t.frictionLimit("muN");
     const double k_t = t.positive("k_t", std::nullopt);
