@@ -20,6 +20,16 @@ double peakOmega(const Curve& curve, int dof) {
   return at;
 }
 
+// A scene's arclength sweep over its own [sweep] range on the defaults.
+Curve arclengthOverItsRange(const std::string& problem) {
+  const Scene scene = loadScene(test::problem(problem));
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.from = *scene.sweep_from;
+  options.to = *scene.sweep_to;
+  return sweepArclength(scene.model, *solver, {}, options);
+}
+
 TEST(Continuation, Friction1dSweepIsContinuousAndPeaksAtTheFirstMode) {
   const Scene scene = loadScene(test::problem("friction-1d.toml"));
   auto solver = makeSolver("dogleg");
@@ -234,12 +244,7 @@ TEST(Continuation, ArclengthDoesNotTurnBackAtASpuriousFold) {
 // for a spurious fold; it stopped after 14 points. Now complete, with that
 // fold and the resonance's own (past the peak's tip, the upper branch).
 TEST(Continuation, ArclengthFollowsAContactThatClosesIntoAFold) {
-  const Scene scene = loadScene(test::problem("field/nlvib-03-unilateral-spring.toml"));
-  auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = *scene.sweep_from;
-  options.to = *scene.sweep_to;
-  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  const Curve curve = arclengthOverItsRange("field/nlvib-03-unilateral-spring.toml");
   ASSERT_TRUE(curve.complete) << curve.stop_reason << " after " << curve.points.size() << " points";
   EXPECT_NE(curve.stop_reason.find("full system"), std::string::npos) << curve.stop_reason;
   ASSERT_EQ(curve.fold_omegas.size(), 2u) << curve.stop_reason;
@@ -256,12 +261,7 @@ TEST(Continuation, ArclengthFollowsAContactThatClosesIntoAFold) {
 // it takes by default (as NLvib computes it): the arclength sweep reaches
 // the end of the range; the equality form's kinks stopped it at 0.678.
 TEST(Continuation, ArclengthCrossesNlvib07WithElasticFrictionByDefault) {
-  const Scene scene = loadScene(test::problem("field/nlvib-07-grounded-jenkins-cubic.toml"));
-  auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = *scene.sweep_from;
-  options.to = *scene.sweep_to;
-  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  const Curve curve = arclengthOverItsRange("field/nlvib-07-grounded-jenkins-cubic.toml");
   ASSERT_TRUE(curve.complete) << curve.stop_reason << " after " << curve.points.size() << " points";
   EXPECT_EQ(curve.points.back().omega, 2.0);
 }

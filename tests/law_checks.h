@@ -47,6 +47,23 @@ inline std::vector<LawCase> registeredExamples() {
   return cases;
 }
 
+// Samples of `d` components with displacement, velocity, force and force
+// rate drawn uniformly in [-2, 2] (`terms` history terms sized, unset).
+inline LawSamples randomSamples(int samples, int d, int terms, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  LawSamples s;
+  s.resize(samples, d, terms);
+  for (int i = 0; i < samples; ++i)
+    for (int a = 0; a < d; ++a) {
+      s.displacement(i, a) = u(rng);
+      s.velocity(i, a) = u(rng);
+      s.force(i, a) = u(rng);
+      s.force_rate(i, a) = u(rng);
+    }
+  return s;
+}
+
 // ∂ψ/∂(displacement, velocity, force, force rate), whichever the law uses,
 // at `samples` random points in [-2, 2]; the partials are checked column by
 // column (a * d + b: component a of ψ, component b of the input).
@@ -56,17 +73,7 @@ inline void expectPointwisePartialsMatch(const Law& law, const std::string& labe
                                          int samples) {
   if (law.historyTerms() > 0) return expectHistoryPartialsMatch(law, label, seed, samples);
   const int d = law.dimension();
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-2.0, 2.0);
-  LawSamples s;
-  s.resize(samples, d);
-  for (int i = 0; i < samples; ++i)
-    for (int a = 0; a < d; ++a) {
-      s.displacement(i, a) = u(rng);
-      s.velocity(i, a) = u(rng);
-      s.force(i, a) = u(rng);
-      s.force_rate(i, a) = u(rng);
-    }
+  LawSamples s = randomSamples(samples, d, 0, seed);
   law.evaluate(s, true);
   const double h = 1e-7;
   const Eigen::MatrixXd* partials[] = {&s.dpsi_ddisplacement, &s.dpsi_dvelocity, &s.dpsi_dforce,
@@ -102,17 +109,7 @@ inline void expectPointwisePartialsMatch(const Law& law, const std::string& labe
 // (LawSamples). Each column of the displacement Jacobian is checked whole.
 inline void expectHistoryPartialsMatch(const Law& law, const std::string& label, unsigned seed, int samples) {
   const int d = law.dimension(), terms = law.historyTerms();
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-2.0, 2.0);
-  LawSamples s;
-  s.resize(samples, d, terms);
-  for (int i = 0; i < samples; ++i)
-    for (int a = 0; a < d; ++a) {
-      s.displacement(i, a) = u(rng);
-      s.velocity(i, a) = u(rng);
-      s.force(i, a) = u(rng);
-      s.force_rate(i, a) = u(rng);
-    }
+  LawSamples s = randomSamples(samples, d, terms, seed);
   law.evaluate(s, true);
   // The assembled ∂Ψ_a(t_i)/∂x_b(t_j), rows (i, a), columns (j, b).
   Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(samples * d, samples * d);
