@@ -1,4 +1,5 @@
 #include "eqhb/laws/penalty_contact.h"
+#include "eqhb/laws/contact_status.h"
 
 #include <algorithm>
 
@@ -49,11 +50,7 @@ std::vector<std::pair<std::string, double>> PenaltyContact::violations(const Law
 }
 
 std::optional<StaticStatus> PenaltyContact::staticStatus(const LawSamples& rest) const {
-  StaticStatus s;
-  s.gap = gap_ - rest.displacement(0, 0);
-  s.normal_force = rest.force(0, 0);
-  s.state = *s.normal_force > 0.0 ? StaticStatus::State::kClosed : StaticStatus::State::kOpen;
-  return s;
+  return normalContactStatus(gap_, rest);
 }
 
 }  // namespace eqhb

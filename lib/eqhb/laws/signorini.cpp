@@ -1,4 +1,5 @@
 #include "eqhb/laws/signorini.h"
+#include "eqhb/laws/contact_status.h"
 
 #include <algorithm>
 #include <cmath>
@@ -111,11 +112,7 @@ double Signorini::residualScale(const PhysicalScales& s, int) const {
 }
 
 std::optional<StaticStatus> Signorini::staticStatus(const LawSamples& rest) const {
-  StaticStatus s;
-  s.gap = gap_ - rest.displacement(0, 0);
-  s.normal_force = rest.force(0, 0);
-  s.state = *s.normal_force > 0.0 ? StaticStatus::State::kClosed : StaticStatus::State::kOpen;
-  return s;
+  return normalContactStatus(gap_, rest);
 }
 
 }  // namespace eqhb
