@@ -100,6 +100,13 @@ Case runCase(const std::string& study, const std::filesystem::path& path, const 
   return c;
 }
 
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
 void setRatiosToDogleg(std::vector<Case>& cases) {
   for (Case& c : cases)
     for (const Case& d : cases)

@@ -43,6 +43,11 @@ void setRatiosToDogleg(std::vector<Case>& cases);
 // A figure in the report's tables, "-" where there is none.
 inline std::string number(double x) { return reportNumber(x, 3, "-"); }
 
+// A text field of bench.csv: quoted (RFC 4180, quotes doubled) when it holds
+// a comma, a quote or a line break, so that a form such as "min, friction
+// max" stays one column for the CSV readers (charts.py).
+std::string csvField(const std::string& text);
+
 // The Markdown table of one study's cases.
 std::string table(const std::vector<Case>& cases, const std::string& study);
 

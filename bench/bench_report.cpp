@@ -52,7 +52,8 @@ nlohmann::json writeCaseData(const std::string& out, const std::vector<Case>& ca
                     {"repeats", c.repeats}, {"ratio_to_dogleg", num(c.ratio_to_dogleg)},
                     {"error_reference", num(c.error_reference)}, {"error_high_h", num(c.error_high_h)},
                     {"verdict", verdictName(verdictOf(c))}});
-    csv << c.study << "," << c.scene << "," << c.solver << "," << c.system << "," << c.form << "," << c.harmonics
+    csv << csvField(c.study) << "," << csvField(c.scene) << "," << csvField(c.solver) << "," << csvField(c.system)
+        << "," << csvField(c.form) << "," << c.harmonics
         << "," << (c.converged ? "true" : "false") << "," << c.termination << "," << c.iterations << ","
         << c.residual_evaluations << "," << c.jacobian_evaluations << "," << c.residual_norm << ","
         << c.median_seconds << "," << c.repeats << "," << c.ratio_to_dogleg << "," << c.error_reference << ","

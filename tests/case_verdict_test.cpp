@@ -62,5 +62,14 @@ TEST(CaseVerdict, TheDefaultSolvesMostAndDisagreeingDoesNotCount) {
   EXPECT_EQ(choice.cases, 3);
 }
 
+// bench.csv keeps a form with a comma in one column: the scene study's
+// "min, friction max" was split in two, shifting every later column, and the
+// performance profile in charts.py merged it with the "min" form.
+TEST(CaseVerdict, CsvFieldsWithACommaOrQuoteAreQuoted) {
+  EXPECT_EQ(csvField("fischer-burmeister"), "fischer-burmeister");
+  EXPECT_EQ(csvField("min, friction max"), "\"min, friction max\"");
+  EXPECT_EQ(csvField("a \"b\""), "\"a \"\"b\"\"\"");
+}
+
 }  // namespace
 }  // namespace eqhb::bench
