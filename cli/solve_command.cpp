@@ -63,8 +63,9 @@ void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
       ->capture_default_str();
   cmd->add_option("--fallback", a.fallback,
                   "Steps tried, in order, when a solve (a sweep's point after its halved steps) fails: cold "
-                  "(coarse start, then zero), full (the full system), or a backend name; comma-separated, or none. "
-                  "default: cold,full and Ipopt's least squares (else ceres-lm)")
+                  "(coarse start, then zero), full (the full system), condensed (the condensed system, then the full "
+                  "one from its answer), or a backend name; comma-separated, or none. "
+                  "default: cold,full,condensed and Ipopt's least squares (else ceres-lm)")
       ->capture_default_str();
 }
 

@@ -18,7 +18,7 @@ struct SolveOptions {
   // Tolerance, iteration, evaluation and time limits, linear algebra and the
   // backend's own NAME -> VALUE settings. time_limit bounds the set-up too.
   SolverOptions solver_options;
-  // Steps after a failed solve: "default", "none", or "cold,full,NAME,..."
+  // Steps after a failed solve: "default", "none", or "cold,full,condensed,NAME,..."
   // (default_path.h).
   std::string fallback = "default";
   // Without from_harmonics or initial: "coarse" (a coarse harmonic balance

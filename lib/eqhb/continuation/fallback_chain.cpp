@@ -14,6 +14,7 @@ namespace {
 
 constexpr const char* kCold = "cold";
 constexpr const char* kFull = "full";
+constexpr const char* kCondensed = "condensed";
 
 // The solve's own cold start on `system`: coarse start, then zero.
 SolverResult solveCold(Solver& solver, HbSystem& system, const SolverOptions& options) {
@@ -38,12 +39,31 @@ SolverResult solveOnFullSystem(Solver& solver, HbSystem& condensed, const Solver
   return result;
 }
 
+// The same ω on the condensed system from its cold start (the full one
+// failed), its answer then polished on `full` by the same backend from the
+// mapped point: the condensed residual converging does not make the full
+// residual, in its own scales, converge too, and the result must be one of
+// `full`'s solves. Iterations and evaluations are both solves' together.
+SolverResult solveOnCondensedSystem(Solver& solver, HbSystem& full, const SolverOptions& options) {
+  auto condensed = makeHbSystem(full.model(), true, options.linear_algebra);
+  const SolverResult reduced = solveCold(solver, *condensed, options);
+  if (!reduced.converged()) return reduced;
+  SolverOptions polish = options;
+  if (options.time_limit > 0.0) polish.time_limit = std::max(options.time_limit - reduced.seconds, 1e-3 * options.time_limit);
+  SolverResult result = solver.solve(full, full.fromFullCoefficients(condensed->fullCoefficients(reduced.solution)), polish);
+  result.iterations += reduced.iterations;
+  result.residual_evaluations += reduced.residual_evaluations;
+  result.jacobian_evaluations += reduced.jacobian_evaluations;
+  result.seconds += reduced.seconds;
+  return result;
+}
+
 }  // namespace
 
 FallbackChain FallbackChain::standard(Solver* backup) {
   FallbackChain chain;
-  chain.steps = {kCold, kFull};
-  chain.solvers = {nullptr, nullptr};
+  chain.steps = {kCold, kFull, kCondensed};
+  chain.solvers = {nullptr, nullptr, nullptr};
   if (backup) {
     chain.steps.push_back(backup->name());
     chain.solvers.push_back(backup);
@@ -57,20 +77,20 @@ FallbackChain FallbackChain::parse(const std::string& text, const std::string& f
   if (text == "none") return chain;
   std::stringstream list(text);
   for (std::string step; std::getline(list, step, ',');) {
-    if (step.empty()) throwInputError(field, text, "has an empty step (steps: cold, full or a backend name, comma-separated, or none)");
+    if (step.empty()) throwInputError(field, text, "has an empty step (steps: cold, full, condensed or a backend name, comma-separated, or none)");
     if (std::find(chain.steps.begin(), chain.steps.end(), step) != chain.steps.end())
       throwInputError(field, text, "names " + step + " twice");
     Solver* backend = nullptr;
-    if (step != kCold && step != kFull) {
+    if (step != kCold && step != kFull && step != kCondensed) {
       backend = solver_for(step);
       if (!backend)
-        throwInputError(field, text, "has an unknown step " + step + " (steps: cold, full or a backend name, or none)");
+        throwInputError(field, text, "has an unknown step " + step + " (steps: cold, full, condensed or a backend name, or none)");
     }
     chain.steps.push_back(step);
     chain.solvers.push_back(backend);
   }
   if (chain.steps.empty() || text.back() == ',')
-    throwInputError(field, text, "has an empty step (steps: cold, full or a backend name, comma-separated, or none)");
+    throwInputError(field, text, "has an empty step (steps: cold, full, condensed or a backend name, comma-separated, or none)");
   return chain;
 }
 
@@ -93,11 +113,13 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
     const std::string& step = chain.steps[i];
     if (step == kCold && started_cold) continue;        // the failed solve was this one
     if (step == kFull && !system.condensed()) continue;  // already on the full system
+    if (step == kCondensed && system.condensed()) continue;
     if (options.time_limit > 0.0 && elapsed() >= options.time_limit) break;
     FallbackAttempt attempt{step, SolverResult()};
     try {
       if (step == kCold) attempt.result = solveCold(solver, system, remaining());
       else if (step == kFull) attempt.result = solveOnFullSystem(solver, system, remaining());
+      else if (step == kCondensed) attempt.result = solveOnCondensedSystem(solver, system, remaining());
       else attempt.result = solveCold(*chain.solvers[i], system, remaining());
     } catch (const std::exception& e) {  // a singular A_k, a system too large for memory
       attempt.result.solver = step;

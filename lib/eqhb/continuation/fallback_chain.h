@@ -6,14 +6,19 @@
 //             the branch it came from no longer exists.
 //   2. full   the same ω on the full system (the condensed one failed): its
 //             unknowns keep x, which conditions some contacts better.
-//   3. SOLVER another backend on the system, from the cold start (the caller
+//   3. condensed  the same ω on the condensed system (the full one failed),
+//             its answer polished on the full system: eliminating x removes
+//             the stiff linear equations a stalled full solve fights.
+//   4. SOLVER another backend on the system, from the cold start (the caller
 //             names it: the core knows no backend by name).
 //
 // Measured on the shipped scenes' sequential sweeps with the own dogleg: the
 // points that failed from the previous point (Duffing and the cubic chain
 // just past their folds, the damper above ω = 1.11, contact near its
 // grazing frequencies) converge cold; contact-friction-2d at ω = 0.15 only
-// on the full system; cubic at ω = 0.8 only with Ipopt.
+// on the full system; cubic at ω = 0.8 only with Ipopt. From rest on the
+// full system: friction-2d (tanh form) and the damper (min normal form)
+// only on the condensed system.
 #pragma once
 
 #include <functional>
@@ -26,14 +31,14 @@
 namespace eqhb {
 
 struct FallbackChain {
-  // Steps in order: "cold", "full", or a backend supplied in `solvers` by its
-  // Solver::name(). Empty: no fallback.
+  // Steps in order: "cold", "full", "condensed", or a backend supplied in
+  // `solvers` by its Solver::name(). Empty: no fallback.
   std::vector<std::string> steps;
   std::vector<Solver*> solvers;  // the backends named in `steps`, owned by the caller
 
   // The default order, with `backup` (may be null: no backend step) last.
   static FallbackChain standard(Solver* backup);
-  // Parses "cold,full,NAME" (or "none"); `solver_for` returns the backend for a
+  // Parses "cold,full,condensed,NAME" (or "none"); `solver_for` returns the backend for a
   // NAME that is neither cold nor full, or null for an unknown one. Throws
   // InputError naming `field` for an unknown, empty or repeated step.
   static FallbackChain parse(const std::string& text, const std::string& field,
