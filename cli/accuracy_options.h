@@ -14,7 +14,7 @@ namespace eqhb::cli {
 struct AccuracyArguments {
   bool error_estimate = false;      // --error-estimate: one more solve at 2H
   std::optional<double> tolerance;  // --accuracy TOL
-  int max_harmonics = app::SolveOptions{}.max_harmonics;  // --max-harmonics
+  int max_harmonics = app::SolutionChecks{}.max_harmonics;  // --max-harmonics
 };
 
 void addAccuracyOptions(CLI::App* command, AccuracyArguments& args);

@@ -89,20 +89,28 @@ SolverOptions solverOptions(const SolveArguments& a) {
   return options;
 }
 
+void readSolverChoice(const SolveArguments& a, app::SolverChoice* o) {
+  o->solver = a.solver;
+  o->condensed = !a.full;
+  o->solver_options = solverOptions(a);
+  o->fallback = a.fallback;
+}
+
+void readSolutionChecks(const SolveArguments& a, app::SolutionChecks* o) {
+  o->stability = a.stability;
+  o->stability_method = a.stability_method;
+  o->error_estimate = a.accuracy.error_estimate;
+  o->accuracy = a.accuracy.tolerance;
+  o->max_harmonics = a.accuracy.max_harmonics;
+}
+
 app::SolveOptions solveOptions(const SolveArguments& a) {
   app::SolveOptions o;
-  o.solver = a.solver;
-  o.condensed = !a.full;
-  o.solver_options = solverOptions(a);
-  o.fallback = a.fallback;
+  readSolverChoice(a, &o);
+  readSolutionChecks(a, &o);
   o.cold_start = a.cold_start;
   o.from_harmonics = a.from_harmonics;
   o.repeat = a.repeat;
-  o.stability = a.stability;
-  o.stability_method = a.stability_method;
-  o.error_estimate = a.accuracy.error_estimate;
-  o.accuracy = a.accuracy.tolerance;
-  o.max_harmonics = a.accuracy.max_harmonics;
   o.refine = a.refine.method;
   o.restitution = a.refine.restitution;
   o.refine_harmonics = a.refine.harmonics;

@@ -19,7 +19,7 @@ namespace eqhb::cli {
 // The flags as given; defaults are app::SolveOptions'.
 struct SolveArguments {
   SceneArguments scene;
-  std::string solver = app::SolveOptions{}.solver;
+  std::string solver = app::SolverChoice{}.solver;
   bool full = false;
   bool json = false;
   bool trajectory = false;
@@ -28,11 +28,11 @@ struct SolveArguments {
   int max_iterations = SolverOptions{}.max_iterations;
   int max_evaluations = SolverOptions{}.max_evaluations;
   double time_limit = SolverOptions{}.time_limit;
-  int repeat = app::SolveOptions{}.repeat;
+  int repeat = app::SolveOptions().repeat;
   std::optional<int> from_harmonics;
-  std::string cold_start = app::SolveOptions{}.cold_start;  // coarse or zero
+  std::string cold_start = app::SolveOptions().cold_start;  // coarse or zero
   std::string linear_algebra = "auto";                      // auto, dense or sparse
-  std::string fallback = app::SolveOptions{}.fallback;
+  std::string fallback = app::SolverChoice{}.fallback;
   bool stability = false;
   std::string stability_method = "hill";
   AccuracyArguments accuracy;  // --error-estimate, --accuracy (solve only)
@@ -43,6 +43,11 @@ struct SolveArguments {
 app::SolveOptions solveOptions(const SolveArguments& args);
 // The common solver options and the --option pass-through; throws InputError.
 SolverOptions solverOptions(const SolveArguments& args);
+// The backend, system, limits (solverOptions) and --fallback, as every
+// command that solves passes them on; throws InputError.
+void readSolverChoice(const SolveArguments& args, app::SolverChoice* options);
+// --stability, --stability-method, --error-estimate, --accuracy, --max-harmonics.
+void readSolutionChecks(const SolveArguments& args, app::SolutionChecks* options);
 
 void addSolveCommand(CLI::App& app, SolveArguments& args);
 // The --stability flag (solve and sweep).

@@ -49,9 +49,7 @@ namespace {
 
 app::StudyOptions studyOptions(const SolveArguments& s, const StudyArguments& a) {
   app::StudyOptions o;
-  o.solver = s.solver;
-  o.condensed = !s.full;
-  o.solver_options = solverOptions(s);
+  readSolverChoice(s, &o);
   o.vary = a.vary;
   o.lhs = a.lhs;
   o.seed = a.seed;
@@ -63,7 +61,6 @@ app::StudyOptions studyOptions(const SolveArguments& s, const StudyArguments& a)
   o.coarse_points = a.coarse_points;
   o.max_peaks = a.max_peaks;
   o.threads = a.threads;
-  o.fallback = s.fallback;
   o.out = a.out;
   return o;
 }

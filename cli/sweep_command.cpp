@@ -55,10 +55,8 @@ namespace {
 
 app::SweepOptions sweepOptions(const SolveArguments& s, const SweepArguments& w) {
   app::SweepOptions o;
-  o.solver = s.solver;
-  o.condensed = !s.full;
-  o.solver_options = solverOptions(s);
-  o.fallback = s.fallback;
+  readSolverChoice(s, &o);
+  readSolutionChecks(s, &o);
   o.from = w.from;
   o.to = w.to;
   o.arclength = w.arclength;
@@ -66,11 +64,6 @@ app::SweepOptions sweepOptions(const SolveArguments& s, const SweepArguments& w)
   o.min_step = w.min_step;
   o.max_step = w.max_step;
   o.max_points = w.max_points;
-  o.stability = s.stability;
-  o.stability_method = s.stability_method;
-  o.error_estimate = s.accuracy.error_estimate;
-  o.accuracy = s.accuracy.tolerance;
-  o.max_harmonics = s.accuracy.max_harmonics;
   return o;
 }
 

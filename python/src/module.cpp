@@ -41,15 +41,23 @@ using namespace eqhb::python;
 
 namespace {
 
-SolverOptions solverOptions(double tolerance, int max_iterations, int max_evaluations, double time_limit,
-                            const std::map<std::string, std::string>& backend,
-                            const std::string& linear_algebra = "auto") {
+// The library's work with the GIL released (it calls no Python), so that
+// other Python threads run meanwhile.
+template <class Work>
+auto withoutGil(const Work& work) {
+  py::gil_scoped_release unlocked;
+  return work();
+}
+
+// The solver options of a call's arguments (the package's _hb_args).
+SolverOptions solverOptions(const py::dict& a) {
   SolverOptions options;
-  options.residual_tolerance = tolerance;
-  options.max_iterations = max_iterations;
-  options.max_evaluations = max_evaluations;
-  options.time_limit = time_limit;
-  options.backend = backend;
+  options.residual_tolerance = a["tolerance"].cast<double>();
+  options.max_iterations = a["max_iterations"].cast<int>();
+  options.max_evaluations = a["max_evaluations"].cast<int>();
+  options.time_limit = a["time_limit"].cast<double>();
+  options.backend = a["options"].cast<std::map<std::string, std::string>>();
+  const std::string linear_algebra = a["linear_algebra"].cast<std::string>();
   if (linear_algebra == "dense") options.linear_algebra = LinearAlgebra::kDense;
   else if (linear_algebra == "sparse") options.linear_algebra = LinearAlgebra::kSparse;
   else if (linear_algebra != "auto")
@@ -57,14 +65,6 @@ SolverOptions solverOptions(double tolerance, int max_iterations, int max_evalua
   std::string why;
   if (!options.isValid(&why)) throw InputError(why);
   return options;
-}
-
-// The solver options of a call's arguments (the package's _hb_args).
-SolverOptions solverOptions(const py::dict& a) {
-  return solverOptions(a["tolerance"].cast<double>(), a["max_iterations"].cast<int>(),
-                       a["max_evaluations"].cast<int>(), a["time_limit"].cast<double>(),
-                       a["options"].cast<std::map<std::string, std::string>>(),
-                       a["linear_algebra"].cast<std::string>());
 }
 
 bool condensedSystem(const std::string& system) {
@@ -86,24 +86,30 @@ struct SceneArgs {
   }
 };
 
+// The backend, system, limits and fallbacks every call that solves takes.
+void readSolverChoice(const py::dict& a, app::SolverChoice* o) {
+  o->solver = a["solver"].cast<std::string>();
+  o->condensed = condensedSystem(a["system"].cast<std::string>());
+  o->solver_options = solverOptions(a);
+  o->fallback = a["fallback"].cast<std::string>();
+}
+
+// Stability, error estimate and accuracy target (solve and sweep).
+void readSolutionChecks(const py::dict& a, app::SolutionChecks* o) {
+  o->stability = a["stability"].cast<bool>();
+  o->stability_method = a["stability_method"].cast<std::string>();
+  o->error_estimate = a["error_estimate"].cast<bool>();
+  o->accuracy = a["accuracy"].cast<std::optional<double>>();
+  o->max_harmonics = a["max_harmonics"].cast<int>();
+}
+
 // The harmonic-balance options every call that solves takes.
-struct HbArgs {
-  std::string solver, system;
-  double tolerance;
-  int max_iterations, max_evaluations;
-  double time_limit;
-  std::map<std::string, std::string> backend;
-  std::string linear_algebra, cold_start, fallback;
-  app::SolveOptions options() const {
-    app::SolveOptions o;
-    o.solver = solver;
-    o.condensed = condensedSystem(system);
-    o.solver_options = solverOptions(tolerance, max_iterations, max_evaluations, time_limit, backend, linear_algebra);
-    o.cold_start = cold_start;
-    o.fallback = fallback;
-    return o;
-  }
-};
+app::SolveOptions hbOptions(const py::dict& a) {
+  app::SolveOptions o;
+  readSolverChoice(a, &o);
+  o.cold_start = a["cold_start"].cast<std::string>();
+  return o;
+}
 
 SceneArgs sceneArgs(const py::dict& a) {
   SceneArgs s;
@@ -116,36 +122,19 @@ SceneArgs sceneArgs(const py::dict& a) {
   return s;
 }
 
-HbArgs hbArgs(const py::dict& a) {
-  return HbArgs{a["solver"].cast<std::string>(),         a["system"].cast<std::string>(),
-                a["tolerance"].cast<double>(),            a["max_iterations"].cast<int>(),
-                a["max_evaluations"].cast<int>(),         a["time_limit"].cast<double>(),
-                a["options"].cast<std::map<std::string, std::string>>(), a["linear_algebra"].cast<std::string>(),
-                a["cold_start"].cast<std::string>(),      a["fallback"].cast<std::string>()};
-}
-
 // eqhb.solve: app::solve with the call's settings and options (`args`, checked
 // and named by the package's solve).
 py::dict solve(const PyModel& m, const py::dict& args) {
   const app::SceneSettings scene = sceneArgs(args).of(m);
-  app::SolveOptions o = hbArgs(args).options();
+  app::SolveOptions o = hbOptions(args);
   if (!args["initial"].is_none()) o.initial = args["initial"].cast<Eigen::VectorXd>();
   o.from_harmonics = args["from_harmonics"].cast<std::optional<int>>();
   o.repeat = args["repeat"].cast<int>();
-  o.stability = args["stability"].cast<bool>();
-  o.stability_method = args["stability_method"].cast<std::string>();
-  o.error_estimate = args["error_estimate"].cast<bool>();
-  o.accuracy = args["accuracy"].cast<std::optional<double>>();
-  o.max_harmonics = args["max_harmonics"].cast<int>();
+  readSolutionChecks(args, &o);
   o.refine = args["refine"].is_none() ? std::string() : args["refine"].cast<std::string>();
   o.restitution = args["restitution"].cast<double>();
   o.refine_harmonics = args["refine_harmonics"].is_none() ? 0 : args["refine_harmonics"].cast<int>();
-  std::optional<app::Solution> solution;
-  {
-    py::gil_scoped_release unlocked;
-    solution = app::solve(scene, o);
-  }
-  return solveDict(*solution);
+  return solveDict(withoutGil([&] { return app::solve(scene, o); }));
 }
 
 // Floquet multipliers of a harmonic-balance solution by Hill's method.
@@ -158,12 +147,7 @@ py::dict stability(const PyModel& m, const Eigen::VectorXd& full, std::optional<
     throwInputError("solution", "(" + std::to_string(full.size()) + " values)",
                     "must be a finite full coefficient vector [x; lambda] of " + std::to_string(full_size) +
                         " values (the \"full\" entry of a solution at these settings)");
-  HillResult hill;
-  {
-    py::gil_scoped_release unlocked;
-    hill = hillStability(model, full);
-  }
-  return stabilityDict(hill);
+  return stabilityDict(withoutGil([&] { return hillStability(model, full); }));
 }
 
 // Python names the range start and stop; the library names it from and to.
@@ -181,6 +165,16 @@ std::string withPythonNames(const std::string& message) {
   return out;
 }
 
+// The work's result; its input errors reworded with Python's names.
+template <class Work>
+auto inPythonTerms(const Work& work) {
+  try {
+    return work();
+  } catch (const InputError& e) {
+    throw InputError(withPythonNames(e.what()));
+  }
+}
+
 // eqhb.sweep: app::sweep with the call's settings and options, as `eqhb sweep`.
 py::dict sweep(const PyModel& m, const py::dict& args) {
   const app::SceneSettings scene = sceneArgs(args).of(m);
@@ -188,10 +182,8 @@ py::dict sweep(const PyModel& m, const py::dict& args) {
   if (method != "sequential" && method != "arclength")
     throwInputError("method", "\"" + method + "\"", "must be \"sequential\" or \"arclength\"");
   app::SweepOptions o;
-  o.solver = args["solver"].cast<std::string>();
-  o.condensed = condensedSystem(args["system"].cast<std::string>());
-  o.solver_options = solverOptions(args);
-  o.fallback = args["fallback"].cast<std::string>();
+  readSolverChoice(args, &o);
+  readSolutionChecks(args, &o);
   o.from = args["start"].cast<std::optional<double>>();
   o.to = args["stop"].cast<std::optional<double>>();
   o.arclength = method == "arclength";
@@ -199,23 +191,8 @@ py::dict sweep(const PyModel& m, const py::dict& args) {
   o.min_step = args["min_step"].cast<std::optional<double>>();
   o.max_step = args["max_step"].cast<std::optional<double>>();
   o.max_points = args["max_points"].cast<int>();
-  o.stability = args["stability"].cast<bool>();
-  o.stability_method = args["stability_method"].cast<std::string>();
-  o.error_estimate = args["error_estimate"].cast<bool>();
-  o.accuracy = args["accuracy"].cast<std::optional<double>>();
-  o.max_harmonics = args["max_harmonics"].cast<int>();
-  std::optional<app::SweepPlan> plan;
-  try {
-    plan = app::planSweep(scene, o);
-  } catch (const InputError& e) {
-    throw InputError(withPythonNames(e.what()));
-  }
-  std::optional<app::SweepResult> result;
-  {
-    py::gil_scoped_release unlocked;
-    result = app::sweep(*plan);
-  }
-  return sweepDict(*result);
+  const app::SweepPlan plan = inPythonTerms([&] { return app::planSweep(scene, o); });
+  return sweepDict(withoutGil([&] { return app::sweep(plan); }));
 }
 
 // eqhb.study: app::study with the call's settings and options, as `eqhb
@@ -223,9 +200,7 @@ py::dict sweep(const PyModel& m, const py::dict& args) {
 py::dict study(const PyModel& m, const py::dict& args) {
   const app::SceneSettings scene = sceneArgs(args).of(m);
   app::StudyOptions o;
-  o.solver = args["solver"].cast<std::string>();
-  o.condensed = condensedSystem(args["system"].cast<std::string>());
-  o.solver_options = solverOptions(args);
+  readSolverChoice(args, &o);
   o.vary = args["vary"].cast<std::vector<std::string>>();
   o.lhs = args["lhs"].cast<std::optional<int>>();
   o.seed = args["seed"].cast<unsigned long long>();
@@ -238,26 +213,16 @@ py::dict study(const PyModel& m, const py::dict& args) {
   o.max_peaks = args["max_peaks"].cast<int>();
   o.threads = args["threads"].cast<int>();
   o.out = args["out"].cast<std::string>();
-  o.fallback = args["fallback"].cast<std::string>();
-  std::optional<app::StudySetup> setup;
-  try {
-    setup = app::setupStudy(scene, o);
-  } catch (const InputError& e) {
-    throw InputError(withPythonNames(e.what()));
-  }
-  std::optional<app::StudyRun> run;
-  {
-    py::gil_scoped_release unlocked;
-    run = app::runStudy(*setup, o.threads);
-  }
-  output::writeStudyJson(o.out + "/study.json", *run);
-  py::dict d = fromJson(output::studyJson(*run));
-  d["total"] = run->total;
-  d["computed"] = run->computed;
-  d["failed"] = run->failed();
-  d["succeeded"] = run->succeeded();
-  d["seconds"] = run->seconds;
-  d["threads"] = run->how;
+  const app::StudySetup setup = inPythonTerms([&] { return app::setupStudy(scene, o); });
+  const app::StudyRun run = withoutGil([&] { return app::runStudy(setup, o.threads); });
+  output::writeStudyJson(o.out + "/study.json", run);
+  py::dict d = fromJson(output::studyJson(run));
+  d["total"] = run.total;
+  d["computed"] = run.computed;
+  d["failed"] = run.failed();
+  d["succeeded"] = run.succeeded();
+  d["seconds"] = run.seconds;
+  d["threads"] = run.how;
   return d;
 }
 
@@ -279,17 +244,12 @@ py::dict simulate(const PyModel& m, const py::dict& args) {
   app::SimulateOptions o;
   o.time = timeSettings(args);
   o.from_hb = args["from_hb"].cast<bool>();
-  if (o.from_hb) o.hb = hbArgs(args).options();
+  if (o.from_hb) o.hb = hbOptions(args);
   if (!args["initial"].is_none()) {
     if (o.from_hb) throwInputError("initial", "(vector)", "give initial or from_hb, not both");
     o.initial = args["initial"].cast<Eigen::VectorXd>();
   }
-  std::optional<app::Simulation> simulation;
-  {
-    py::gil_scoped_release unlocked;
-    simulation = app::simulate(scene, o);
-  }
-  return simulationDict(*simulation);
+  return simulationDict(withoutGil([&] { return app::simulate(scene, o); }));
 }
 
 // eqhb.compare: a harmonic-balance solve against the reference started from it.
@@ -298,13 +258,8 @@ py::dict compare(const PyModel& m, const py::dict& args) {
   app::CompareOptions o;
   o.time = timeSettings(args);
   o.from_rest = args["from_rest"].cast<bool>();
-  o.hb = hbArgs(args).options();
-  std::optional<app::Comparison> comparison;
-  {
-    py::gil_scoped_release unlocked;
-    comparison = app::compare(scene, o);
-  }
-  return comparisonDict(*comparison);
+  o.hb = hbOptions(args);
+  return comparisonDict(withoutGil([&] { return app::compare(scene, o); }));
 }
 
 // eqhb.shoot: the exact periodic orbit from the harmonic-balance solve of
@@ -312,18 +267,13 @@ py::dict compare(const PyModel& m, const py::dict& args) {
 py::dict shoot(const PyModel& m, const py::dict& args) {
   const app::SceneSettings scene = sceneArgs(args).of(m);
   app::ShootOptions o;
-  o.hb = hbArgs(args).options();
+  o.hb = hbOptions(args);
   o.from_hb = args["from_hb"].cast<std::optional<int>>();
   o.restitution = args["restitution"].cast<double>();
   o.tolerance = args["shooting_tolerance"].cast<double>();
   o.max_iterations = args["shooting_max_iterations"].cast<int>();
   o.trajectory = true;
-  std::optional<app::Orbit> orbit;
-  {
-    py::gil_scoped_release unlocked;
-    orbit = app::shoot(scene, o);
-  }
-  return orbitDict(*orbit);
+  return orbitDict(withoutGil([&] { return app::shoot(scene, o); }));
 }
 
 // eqhb.modes: the nonlinear mode's backbone, as `eqhb modes` (app::modes);
@@ -336,16 +286,8 @@ py::dict modes(const PyModel& m, const py::dict& args) {
   o.to = args["to"].cast<std::optional<double>>();
   o.points = args["points"].cast<int>();
   o.solver = args["solver"].cast<std::string>();
-  o.solver_options = solverOptions(args["tolerance"].cast<double>(), args["max_iterations"].cast<int>(),
-                                   args["max_evaluations"].cast<int>(), args["time_limit"].cast<double>(),
-                                   args["options"].cast<std::map<std::string, std::string>>(),
-                                   args["linear_algebra"].cast<std::string>());
-  std::optional<app::ModesRun> run;
-  {
-    py::gil_scoped_release unlocked;
-    run = app::modes(scene, o);
-  }
-  return fromJson(output::backboneJson(*run)).cast<py::dict>();
+  o.solver_options = solverOptions(args);
+  return fromJson(output::backboneJson(withoutGil([&] { return app::modes(scene, o); }))).cast<py::dict>();
 }
 
 py::list lawList(const HbModel& model) {

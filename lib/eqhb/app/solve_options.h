@@ -8,19 +8,13 @@
 #include <optional>
 #include <string>
 
-#include "eqhb/solvers/solver.h"
+#include "eqhb/app/solver_choice.h"
 
 namespace eqhb::app {
 
-struct SolveOptions {
-  std::string solver = "dogleg";  // a registered backend (registeredSolvers)
-  bool condensed = true;          // false: the full system [x; λ]
-  // Tolerance, iteration, evaluation and time limits, linear algebra and the
-  // backend's own NAME -> VALUE settings. time_limit bounds the set-up too.
-  SolverOptions solver_options;
-  // Steps after a failed solve: "default", "none", or "cold,full,condensed,NAME,..."
-  // (default_path.h).
-  std::string fallback = "default";
+// The backend, system, limits and fallbacks, and the stability, error
+// estimate and accuracy target (solver_choice.h), with:
+struct SolveOptions : SolverChoice, SolutionChecks {
   // Without from_harmonics or initial: "coarse" (a coarse harmonic balance
   // first, coarse_start.h) or "zero".
   std::string cold_start = "coarse";
@@ -30,14 +24,6 @@ struct SolveOptions {
   // The start [x; λ] in the full layout (a solution's "full"); empty: none.
   Eigen::VectorXd initial;
   int repeat = 1;  // solves timed (the median reported), in [1, 100000]
-
-  bool stability = false;       // Floquet multipliers (converged solutions)
-  std::string stability_method = "hill";  // hill, monodromy or auto (HillOptions::method)
-  bool error_estimate = false;  // the relative error of max|x| by one more solve at 2H
-  // The cheapest H (and ρ unless the scene's settings fix one) whose
-  // estimated relative error of max|x| is <= accuracy, in (0, 1).
-  std::optional<double> accuracy;
-  int max_harmonics = 320;      // with accuracy: the largest H solved
 
   std::string refine;           // "" or "shoot": harmonic balance followed by shooting
   double restitution = 0.0;     // with refine: Newton impact coefficient of contact laws, in [0, 1]

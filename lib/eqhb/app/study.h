@@ -12,15 +12,14 @@
 #include <vector>
 
 #include "eqhb/app/scene_settings.h"
+#include "eqhb/app/solver_choice.h"
 #include "eqhb/studies/study_sample.h"
 
 namespace eqhb::app {
 
-// Defaults are those of `eqhb study`.
-struct StudyOptions {
-  std::string solver = "dogleg";  // a registered backend (registeredSolvers)
-  bool condensed = true;          // false: the full system [x; λ]
-  SolverOptions solver_options;
+// Defaults are those of `eqhb study`. The backend, system, limits and the
+// fallbacks after a failed point of a sample's sweeps (solver_choice.h), with:
+struct StudyOptions : SolverChoice {
   // "PATH=FROM:TO:COUNT" per parameter (a grid), PATH as for a scene
   // override or "A,B,..." set together; with lhs "PATH=FROM:TO".
   std::vector<std::string> vary;
@@ -33,9 +32,6 @@ struct StudyOptions {
   int coarse_points = 41;          // peak: points of the coarse sweep that starts a peak cold
   int max_peaks = 4;               // peak: resonances followed at once
   int threads = 0;                 // 0: every core, in [0, 4096]
-  // Steps after a failed point of a sample's sweeps: "default", "none" or
-  // "cold,full,NAME,..." (backends/default_path.h).
-  std::string fallback = "default";
   std::string out;                 // the study folder: study.csv, study.json, journal.csv, plan.txt
 };
 

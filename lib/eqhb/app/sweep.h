@@ -13,20 +13,16 @@
 #include "eqhb/accuracy/accuracy_sweep.h"
 #include "eqhb/app/rho_candidates.h"
 #include "eqhb/app/scene_settings.h"
+#include "eqhb/app/solver_choice.h"
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/stability/curve_stability.h"
 
 namespace eqhb::app {
 
-// Defaults are those of `eqhb sweep`.
-struct SweepOptions {
-  std::string solver = "dogleg";  // a registered backend (registeredSolvers)
-  bool condensed = true;          // false: the full system [x; λ]
-  SolverOptions solver_options;
-  // Steps for a point that fails after its halved steps (and for the first
-  // point): "default", "none", or "cold,full,NAME,..." (default_path.h).
-  std::string fallback = "default";
-
+// Defaults are those of `eqhb sweep`. The backend, system, limits and
+// fallbacks, stability, error estimates and an accuracy target per point
+// (solver_choice.h), with:
+struct SweepOptions : SolverChoice, SolutionChecks {
   std::optional<double> from, to;  // default: the scene's [sweep]
   bool arclength = false;          // pseudo-arclength (passes turning points); else a grid in ω
   // The grid step in ω, or the initial scaled arclength step; default
@@ -35,16 +31,6 @@ struct SweepOptions {
   // Default min(1e-6, step) and max(0.1, step) (ContinuationOptions).
   std::optional<double> min_step, max_step;
   int max_points = 20000;
-
-  bool stability = false;       // Floquet multipliers at every converged point
-  // hill, monodromy or auto (HillOptions::method).
-  std::string stability_method = "hill";
-  bool error_estimate = false;  // per converged point, the relative error of max|x| by one more solve at 2H
-  // Every point's estimated relative error of max|x| <= accuracy, in (0, 1):
-  // H (and ρ unless the scene settings fix one) chosen at the first point,
-  // doubling from the settings' harmonics or min(5, H), raised per point.
-  std::optional<double> accuracy;
-  int max_harmonics = 320;      // with accuracy: the largest H solved
 
   // False with a message naming the field, its value and the rule (the
   // options alone; the range against the scene is checked by planSweep).

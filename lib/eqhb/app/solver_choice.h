@@ -1,0 +1,39 @@
+// The options every application call that solves shares, declared once so
+// that each interface reads them in one place: which backend solves, on
+// which system, with which limits, and what follows a failed solve
+// (SolverChoice); what is computed on converged solutions (SolutionChecks).
+// SolveOptions, SweepOptions and StudyOptions extend them.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "eqhb/solvers/solver.h"
+
+namespace eqhb::app {
+
+struct SolverChoice {
+  std::string solver = "dogleg";  // a registered backend (registeredSolvers)
+  bool condensed = true;          // false: the full system [x; λ]
+  // Tolerance, iteration, evaluation and time limits, linear algebra and the
+  // backend's own NAME -> VALUE settings. time_limit bounds the set-up too.
+  SolverOptions solver_options;
+  // Steps after a failed solve (on a curve: a point that fails after its
+  // halved steps, and the first point): "default", "none", or
+  // "cold,full,condensed,NAME,..." (default_path.h).
+  std::string fallback = "default";
+};
+
+struct SolutionChecks {
+  bool stability = false;  // Floquet multipliers of each converged solution
+  std::string stability_method = "hill";  // hill, monodromy or auto (HillOptions::method)
+  bool error_estimate = false;  // per converged solution, the relative error of max|x| by one more solve at 2H
+  // The cheapest H (and ρ unless the scene's settings fix one) whose
+  // estimated relative error of max|x| is <= accuracy, in (0, 1). On a
+  // curve: chosen at the first point, doubling from the settings' harmonics
+  // or min(5, H), then raised on the points whose estimate exceeds it.
+  std::optional<double> accuracy;
+  int max_harmonics = 320;  // with accuracy: the largest H solved
+};
+
+}  // namespace eqhb::app
