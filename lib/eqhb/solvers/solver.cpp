@@ -94,17 +94,31 @@ void MonitoredSystem::record(const Eigen::Ref<Eigen::VectorXd>& g, bool ok) {
   if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
 }
 
+namespace {
+// The evaluation's answer; an exception is a failed evaluation whose
+// message is kept in `failure` (none crosses a backend's callback).
+template <class Evaluate>
+bool guarded(const Evaluate& evaluate, const char* what, std::string& failure) {
+  try {
+    return evaluate();
+  } catch (const std::exception& e) {
+    failure = e.what();
+  } catch (...) {
+    failure = std::string("unknown exception in ") + what + " evaluation";
+  }
+  return false;
+}
+}  // namespace
+
 bool MonitoredSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                                Eigen::Ref<Eigen::VectorXd> g) {
-  bool ok = false;
-  try {
-    ok = inner_.residual(z, g) && g.allFinite();
-    if (ok) g.array() *= inverse_scales_.array();
-  } catch (const std::exception& e) {
-    failure_ = e.what();
-  } catch (...) {
-    failure_ = "unknown exception in residual evaluation";
-  }
+  const bool ok = guarded(
+      [&] {
+        if (!inner_.residual(z, g) || !g.allFinite()) return false;
+        g.array() *= inverse_scales_.array();
+        return true;
+      },
+      "residual", failure_);
   record(g, ok);
   return ok;
 }
@@ -112,18 +126,14 @@ bool MonitoredSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z,
 bool MonitoredSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                                           Eigen::Ref<Eigen::VectorXd> g,
                                           Eigen::Ref<Eigen::MatrixXd> jacobian) {
-  bool ok = false;
-  try {
-    ok = inner_.residualAndJacobian(z, g, jacobian) && g.allFinite() && jacobian.allFinite();
-    if (ok) {
-      g.array() *= inverse_scales_.array();
-      jacobian.array().colwise() *= inverse_scales_.array();
-    }
-  } catch (const std::exception& e) {
-    failure_ = e.what();
-  } catch (...) {
-    failure_ = "unknown exception in Jacobian evaluation";
-  }
+  const bool ok = guarded(
+      [&] {
+        if (!inner_.residualAndJacobian(z, g, jacobian) || !g.allFinite() || !jacobian.allFinite()) return false;
+        g.array() *= inverse_scales_.array();
+        jacobian.array().colwise() *= inverse_scales_.array();
+        return true;
+      },
+      "Jacobian", failure_);
   ++jacobian_evaluations_;
   if (!ok) ++failed_evaluations_;
   if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
@@ -133,20 +143,17 @@ bool MonitoredSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd
 bool MonitoredSystem::residualAndSparseJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                                                 Eigen::Ref<Eigen::VectorXd> g,
                                                 SparseMatrix& jacobian) {
-  bool ok = false;
-  try {
-    ok = inner_.residualAndSparseJacobian(z, g, jacobian) && g.allFinite() &&
-         Eigen::Map<const Eigen::VectorXd>(jacobian.valuePtr(), jacobian.nonZeros()).allFinite();
-    if (ok) {
-      g.array() *= inverse_scales_.array();
-      for (int j = 0; j < jacobian.outerSize(); ++j)
-        for (SparseMatrix::InnerIterator it(jacobian, j); it; ++it) it.valueRef() *= inverse_scales_[it.row()];
-    }
-  } catch (const std::exception& e) {
-    failure_ = e.what();
-  } catch (...) {
-    failure_ = "unknown exception in Jacobian evaluation";
-  }
+  const bool ok = guarded(
+      [&] {
+        if (!inner_.residualAndSparseJacobian(z, g, jacobian) || !g.allFinite() ||
+            !Eigen::Map<const Eigen::VectorXd>(jacobian.valuePtr(), jacobian.nonZeros()).allFinite())
+          return false;
+        g.array() *= inverse_scales_.array();
+        for (int j = 0; j < jacobian.outerSize(); ++j)
+          for (SparseMatrix::InnerIterator it(jacobian, j); it; ++it) it.valueRef() *= inverse_scales_[it.row()];
+        return true;
+      },
+      "Jacobian", failure_);
   ++jacobian_evaluations_;
   if (!ok) ++failed_evaluations_;
   if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();

@@ -172,31 +172,34 @@ class SystemNlp : public Ipopt::TNLP {
   int iterations = 0;
 
  private:
+  // A new point forgets the residual and Jacobian of the last one.
+  void moveTo(const Number* x, bool new_x) {
+    if (!new_x && have_z_) return;
+    z_ = Eigen::Map<const Eigen::VectorXd>(x, n_);
+    have_z_ = true;
+    have_g_ = have_j_ = false;
+  }
+  // The first point seen with ‖g‖ <= tolerance, kept.
+  void keepIfAccepted() {
+    if (accepted.size() == 0 && g_.norm() <= options_.residual_tolerance) accepted = z_;
+  }
   bool residualAt(const Number* x, bool new_x) {
-    if (new_x || !have_z_) {
-      z_ = Eigen::Map<const Eigen::VectorXd>(x, n_);
-      have_z_ = true;
-      have_g_ = have_j_ = false;
-    }
+    moveTo(x, new_x);
     if (!have_g_) {
       if (!system_.residual(z_, g_)) return false;
       have_g_ = true;
-      if (accepted.size() == 0 && g_.norm() <= options_.residual_tolerance) accepted = z_;
+      keepIfAccepted();
     }
     return true;
   }
   bool jacobianAt(const Number* x, bool new_x) {
-    if (new_x || !have_z_) {
-      z_ = Eigen::Map<const Eigen::VectorXd>(x, n_);
-      have_z_ = true;
-      have_g_ = have_j_ = false;
-    }
+    moveTo(x, new_x);
     if (!have_j_) {
       const bool ok = sparse_ ? system_.residualAndSparseJacobian(z_, g_, sparse_j_)
                               : system_.residualAndJacobian(z_, g_, j_);
       if (!ok) return false;
       have_g_ = have_j_ = true;
-      if (accepted.size() == 0 && g_.norm() <= options_.residual_tolerance) accepted = z_;
+      keepIfAccepted();
     }
     return true;
   }
