@@ -4,28 +4,23 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/form_names.h"
 #include "eqhb/laws/dissipation_deficit.h"
 #include "eqhb/laws/joints/friction_kernels.h"
 
 namespace eqhb {
 
+namespace {
+constexpr FormName<CoulombForm> kCoulombFormNames[] = {
+    {CoulombForm::kMinMax, "minmax"}, {CoulombForm::kProjection, "projection"}, {CoulombForm::kTanh, "tanh"},
+    {CoulombForm::kPiecewise, "piecewise"}};
+}  // namespace
+
 CoulombForm parseCoulombForm(const std::string& name) {
-  if (name == "minmax") return CoulombForm::kMinMax;
-  if (name == "projection") return CoulombForm::kProjection;
-  if (name == "tanh") return CoulombForm::kTanh;
-  if (name == "piecewise") return CoulombForm::kPiecewise;
-  throwInputError("form", "\"" + name + "\"", "must be minmax, projection, tanh or piecewise");
+  return parseForm(kCoulombFormNames, name, "form");
 }
 
-std::string coulombFormName(CoulombForm form) {
-  switch (form) {
-    case CoulombForm::kMinMax: return "minmax";
-    case CoulombForm::kProjection: return "projection";
-    case CoulombForm::kTanh: return "tanh";
-    case CoulombForm::kPiecewise: return "piecewise";
-  }
-  return "?";
-}
+std::string coulombFormName(CoulombForm form) { return formName(kCoulombFormNames, form); }
 
 namespace {
 // The scale-free slope: 1/β = the scale-free width (law.h).

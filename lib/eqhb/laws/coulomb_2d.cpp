@@ -5,28 +5,23 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/form_names.h"
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/laws/dissipation_deficit.h"
 
 namespace eqhb {
 
+namespace {
+constexpr FormName<Coulomb2DForm> kCoulomb2DFormNames[] = {
+    {Coulomb2DForm::kMax, "max"}, {Coulomb2DForm::kProjection, "projection"},
+    {Coulomb2DForm::kSmoothed, "smoothed"}, {Coulomb2DForm::kTanh, "tanh"}};
+}  // namespace
+
 Coulomb2DForm parseCoulomb2DForm(const std::string& name) {
-  if (name == "max") return Coulomb2DForm::kMax;
-  if (name == "projection") return Coulomb2DForm::kProjection;
-  if (name == "smoothed") return Coulomb2DForm::kSmoothed;
-  if (name == "tanh") return Coulomb2DForm::kTanh;
-  throwInputError("form", "\"" + name + "\"", "must be max, projection, smoothed or tanh");
+  return parseForm(kCoulomb2DFormNames, name, "form");
 }
 
-std::string coulomb2DFormName(Coulomb2DForm form) {
-  switch (form) {
-    case Coulomb2DForm::kMax: return "max";
-    case Coulomb2DForm::kProjection: return "projection";
-    case Coulomb2DForm::kSmoothed: return "smoothed";
-    case Coulomb2DForm::kTanh: return "tanh";
-  }
-  return "?";
-}
+std::string coulomb2DFormName(Coulomb2DForm form) { return formName(kCoulomb2DFormNames, form); }
 
 Coulomb2D::Coulomb2D(double mu_n, Coulomb2DForm form, RhoSetting rho, std::optional<double> epsilon,
                      std::optional<double> alpha)

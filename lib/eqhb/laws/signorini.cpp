@@ -5,24 +5,21 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/form_names.h"
 
 namespace eqhb {
 
+namespace {
+constexpr FormName<SignoriniForm> kSignoriniFormNames[] = {
+    {SignoriniForm::kMin, "min"}, {SignoriniForm::kFischerBurmeister, "fischer-burmeister"},
+    {SignoriniForm::kSignSquare, "sign-square"}};
+}  // namespace
+
 SignoriniForm parseSignoriniForm(const std::string& name) {
-  if (name == "min") return SignoriniForm::kMin;
-  if (name == "fischer-burmeister") return SignoriniForm::kFischerBurmeister;
-  if (name == "sign-square") return SignoriniForm::kSignSquare;
-  throwInputError("form", "\"" + name + "\"", "must be min, fischer-burmeister or sign-square");
+  return parseForm(kSignoriniFormNames, name, "form");
 }
 
-std::string signoriniFormName(SignoriniForm form) {
-  switch (form) {
-    case SignoriniForm::kMin: return "min";
-    case SignoriniForm::kFischerBurmeister: return "fischer-burmeister";
-    case SignoriniForm::kSignSquare: return "sign-square";
-  }
-  return "?";
-}
+std::string signoriniFormName(SignoriniForm form) { return formName(kSignoriniFormNames, form); }
 
 Signorini::Signorini(double gap, SignoriniForm form, RhoSetting rho)
     : gap_(gap), form_(form), rho_setting_(rho), rho_(rho.value) {

@@ -4,26 +4,23 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/form_names.h"
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/laws/dissipation_deficit.h"
 
 namespace eqhb {
 
+namespace {
+constexpr FormName<NormalForm> kNormalFormNames[] = {
+    {NormalForm::kMin, "min"}, {NormalForm::kFischerBurmeister, "fischer-burmeister"},
+    {NormalForm::kCompliant, "compliant"}};
+}  // namespace
+
 NormalForm parseNormalForm(const std::string& name, const std::string& field) {
-  if (name == "min") return NormalForm::kMin;
-  if (name == "fischer-burmeister") return NormalForm::kFischerBurmeister;
-  if (name == "compliant") return NormalForm::kCompliant;
-  throwInputError(field, "\"" + name + "\"", "must be min, fischer-burmeister or compliant");
+  return parseForm(kNormalFormNames, name, field);
 }
 
-std::string normalFormName(NormalForm form) {
-  switch (form) {
-    case NormalForm::kMin: return "min";
-    case NormalForm::kFischerBurmeister: return "fischer-burmeister";
-    case NormalForm::kCompliant: return "compliant";
-  }
-  return "?";
-}
+std::string normalFormName(NormalForm form) { return formName(kNormalFormNames, form); }
 
 ContactFriction::ContactFriction(const ContactFrictionParameters& p)
     : p_(p), normal_rho_(p.rho.value), friction_rho_(p.rho.value) {

@@ -5,24 +5,20 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/form_names.h"
 
 namespace eqhb {
 
+namespace {
+constexpr FormName<FrictionForm> kFrictionFormNames[] = {
+    {FrictionForm::kMinMax, "minmax"}, {FrictionForm::kProjection, "projection"}, {FrictionForm::kMax, "max"}};
+}  // namespace
+
 FrictionForm parseFrictionForm(const std::string& name, const std::string& field) {
-  if (name == "minmax") return FrictionForm::kMinMax;
-  if (name == "projection") return FrictionForm::kProjection;
-  if (name == "max") return FrictionForm::kMax;
-  throwInputError(field, "\"" + name + "\"", "must be minmax (one tangential DOF), projection or max");
+  return parseForm(kFrictionFormNames, name, field, "must be minmax (one tangential DOF), projection or max");
 }
 
-std::string frictionFormName(FrictionForm form) {
-  switch (form) {
-    case FrictionForm::kMinMax: return "minmax";
-    case FrictionForm::kProjection: return "projection";
-    case FrictionForm::kMax: return "max";
-  }
-  return "?";
-}
+std::string frictionFormName(FrictionForm form) { return formName(kFrictionFormNames, form); }
 
 namespace {
 

@@ -23,12 +23,7 @@ LawEntry coulomb1DEntry() {
                 {"coulomb1d-tanh", 1, "muN = 1.3\nform = \"tanh\"\nrho = 0.8\nbeta = 7.0"},
                 {"coulomb1d-piecewise", 1, "muN = 1.3\nform = \"piecewise\"\nrho = 0.8\nbeta = 7.0"}};
   // A constant limit: a Stribeck slider without drop between events.
-  e.smooth_flow = [](const Law& law) -> std::optional<SmoothFlowSite> {
-    SmoothFlowSite site;
-    site.kind = SmoothFlowSite::Kind::kStribeck;
-    site.coefficient = static_cast<const Coulomb1D&>(law).muN();
-    return site;
-  };
+  e.smooth_flow = coefficientSite<Coulomb1D>(SmoothFlowSite::Kind::kStribeck, &Coulomb1D::muN);
   e.piecewise_linear_flow = [](const Law& law) -> std::optional<PiecewiseLinearSite> {
     PiecewiseLinearSite site;
     site.limit = static_cast<const Coulomb1D&>(law).muN();

@@ -24,12 +24,7 @@ LawEntry coulomb2DEntry() {
                 {"coulomb2d-projection", 2, "muN = 1.5\nform = \"projection\"\nrho = 0.7"},
                 {"coulomb2d-smoothed", 2, "muN = 1.5\nform = \"smoothed\"\nrho = 0.7\nepsilon = 0.3"},
                 {"coulomb2d-tanh", 2, "muN = 1.5\nform = \"tanh\"\nrho = 0.7\nalpha = 2.0"}};
-  e.smooth_flow = [](const Law& law) -> std::optional<SmoothFlowSite> {
-    SmoothFlowSite site;
-    site.kind = SmoothFlowSite::Kind::kPlanar;
-    site.coefficient = static_cast<const Coulomb2D&>(law).muN();
-    return site;
-  };
+  e.smooth_flow = coefficientSite<Coulomb2D>(SmoothFlowSite::Kind::kPlanar, &Coulomb2D::muN);
   return e;
 }
 

@@ -13,12 +13,7 @@ LawEntry cubicEntry() {
     return std::make_shared<CubicStiffness>(t.number("epsilon", std::nullopt));
   };
   e.examples = {{"cubic", 1, "epsilon = 0.7"}};
-  e.smooth_flow = [](const Law& law) -> std::optional<SmoothFlowSite> {
-    SmoothFlowSite site;
-    site.kind = SmoothFlowSite::Kind::kCubic;
-    site.coefficient = static_cast<const CubicStiffness&>(law).epsilon();
-    return site;
-  };
+  e.smooth_flow = coefficientSite<CubicStiffness>(SmoothFlowSite::Kind::kCubic, &CubicStiffness::epsilon);
   return e;
 }
 

@@ -1,6 +1,8 @@
 // Pieces shared by the law entries (law_registry.h).
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "eqhb/error.h"
@@ -18,6 +20,19 @@ inline std::vector<LawParameter> rhoParameters() {
 inline std::vector<LawParameter> withRho(std::vector<LawParameter> parameters) {
   for (auto& p : rhoParameters()) parameters.push_back(p);
   return parameters;
+}
+
+// An exact-flow site of `kind` whose coefficient is the law's `coefficient`
+// (a Coulomb limit, a cubic ε): LawEntry::smooth_flow of a law of class L.
+template <class L>
+std::function<std::optional<SmoothFlowSite>(const Law&)> coefficientSite(SmoothFlowSite::Kind kind,
+                                                                         double (L::*coefficient)() const) {
+  return [kind, coefficient](const Law& law) -> std::optional<SmoothFlowSite> {
+    SmoothFlowSite site;
+    site.kind = kind;
+    site.coefficient = (static_cast<const L&>(law).*coefficient)();
+    return site;
+  };
 }
 
 }  // namespace eqhb
