@@ -13,6 +13,7 @@
 
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/structures/chain_pattern.h"
 #include "test_support.h"
 
 namespace {
@@ -40,16 +41,8 @@ double peakResidentMib() {
 
 // A chain of n unit masses and springs with friction on five DOFs.
 HbModel longChain(int n) {
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < n; ++i) {
-    t.emplace_back(i, i, i + 1 < n ? 2.0 : 1.0);
-    if (i + 1 < n) {
-      t.emplace_back(i, i + 1, -1.0);
-      t.emplace_back(i + 1, i, -1.0);
-    }
-  }
-  SparseMatrix k(n, n), m(n, n);
-  k.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix k = chainPattern(n);
+  SparseMatrix m(n, n);
   m.setIdentity();
   HbModel model;
   model.structure = LinearStructure(m, SparseMatrix(0.05 * k), k);

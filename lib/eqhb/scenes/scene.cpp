@@ -18,6 +18,7 @@
 #include "eqhb/laws/law_registry.h"
 #include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/structures/beam.h"
+#include "eqhb/structures/chain_pattern.h"
 #include "eqhb/structures/market_structure_sizes.h"
 #include "eqhb/structures/matrix_market.h"
 #include "eqhb/structures/node_table.h"
@@ -160,22 +161,6 @@ class TableReader {
   std::set<std::string> used_;           // keys read: the others present are unknown
   mutable std::set<std::string> asked_;  // keys asked about with has()
 };
-
-// T = tridiag(−1, 2, −1) with the last diagonal entry 1: a chain fixed at
-// DOF 1's left end and free after DOF n (spec §4: k [[2, −1], [−1, 1]]).
-SparseMatrix chainPattern(int n) {
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int i = 0; i < n; ++i) {
-    entries.emplace_back(i, i, i + 1 < n ? 2.0 : 1.0);
-    if (i + 1 < n) {
-      entries.emplace_back(i, i + 1, -1.0);
-      entries.emplace_back(i + 1, i, -1.0);
-    }
-  }
-  SparseMatrix t(n, n);
-  t.setFromTriplets(entries.begin(), entries.end());
-  return t;
-}
 
 // A path in a scene file is relative to the scene file's folder.
 std::string relativeToScene(const std::string& source, const std::string& path) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "eqhb/error.h"
+#include "eqhb/structures/chain_pattern.h"
 #include "eqhb/structures/matrix_market.h"
 
 namespace eqhb {
@@ -81,18 +82,9 @@ std::string writeChainMatrixMarketScene(const ChainSceneSpec& spec, const std::s
   std::error_code error;
   fs::create_directories(directory, error);
   if (error) throw InputError(directory + ": cannot create the folder (" + error.message() + ")");
-  // T = tridiag(−1, 2, −1) with T_nn = 1: the chain's stiffness pattern.
   const int n = spec.dofs;
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < n; ++i) {
-    t.emplace_back(i, i, i + 1 < n ? 2.0 : 1.0);
-    if (i + 1 < n) {
-      t.emplace_back(i, i + 1, -1.0);
-      t.emplace_back(i + 1, i, -1.0);
-    }
-  }
-  Eigen::SparseMatrix<double> pattern(n, n), identity(n, n);
-  pattern.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix pattern = chainPattern(n);
+  SparseMatrix identity(n, n);
   identity.setIdentity();
   const fs::path dir(directory);
   writeMatrixMarket((dir / "M.mtx").string(), spec.m * identity, true);
