@@ -1,9 +1,33 @@
 #include "exact_reference.h"
 
+#include <algorithm>
+
 #include "eqhb/accuracy/error_estimate.h"
+#include "eqhb/backends/registry.h"
+#include "eqhb/continuation/continuation.h"
+#include "eqhb/laws/law_registry.h"
 #include "eqhb/orbits/smooth_flow.h"
 
 namespace eqhb::bench {
+
+HbModel onHarmonics(HbModel model, int harmonics) {
+  model.basis = HarmonicSet(model.basis.kind(), harmonics);
+  model.samples = std::max(model.samples, 8 * model.basis.highest() + 8);
+  return model;
+}
+
+Eigen::VectorXd referenceHarmonicBalance(const HbModel& model, bool* converged) {
+  auto solver = makeSolver("dogleg");
+  SolverOptions options;
+  options.residual_tolerance = 1e-10;
+  options.max_iterations = 400;
+  Eigen::VectorXd full;
+  const bool condensed = suitsCondensedSystem(model.laws);
+  const SolverResult r =
+      solveByHarmonicContinuation(model, *solver, options, std::min(5, model.basis.count()), condensed, &full);
+  if (converged) *converged = r.converged();
+  return full;
+}
 
 ExactOrbit exactOrbit(const HbModel& model, double restitution, const Eigen::VectorXd& hb) {
   ExactOrbit out;

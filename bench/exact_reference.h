@@ -18,6 +18,15 @@ struct ExactOrbit {
   bool ok() const { return orbit.converged && !times.empty(); }
 };
 
+// `model` on `harmonics` harmonics of its kind, with N >= 8 h_max + 8 samples.
+HbModel onHarmonics(HbModel model, int harmonics);
+
+// The harmonic-balance start of a reference orbit: `model` solved by
+// continuation in H from min(5, H) on the own dogleg to ‖g‖ <= 1e-10 in at
+// most 400 iterations, on the full system for contact (which the dogleg
+// solves there). [x; λ]; whether it converged in `converged` if given.
+Eigen::VectorXd referenceHarmonicBalance(const HbModel& model, bool* converged = nullptr);
+
 // Shoots from `hb` (FullSystem layout on `model`) and samples 4096 instants.
 ExactOrbit exactOrbit(const HbModel& model, double restitution, const Eigen::VectorXd& hb);
 

@@ -24,6 +24,7 @@
 #include "eqhb/scenes/scene.h"
 #include "eqhb/stability/curve_stability.h"
 #include "eqhb/stability/hill_stability.h"
+#include "exact_reference.h"
 #include "report_number.h"
 
 namespace {
@@ -41,20 +42,10 @@ bool hasWall(const HbModel& model) {
   return site && site->contact;
 }
 
-// Harmonic balance at H by continuation in H from 5 (the full system for
-// contact, which the own dogleg solves there; condensed otherwise).
+// Harmonic balance at H, as the reference orbit starts (exact_reference.h).
 Eigen::VectorXd harmonicBalance(HbModel& model, int harmonics, bool* converged) {
-  model.basis = HarmonicSet(model.basis.kind(), harmonics);
-  model.samples = std::max(model.samples, 8 * model.basis.highest() + 8);
-  auto solver = makeSolver("dogleg");
-  SolverOptions options;
-  options.residual_tolerance = 1e-10;
-  options.max_iterations = 400;
-  Eigen::VectorXd full;
-  const SolverResult r =
-      solveByHarmonicContinuation(model, *solver, options, std::min(harmonics, 5), suitsCondensedSystem(model.laws), &full);
-  *converged = r.converged();
-  return full;
+  model = bench::onHarmonics(model, harmonics);
+  return bench::referenceHarmonicBalance(model, converged);
 }
 
 orbits::ShootingResult shoot(const HbModel& model, double restitution, const Eigen::VectorXd& hb) {

@@ -35,19 +35,8 @@ struct Case {
 
 std::string number(double x, int digits = 3) { return bench::reportNumber(x, digits); }
 
-Eigen::VectorXd harmonicBalance(HbModel model, int harmonics, bool* converged) {
-  model.basis = HarmonicSet(model.basis.kind(), harmonics);
-  model.samples = std::max(model.samples, 8 * model.basis.highest() + 8);
-  auto solver = makeSolver("dogleg");
-  SolverOptions options;
-  options.residual_tolerance = 1e-10;
-  options.max_iterations = 400;
-  Eigen::VectorXd full;
-  // The own dogleg solves contact on the full system.
-  const bool condensed = suitsCondensedSystem(model.laws);
-  const SolverResult r = solveByHarmonicContinuation(model, *solver, options, std::min(harmonics, 5), condensed, &full);
-  *converged = r.converged();
-  return full;
+Eigen::VectorXd harmonicBalance(const HbModel& model, int harmonics, bool* converged) {
+  return bench::referenceHarmonicBalance(bench::onHarmonics(model, harmonics), converged);
 }
 
 // Harmonic balance (coefficients on `model`'s basis of H) against the exact orbit.

@@ -33,14 +33,7 @@ std::string number(double x, int digits = 3) { return bench::reportNumber(x, dig
 ExactOrbit referenceOrbit(const PrecisionScene& c) {
   const Scene scene = loadScene(c.file, {"harmonic_balance.omega=" + number(c.omega, 17)});
   const HbModel& model = scene.model;
-  auto solver = makeSolver("dogleg");
-  SolverOptions options;
-  options.residual_tolerance = 1e-10;
-  options.max_iterations = 400;
-  Eigen::VectorXd full;
-  const bool condensed = suitsCondensedSystem(model.laws);
-  solveByHarmonicContinuation(model, *solver, options, std::min(5, model.basis.count()), condensed, &full);
-  return exactOrbit(model, c.restitution, full);
+  return exactOrbit(model, c.restitution, referenceHarmonicBalance(model));
 }
 
 // "hb", "hb+shooting" (shooting from HB at each H) or "hb0+shooting" (from HB at H₀ only).
