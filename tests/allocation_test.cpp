@@ -4,8 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <cstdlib>
-#include <new>
 
 #include <optional>
 
@@ -17,34 +15,21 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
+#include "observed_new.h"
 #include "test_support.h"
 
 namespace {
 std::atomic<long> allocations{0};
 }
 
-void* operator new(std::size_t size) {
-  ++allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void observeAllocation(std::size_t) { ++allocations; }
 
 namespace eqhb {
 namespace {
 
 std::shared_ptr<Law> contactFriction(int tangential, NormalForm normal, std::optional<double> k_t) {
-  ContactFrictionParameters p;
-  p.tangential = tangential;
-  p.mu = 0.4;
-  p.preload = 0.7;
-  p.gap = 0.2;
-  p.normal = normal;
-  if (normal == NormalForm::kCompliant) p.normal_stiffness = 3.0;
-  p.friction = tangential == 1 ? FrictionForm::kMinMax : FrictionForm::kProjection;
-  p.tangential_stiffness = k_t;
-  return std::make_shared<ContactFriction>(p);
+  const FrictionForm friction = tangential == 1 ? FrictionForm::kMinMax : FrictionForm::kProjection;
+  return std::make_shared<ContactFriction>(test::contactFrictionParameters(tangential, normal, friction, k_t));
 }
 
 // Every law on the last DOFs of a 3-DOF chain, both systems; the dense

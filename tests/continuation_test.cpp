@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "eqhb/continuation/arclength_steps.h"
 #include "eqhb/continuation/bordered_system.h"
 #include "eqhb/continuation/coarse_start.h"
@@ -20,23 +22,29 @@ double peakOmega(const Curve& curve, int dof) {
   return at;
 }
 
+// The default options over [from, to], with this step when given.
+ContinuationOptions over(double from, double to, std::optional<double> step = std::nullopt) {
+  ContinuationOptions options;
+  options.from = from;
+  options.to = to;
+  if (step) options.step = *step;
+  return options;
+}
+
+// The default options over a scene's own [sweep] range.
+ContinuationOptions overItsRange(const Scene& scene) { return over(*scene.sweep_from, *scene.sweep_to); }
+
 // A scene's arclength sweep over its own [sweep] range on the defaults.
 Curve arclengthOverItsRange(const std::string& problem) {
   const Scene scene = loadScene(test::problem(problem));
   auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = *scene.sweep_from;
-  options.to = *scene.sweep_to;
-  return sweepArclength(scene.model, *solver, {}, options);
+  return sweepArclength(scene.model, *solver, {}, overItsRange(scene));
 }
 
 TEST(Continuation, Friction1dSweepIsContinuousAndPeaksAtTheFirstMode) {
   const Scene scene = loadScene(test::problem("friction-1d.toml"));
   auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = 0.1;
-  options.to = 0.8;
-  options.step = 0.005;
+  const ContinuationOptions options = over(0.1, 0.8, 0.005);
   const Curve curve = sweepSequential(scene.model, *solver, {}, options);
   ASSERT_EQ(curve.failed_points, 0) << curve.stop_reason;
   ASSERT_EQ(curve.points.size(), 141u);
@@ -52,10 +60,7 @@ TEST(Continuation, Friction1dSweepIsContinuousAndPeaksAtTheFirstMode) {
 TEST(Continuation, SweepsUpAndDownAgreeWhereTheResponseIsUnique) {
   const Scene scene = loadScene(test::problem("friction-1d.toml"));
   auto solver = makeSolver("dogleg");
-  ContinuationOptions up;
-  up.from = 0.2;
-  up.to = 0.5;
-  up.step = 0.01;
+  ContinuationOptions up = over(0.2, 0.5, 0.01);
   ContinuationOptions down = up;
   std::swap(down.from, down.to);
   const Curve a = sweepSequential(scene.model, *solver, {}, up);
@@ -74,9 +79,7 @@ TEST(Continuation, SweepsUpAndDownAgreeWhereTheResponseIsUnique) {
 TEST(Continuation, ArclengthPassesTheFoldsOfTheCubicScene) {
   const Scene scene = loadScene(test::problem("cubic.toml"));
   auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = 0.4;
-  options.to = 2.0;
+  const ContinuationOptions options = over(0.4, 2.0);
   const Curve curve = sweepArclength(scene.model, *solver, {}, options);
   ASSERT_TRUE(curve.complete) << curve.stop_reason;
   // Hardening: the resonance bends right, turns back (fold), turns again
@@ -97,20 +100,14 @@ TEST(Continuation, ArclengthPassesTheFoldsOfTheCubicScene) {
 TEST(Continuation, ArclengthAgreesWithSequentialWhereTheCurveIsSingleValued) {
   const Scene scene = loadScene(test::problem("cubic.toml"));
   auto solver = makeSolver("dogleg-newton");
-  ContinuationOptions options;
-  options.from = 0.4;
-  options.to = 0.9;
-  options.step = 0.01;
+  const ContinuationOptions options = over(0.4, 0.9, 0.01);
   const Curve arc = sweepArclength(scene.model, *solver, {}, options);
   ASSERT_FALSE(arc.points.empty());
   for (const auto& p : arc.points) {
     if (p.omega > 0.9) break;
     HbModel m = scene.model;
     m.omega = p.omega;
-    ContinuationOptions single;
-    single.from = p.omega;
-    single.to = p.omega + 1e-3;
-    single.step = 1e-3;
+    ContinuationOptions single = over(p.omega, p.omega + 1e-3, 1e-3);
     // A plain solve with ω fixed, started 2 % off the arclength point (from
     // rest it does not converge by the superharmonic resonance near 0.56).
     single.start_full = 1.02 * p.full;
@@ -146,10 +143,7 @@ TEST(Continuation, AGridBeyondMaxPointsIsRefusedUpFront) {
   // It used to stop silently at max_points and report the end of the range.
   const Scene scene = loadScene(test::problem("friction-1d.toml"));
   auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = 0.1;
-  options.to = 0.10003;
-  options.step = 1e-9;
+  ContinuationOptions options = over(0.1, 0.10003, 1e-9);
   options.min_step = 1e-9;
   EXPECT_NEAR(options.gridPoints(), 30001, 1);
   try {
@@ -185,9 +179,7 @@ TEST(Continuation, ArclengthTracesTheDuffingCurveInFewPointsOnBothSystems) {
   const Scene scene = loadScene(test::problem("duffing.toml"));
   auto solver = makeSolver("dogleg");
   for (const bool condensed : {true, false}) {
-    ContinuationOptions options;
-    options.from = *scene.sweep_from;
-    options.to = *scene.sweep_to;
+    ContinuationOptions options = overItsRange(scene);
     options.condensed = condensed;
     options.max_points = 400;
     const Curve curve = sweepArclength(scene.model, *solver, {}, options);
@@ -207,9 +199,7 @@ TEST(Continuation, ArclengthTracesTheDuffingCurveInFewPointsOnBothSystems) {
 TEST(Continuation, ArclengthSweepsDownwardsAndEndsOnTheEndOfTheRange) {
   const Scene scene = loadScene(test::problem("friction-1d.toml"));
   auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = 0.8;
-  options.to = 0.1;
+  const ContinuationOptions options = over(0.8, 0.1);
   const Curve curve = sweepArclength(scene.model, *solver, {}, options);
   ASSERT_TRUE(curve.complete) << curve.stop_reason;
   EXPECT_EQ(curve.points.back().omega, 0.1);
@@ -223,9 +213,7 @@ TEST(Continuation, ArclengthSweepsDownwardsAndEndsOnTheEndOfTheRange) {
 TEST(Continuation, ArclengthDoesNotTurnBackAtASpuriousFold) {
   const Scene scene = loadScene(test::problem("damper.toml"));
   auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = 0.8;
-  options.to = 1.4;
+  const ContinuationOptions options = over(0.8, 1.4);
   const Curve curve = sweepArclength(scene.model, *solver, {}, options);
   for (double fold : curve.fold_omegas) EXPECT_GT(std::abs(fold - 0.98), 0.01) << curve.stop_reason;
   if (curve.complete) {
@@ -273,9 +261,7 @@ TEST(Continuation, ArclengthCrossesNlvib07WithElasticFrictionByDefault) {
 TEST(Continuation, SequentialPointsLostPastAFoldAreFoundByTheFallbackChain) {
   const Scene scene = loadScene(test::problem("duffing.toml"));
   auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = *scene.sweep_from;
-  options.to = *scene.sweep_to;
+  ContinuationOptions options = overItsRange(scene);
   ContinuationOptions alone = options;
   alone.fallbacks = FallbackChain();
   const Curve lost = sweepSequential(scene.model, *solver, {}, alone);

@@ -21,21 +21,6 @@
 namespace eqhb {
 namespace {
 
-std::shared_ptr<Law> contactFriction(int m, NormalForm normal, FrictionForm friction,
-                                     std::optional<double> k_t = std::nullopt) {
-  ContactFrictionParameters p;
-  p.tangential = m;
-  p.mu = 0.4;
-  p.preload = 0.7;
-  p.gap = 0.2;
-  p.normal = normal;
-  if (normal == NormalForm::kCompliant) p.normal_stiffness = 3.0;
-  p.friction = friction;
-  p.tangential_stiffness = k_t;
-  p.rho = 0.8;
-  return std::make_shared<ContactFriction>(p);
-}
-
 // The blocked-normal reduction (spec §5): a Coulomb model and the same model
 // with one more DOF, the normal one, decoupled and pressed on the wall at
 // g0 = 0 by N0 = μN/μ. The Coulomb solution with x_n = 0 and λ_n = 0 (p = N0)

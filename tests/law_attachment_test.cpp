@@ -15,14 +15,7 @@
 namespace eqhb {
 namespace {
 
-std::string messageOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::messageOf;
 
 TEST(LawAttachment, ADofListIsGroundedWithUnitRows) {
   const LawAttachment w({3, 1});

@@ -16,14 +16,7 @@
 namespace eqhb {
 namespace {
 
-std::string messageOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::messageOf;
 
 TEST(SizeLimits, HarmonicCountIsBoundedBeforeKmaxOverflows) {
   // 2 H − 1 overflows int at H = INT_MAX.

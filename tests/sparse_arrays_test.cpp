@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "eqhb/error.h"
+#include "test_support.h"
 
 namespace eqhb {
 namespace {
@@ -27,14 +28,7 @@ SparseMatrix csc(std::int64_t rows, std::int64_t cols, const std::vector<std::in
                               valueView(values));
 }
 
-std::string messageOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::messageOf;
 
 bool sortedWithoutDuplicates(const SparseMatrix& m) {
   for (int j = 0; j < m.outerSize(); ++j)

@@ -8,27 +8,22 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdlib>
-#include <new>
 
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/structures/chain_pattern.h"
+#include "observed_new.h"
 #include "test_support.h"
 
 namespace {
 std::atomic<std::size_t> largest{0};
 }
 
-void* operator new(std::size_t size) {
+void observeAllocation(std::size_t size) {
   std::size_t seen = largest.load();
   while (size > seen && !largest.compare_exchange_weak(seen, size)) {
   }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace eqhb {
 namespace {

@@ -4,11 +4,15 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 #include <cmath>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "eqhb/error.h"
 #include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/laws/joints/contact_friction.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/scenes/scene.h"
@@ -22,6 +26,16 @@ inline bool registered(const std::string& name);
 
 inline std::string problem(const std::string& file) {
   return std::string(EQHB_PROBLEMS_DIR) + "/" + file;
+}
+
+// The message of the InputError `f` throws; "(no error)" if it throws none.
+inline std::string messageOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
 }
 
 // A shipped scene (with `set` overrides) solved from rest on the condensed or
@@ -39,6 +53,22 @@ inline SolvedScene solveFromRest(const std::string& file, const std::vector<std:
   s.result = makeSolver(solver)->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
   s.full = system->fullCoefficients(s.result.solution);
   return s;
+}
+
+// A contact with friction on `tangential` DOFs: μ = 0.4, preload 0.7, gap
+// 0.2, a compliant normal of stiffness 3; the rest ContactFriction's defaults.
+inline ContactFrictionParameters contactFrictionParameters(int tangential, NormalForm normal, FrictionForm friction,
+                                                           std::optional<double> k_t = std::nullopt) {
+  ContactFrictionParameters p;
+  p.tangential = tangential;
+  p.mu = 0.4;
+  p.preload = 0.7;
+  p.gap = 0.2;
+  p.normal = normal;
+  if (normal == NormalForm::kCompliant) p.normal_stiffness = 3.0;
+  p.friction = friction;
+  p.tangential_stiffness = k_t;
+  return p;
 }
 
 // Central differences of system at z, step h.
