@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include "eqhb/continuation/secant_guess.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
@@ -168,6 +169,7 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   Eigen::VectorXd z = options.start_full.size() ? system->fromFullCoefficients(options.start_full)
                                                 : Eigen::VectorXd::Zero(system->size());
   double last_converged_omega = NAN;
+  SecantGuess guess;
   for (int i = 0; i <= grid; ++i) {
     const double target = options.from + direction * i * options.step;
     CurvePoint point;
@@ -180,8 +182,10 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
     Eigen::VectorXd singular_full;  // that point's [x; λ]
     // Try straight; on failure, walk from the last converged ω with halved steps.
     if (!singular) {
-      r = solver.solve(*system, z, solver_options);
+      int evaluations = 0;
+      r = solver.solve(*system, guess.at(target, *system, z, &evaluations), solver_options);
       addSolverCounts(r, &point);
+      point.residual_evaluations += evaluations;
     }
     if (!point.converged && !singular && !std::isnan(last_converged_omega)) {
       point.converged = walkInOmega(*system, solver, solver_options, options.min_step, last_converged_omega, z,
@@ -215,6 +219,7 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
       // λ alone is the condensed unknowns, at any ω; x of a singular point
       // comes from its full solve (the system's factors are at another ω).
       z = singular ? system->fromFullCoefficients(singular_full) : r.solution;
+      guess.accept(target, z);
       last_converged_omega = target;
       m.omega = target;
       describeInto(m, singular ? singular_full : system->fullCoefficients(z), &point);
