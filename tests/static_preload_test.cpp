@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <unistd.h>
 
 #include "eqhb/app/solve.h"
 #include "eqhb/error.h"
@@ -31,11 +32,12 @@ std::string forcing(double amplitude, int harmonic = 1) {
 }
 
 app::SceneSettings written(const std::string& text) {
-  // Each test runs in its own process (ctest -j): the file names carry the test's.
+  // Each test runs in its own process (ctest -j), and other test runs may
+  // share the temporary folder: the file names carry the test's and the process's.
   static int count = 0;
   const std::string path = ::testing::TempDir() + "/preload_" +
                            ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-                           std::to_string(count++) + ".toml";
+                           std::to_string(::getpid()) + "_" + std::to_string(count++) + ".toml";
   std::ofstream(path) << text;
   app::SceneSettings s;
   s.path = path;
