@@ -52,8 +52,6 @@ double angleBetween(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
 }
 
-double degrees(double radians) { return radians * 180.0 / M_PI; }
-
 std::string at(double omega) { return "omega = " + formatNumber(omega); }
 
 class ArclengthSweep {
