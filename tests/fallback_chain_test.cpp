@@ -10,6 +10,11 @@
 namespace eqhb {
 namespace {
 
+// A solve of `system` from rest (zero unknowns).
+SolverResult solveFromRest(HbSystem& system, Solver& solver, const SolverOptions& options) {
+  return solver.solve(system, Eigen::VectorXd::Zero(system.size()), options);
+}
+
 // friction-2d with the tanh friction form on the full system: the own dogleg
 // stalls from rest (not_progressing, |g| 0.019), and so do its coarse start and
 // Ipopt's least squares, while the condensed system converges cold. The
@@ -20,7 +25,7 @@ TEST(FallbackChain, AFullSystemThatStallsIsSolvedOnTheCondensedSystem) {
   auto full = makeHbSystem(scene.model, false);
   auto solver = makeSolver("dogleg");
   const SolverOptions options;
-  const SolverResult failed = solver->solve(*full, Eigen::VectorXd::Zero(full->size()), options);
+  const SolverResult failed = solveFromRest(*full, *solver, options);
   ASSERT_FALSE(failed.converged());
 
   const FallbackChain without = FallbackChain::parse("cold,full", "fallback", [](const std::string&) { return nullptr; });
@@ -38,7 +43,7 @@ TEST(FallbackChain, AFullSystemThatStallsIsSolvedOnTheCondensedSystem) {
   EXPECT_LE(g.cwiseQuotient(scales).norm(), options.residual_tolerance);
   // And it is the condensed system's solution.
   auto condensed = makeHbSystem(scene.model, true);
-  const SolverResult direct = solver->solve(*condensed, Eigen::VectorXd::Zero(condensed->size()), options);
+  const SolverResult direct = solveFromRest(*condensed, *solver, options);
   ASSERT_TRUE(direct.converged());
   EXPECT_LT((full->fullCoefficients(r.solution) - condensed->fullCoefficients(direct.solution)).norm(),
             1e-6 * condensed->fullCoefficients(direct.solution).norm());
@@ -50,7 +55,7 @@ TEST(FallbackChain, TheCondensedStepIsSkippedOnTheCondensedSystem) {
   auto condensed = makeHbSystem(scene.model, true);
   auto solver = makeSolver("dogleg");
   const SolverOptions options;
-  const SolverResult failed = solver->solve(*condensed, Eigen::VectorXd::Zero(condensed->size()), options);
+  const SolverResult failed = solveFromRest(*condensed, *solver, options);
   ASSERT_FALSE(failed.converged());
   FallbackReport report;
   const FallbackChain chain =

@@ -15,6 +15,8 @@ namespace {
 constexpr const char* kCold = "cold";
 constexpr const char* kFull = "full";
 constexpr const char* kCondensed = "condensed";
+// What a step may be, for the messages that refuse one.
+constexpr const char* kStepKinds = "cold, full, condensed or a backend name";
 
 // The solve's own cold start on `system`: coarse start, then zero.
 SolverResult solveCold(Solver& solver, HbSystem& system, const SolverOptions& options) {
@@ -77,20 +79,20 @@ FallbackChain FallbackChain::parse(const std::string& text, const std::string& f
   if (text == "none") return chain;
   std::stringstream list(text);
   for (std::string step; std::getline(list, step, ',');) {
-    if (step.empty()) throwInputError(field, text, "has an empty step (steps: cold, full, condensed or a backend name, comma-separated, or none)");
+    if (step.empty()) throwInputError(field, text, std::string("has an empty step (steps: ") + kStepKinds + ", comma-separated, or none)");
     if (std::find(chain.steps.begin(), chain.steps.end(), step) != chain.steps.end())
       throwInputError(field, text, "names " + step + " twice");
     Solver* backend = nullptr;
     if (step != kCold && step != kFull && step != kCondensed) {
       backend = solver_for(step);
       if (!backend)
-        throwInputError(field, text, "has an unknown step " + step + " (steps: cold, full, condensed or a backend name, or none)");
+        throwInputError(field, text, "has an unknown step " + step + " (steps: " + kStepKinds + ", or none)");
     }
     chain.steps.push_back(step);
     chain.solvers.push_back(backend);
   }
   if (chain.steps.empty() || text.back() == ',')
-    throwInputError(field, text, "has an empty step (steps: cold, full, condensed or a backend name, comma-separated, or none)");
+    throwInputError(field, text, std::string("has an empty step (steps: ") + kStepKinds + ", comma-separated, or none)");
   return chain;
 }
 
