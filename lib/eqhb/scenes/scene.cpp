@@ -19,6 +19,8 @@
 #include "eqhb/harmonic_balance/system_memory.h"
 #include "eqhb/structures/beam.h"
 #include "eqhb/structures/chain_pattern.h"
+#include "eqhb/structures/frame.h"
+#include "eqhb/structures/lap_joint.h"
 #include "eqhb/structures/market_structure_sizes.h"
 #include "eqhb/structures/matrix_market.h"
 #include "eqhb/structures/node_table.h"
@@ -381,15 +383,68 @@ void readBeam(TableReader& s, const std::string& source, const ModelSizes& setti
   read->nodes = beam.elements;
 }
 
+// A cantilever plane frame (structures/frame.h): node i → its DOFs [u, w, θ].
+void readFrame(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
+  FrameParameters frame;
+  frame.elements = s.integer("elements");
+  // Three DOFs per node, 20 entries per element in M and K (and C), and the
+  // assembly's triplets: bounded before they are built.
+  const double e = std::max(frame.elements, 0);
+  bounded(source, [&] {
+    checkBytes("structure.elements", std::to_string(frame.elements), "a frame's sparse M, C and K",
+               3.0 * sparseBytes(3.0 * e, 20.0 * e) + 2.0 * 16.0 * 20.0 * e);
+  });
+  checkModelBeforeBuilding(source, settings, "structure.elements", std::to_string(frame.elements), 3.0 * e,
+                           3.0 * 20.0 * e);
+  frame.section.youngs_modulus = s.number("E");
+  frame.section.area = s.number("A");
+  frame.section.second_moment = s.number("I");
+  frame.section.mass_per_length = s.number("rhoA");
+  frame.length = s.number("L");
+  StructureMatrices matrices;
+  bounded(source, [&] { matrices = cantileverFrame(frame); });
+  readDampingModel(s, matrices);
+  read->structure = toLinearStructure(matrices);
+  for (int node = 1; node <= frame.elements; ++node)
+    read->node_table.push_back({frameDof(node, 0), frameDof(node, 1), frameDof(node, 2)});
+}
+
+// Two beams over a lap joint (structures/lap_joint.h): its nodes are the
+// facing surfaces' points, [u_s, w] each.
+void readLapJoint(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
+  LapJointParameters p;
+  p.pairs = s.integer("pairs");
+  p.elements = s.integer("elements");
+  const double dofs = 6.0 * (std::max(p.pairs, 0) + std::max(p.elements, 0));
+  bounded(source, [&] {
+    checkBytes("structure.pairs", std::to_string(p.pairs), "a lap joint's sparse M, C and K",
+               3.0 * sparseBytes(dofs, 12.0 * dofs) + 2.0 * 16.0 * 12.0 * dofs);
+  });
+  checkModelBeforeBuilding(source, settings, "structure.pairs", std::to_string(p.pairs), dofs, 3.0 * 12.0 * dofs);
+  p.length = s.number("L");
+  p.overlap = s.number("overlap");
+  p.thickness = s.number("h");
+  p.width = s.number("b");
+  p.youngs_modulus = s.number("E");
+  p.density = s.number("rho");
+  LapJoint joint;
+  bounded(source, [&] { joint = lapJoint(p); });
+  readDampingModel(s, joint.matrices);
+  read->structure = toLinearStructure(joint.matrices);
+  read->node_table = joint.surfaces;
+}
+
 struct StructureType {
   const char* name;
   StructureReader read;
-  bool takes_node_table;  // a beam has nodes of its own
+  bool takes_node_table;  // beams, frames and lap joints have nodes of their own
 };
 constexpr StructureType kStructureTypes[] = {{"chain", readChain, true},
                                              {"matrices", readInlineMatrices, true},
                                              {"matrix-market", readMarketStructure, true},
-                                             {"beam", readBeam, false}};
+                                             {"beam", readBeam, false},
+                                             {"frame", readFrame, false},
+                                             {"lap-joint", readLapJoint, false}};
 
 // "\"a\", \"b\" or \"c\"": the registered type names, for the message of an unknown one.
 std::string structureTypeNames() {

@@ -1,0 +1,80 @@
+#include "eqhb/structures/frame.h"
+
+#include <cmath>
+#include <string>
+
+#include "eqhb/error.h"
+
+namespace eqhb {
+
+void requirePositive(const char* field, double x) {
+  if (!(x > 0.0) || !std::isfinite(x)) throwInputError(field, formatNumber(x), "must be finite and > 0");
+}
+
+void addFrameElement(const FrameSection& section, double length, const std::array<int, 6>& dofs,
+                     std::vector<Eigen::Triplet<double>>* stiffness, std::vector<Eigen::Triplet<double>>* mass) {
+  const double l = length;
+  const double ea = section.youngs_modulus * section.area / l;
+  const double ei = section.youngs_modulus * section.second_moment / (l * l * l);
+  const double bar_mass = section.mass_per_length * l / 6.0;
+  const double beam_mass = section.mass_per_length * l / 420.0;
+  // Bending on (w1, θ1, w2, θ2): the Hermite blocks of beam.h.
+  const double kb[4][4] = {{12, 6 * l, -12, 6 * l},
+                           {6 * l, 4 * l * l, -6 * l, 2 * l * l},
+                           {-12, -6 * l, 12, -6 * l},
+                           {6 * l, 2 * l * l, -6 * l, 4 * l * l}};
+  const double mb[4][4] = {{156, 22 * l, 54, -13 * l},
+                           {22 * l, 4 * l * l, 13 * l, -3 * l * l},
+                           {54, 13 * l, 156, -22 * l},
+                           {-13 * l, -3 * l * l, -22 * l, 4 * l * l}};
+  auto add = [&](int i, int j, double k, double m) {
+    if (i < 0 || j < 0) return;  // clamped
+    if (k != 0.0) stiffness->emplace_back(i, j, k);
+    if (m != 0.0) mass->emplace_back(i, j, m);
+  };
+  const int axial[2] = {dofs[0], dofs[3]};
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) add(axial[a], axial[b], ea * (a == b ? 1.0 : -1.0), bar_mass * (a == b ? 2.0 : 1.0));
+  const int bending[4] = {dofs[1], dofs[2], dofs[4], dofs[5]};
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) add(bending[a], bending[b], ei * kb[a][b], beam_mass * mb[a][b]);
+}
+
+StructureMatrices cantileverFrame(const FrameParameters& frame) {
+  if (frame.elements < 1) throwInputError("structure.elements", std::to_string(frame.elements), "must be >= 1");
+  requirePositive("structure.E", frame.section.youngs_modulus);
+  requirePositive("structure.A", frame.section.area);
+  requirePositive("structure.I", frame.section.second_moment);
+  requirePositive("structure.rhoA", frame.section.mass_per_length);
+  requirePositive("structure.L", frame.length);
+  const int n = 3 * frame.elements;
+  const double l = frame.length / frame.elements;
+  std::vector<Eigen::Triplet<double>> k, m;
+  k.reserve(20 * frame.elements);
+  m.reserve(20 * frame.elements);
+  for (int e = 0; e < frame.elements; ++e) {
+    // Element e joins node e (the clamp when e = 0) and node e + 1.
+    std::array<int, 6> dofs;
+    for (int c = 0; c < 3; ++c) {
+      dofs[c] = e == 0 ? -1 : frameDof(e, c);
+      dofs[3 + c] = frameDof(e + 1, c);
+    }
+    addFrameElement(frame.section, l, dofs, &k, &m);
+  }
+  StructureMatrices s;
+  s.mass.resize(n, n);
+  s.stiffness.resize(n, n);
+  s.damping.resize(n, n);
+  s.mass.setFromTriplets(m.begin(), m.end());
+  s.stiffness.setFromTriplets(k.begin(), k.end());
+  return s;
+}
+
+std::vector<double> axialBarFrequencies(const FrameParameters& frame, int count) {
+  std::vector<double> omegas;
+  const double wave_speed = std::sqrt(frame.section.youngs_modulus * frame.section.area / frame.section.mass_per_length);
+  for (int r = 1; r <= count; ++r) omegas.push_back((2 * r - 1) * M_PI / (2 * frame.length) * wave_speed);
+  return omegas;
+}
+
+}  // namespace eqhb
