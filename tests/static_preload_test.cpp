@@ -134,6 +134,26 @@ TEST(StaticPreload, PressedWallUnderSmallForcingIsTheLinearSystem) {
   EXPECT_NEAR(x[2], pressed[1], 1e-10);
 }
 
+// Two masses pressed together by equal and opposite preloads through a
+// relative penalty contact, shaken gently: the contact stays closed, so the
+// response linearised about the static state (the solve's start) is the
+// answer. From the static state itself the condensed system's first iterate
+// moves the masses under the static contact force alone, which opens the
+// contact, and the solve stalled (not_progressing after 53 iterations).
+TEST(StaticPreload, PressedPairStartsFromTheLinearisedResponse) {
+  const std::string text =
+      "name = \"pair\"\n[structure]\ntype = \"chain\"\ndofs = 2\nm = 1.0\nk = 1.0\nd = 0.02\n"
+      "[[forcing]]\ndof = 1\nharmonic = 1\ncos = 0.1\n[[preload]]\ndof = 1\nforce = 1.0\n[[preload]]\ndof = 2\n"
+      "force = -1.0\n[[law]]\ntype = \"penalty-contact\"\nbetween = [1, 2]\nstiffness = 10.0\ngap = 0.0\n"
+      "[harmonic_balance]\nharmonics = 5\nset = \"all\"\nsamples = 64\nomega = 1.3\n";
+  app::SolveOptions o;
+  o.fallback = "none";
+  const app::Solution s = app::solve(written(text), o);
+  ASSERT_TRUE(s.converged()) << terminationName(s.run.result.termination);
+  EXPECT_EQ(s.run.start, "preload");
+  EXPECT_LE(s.run.result.iterations, 1);
+}
+
 TEST(StaticPreload, SolveJsonReportsTheStaticState) {
   app::SolveOptions o;
   const app::Solution s = app::solve(written(oscillator(kWall, preload(2.0) + forcing(0.01))), o);

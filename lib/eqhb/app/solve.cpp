@@ -91,9 +91,11 @@ HbRun solveHarmonicBalance(const SceneSettings& scene, const SolveOptions& o) {
 
   Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system.size());
   run.start = "zero";
-  // Under a preload the start is the static state (its operating point).
-  if (run.scene.at_rest) {
-    z0 = system.fromFullCoefficients(operatingPoint(model, *run.scene.at_rest));
+  // Under a preload the start is the response linearised about the static
+  // state (operating_point.h).
+  if (run.scene.at_rest && !o.from_harmonics && !o.initial.size()) {
+    z0 = system.fromFullCoefficients(
+        linearisedStart(model, *run.scene.at_rest, *solver, withinLimit("set-up, before the start")));
     run.start = "preload";
   }
   if (o.from_harmonics) {

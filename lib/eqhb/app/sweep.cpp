@@ -71,8 +71,13 @@ SweepPlan planSweep(const SceneSettings& settings, const SweepOptions& o) {
   resolveSteps(o, &c);
   c.max_points = o.max_points;
   c.condensed = o.condensed;
-  // Under a preload the first point starts at the static state.
-  if (plan.scene.at_rest) c.start_full = operatingPoint(plan.scene.model, *plan.scene.at_rest);
+  // Under a preload the first point starts from the response linearised
+  // about the static state at its omega (operating_point.h).
+  if (plan.scene.at_rest) {
+    HbModel first = plan.scene.model;
+    first.omega = c.from;
+    c.start_full = linearisedStart(first, *plan.scene.at_rest, *makeSolver(o.solver), o.solver_options);
+  }
   // Every option checked before any count is derived from them.
   if (o.arclength) c.validate();
   else c.validateGrid();
