@@ -82,6 +82,15 @@ case "${1:-}" in
       || [ "${PIPESTATUS[0]}" -eq 1 ]
     /usr/bin/python3 bench/damper_chart.py results/damper-beam results/report.md forcing[0].cos "$loads" 119 \
       beam-damper-elastic
+    # The lap joint across its first bending mode at three forcing levels,
+    # microslip to macroslip: chart results/lap_joint.png and a table.
+    for f in 3 15 50; do
+      ./build/eqhb sweep problems/lap-joint.toml --arclength --set "forcing[0].cos=$f" --quiet \
+        --out "results/lap-joint-$f.csv" | tee -a results/lap-joint.txt
+    done
+    { printf '\n## Lap joint (problems/lap-joint.toml, arclength sweeps)\n\n'
+      /usr/bin/python3 bench/lap_joint_chart.py results/lap_joint 59 3=results/lap-joint-3.csv \
+        15=results/lap-joint-15.csv 50=results/lap-joint-50.csv; } >> results/report.md
     ./build/eqhb-convergence --out results $quick | tee results/convergence.txt
     ./build/eqhb-orbits --out results $quick >/dev/null
     # Work-precision against the exact orbits and the rates in H: CSV, JSON,

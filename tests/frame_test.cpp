@@ -118,6 +118,40 @@ TEST(Frame, RefusesNonPositiveParametersNamingThem) {
   EXPECT_NE(refused(f).find("structure.L"), std::string::npos);
 }
 
+// In a scene: a frame's node i is [u, w, θ], so an element names a node and
+// a direction over those three; a lap joint's nodes are its facing surfaces.
+TEST(Frame, SceneNodesAreTheFramesNodes) {
+  const std::string frame =
+      "name = \"frame\"\n[structure]\ntype = \"frame\"\nelements = 4\nE = 2.0\nA = 3.0\nI = 0.5\nrhoA = 1.0\n"
+      "L = 2.0\nrayleigh = [0.0, 0.01]\n[[law]]\ntype = \"cubic\"\nbetween = [4, 2]\nnormal = [0, 1, 0]\n"
+      "epsilon = 1.0\n[harmonic_balance]\nharmonics = 3\nsamples = 16\nomega = 1.0\n";
+  const Scene scene = parseScene(frame, "frame.toml");
+  ASSERT_EQ(scene.model.structure.dofs(), 12);
+  const LawAttachment& w = scene.model.laws[0].attachment;
+  ASSERT_EQ(w.row(0).size(), 2u);
+  EXPECT_EQ(w.row(0)[0].dof, frameDof(4, 1));
+  EXPECT_EQ(w.row(0)[0].weight, 1.0);
+  EXPECT_EQ(w.row(0)[1].dof, frameDof(2, 1));
+  EXPECT_EQ(w.row(0)[1].weight, -1.0);
+  // The scene's stiffness is cantileverFrame's with C = 0.01 K.
+  FrameParameters p;
+  p.elements = 4;
+  p.section = {2.0, 3.0, 0.5, 1.0};
+  p.length = 2.0;
+  const StructureMatrices direct = cantileverFrame(p);
+  EXPECT_LT((Eigen::MatrixXd(scene.model.structure.stiffness) - Eigen::MatrixXd(direct.stiffness)).norm(), 1e-12);
+  EXPECT_LT((Eigen::MatrixXd(scene.model.structure.damping) - 0.01 * Eigen::MatrixXd(direct.stiffness)).norm(), 1e-12);
+  // A bad value names its field.
+  std::string bad = frame;
+  bad.replace(bad.find("A = 3.0"), 7, "A = 0.0");
+  EXPECT_NE(test::messageOf([&] { parseScene(bad, "frame.toml"); }).find("structure.A"), std::string::npos);
+  // A direction of the wrong length for a frame node is refused.
+  std::string short_normal = frame;
+  short_normal.replace(short_normal.find("normal = [0, 1, 0]"), 18, "normal = [0, 1]");
+  EXPECT_NE(test::messageOf([&] { parseScene(short_normal, "frame.toml"); }).find("law[0].normal"),
+            std::string::npos);
+}
+
 LapJointParameters smallJoint() {
   LapJointParameters p;
   p.pairs = 5;

@@ -6,6 +6,7 @@ foreach(name hb_model_test convergence_scales_test unit_systems_test scale_free_
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)
 endforeach()
 target_link_libraries(unit_systems_test PRIVATE eqhb_app)  # sweeps as `eqhb sweep` sweeps
+target_link_libraries(shipped_scenes_test PRIVATE eqhb_app)  # a [[preload]] settled as `eqhb solve` settles it
 set(EXPECT_EXIT ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh)
 set(CONTACT ${PROJECT_SOURCE_DIR}/problems/contact.toml)
 add_test(NAME cli.contact_needs_the_constant_term

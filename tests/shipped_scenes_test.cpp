@@ -1,6 +1,7 @@
 // Every scene shipped in problems/ solves on its own defaults, as `eqhb
 // solve SCENE` runs it: the default solver (dogleg) on the default system
-// (condensed), from rest (a cold start). Converged means the residual is
+// (condensed), from rest (a cold start), or under a [[preload]] from its
+// static state. Converged means the residual is
 // within the tolerance in the problem's own scales; the solution must also
 // be physical: every law invariant finite and below 1 (1 is a law that does
 // not hold at all, e.g. a wall that pulls).
@@ -12,9 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "eqhb/app/static_preload.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/harmonic_balance/invariants.h"
+#include "eqhb/preload/operating_point.h"
 #include "eqhb/scenes/scene.h"
 #include "test_support.h"
 
@@ -46,10 +49,15 @@ std::vector<std::string> shippedScenes() {
 class ShippedScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ShippedScene, ConvergesFromRestOnItsDefaults) {
-  const Scene scene = loadScene(test::problem(GetParam() + ".toml"));
+  Scene scene = loadScene(test::problem(GetParam() + ".toml"));
+  // Under a [[preload]] `eqhb solve` settles the static state first and
+  // starts from the response linearised about it (preload/operating_point.h).
+  app::settleUnderPreload(scene);
   auto system = makeHbSystem(scene.model, true);
-  const SolverResult result =
-      makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), SolverOptions{});
+  Eigen::VectorXd start = Eigen::VectorXd::Zero(system->size());
+  if (scene.at_rest)
+    start = system->fromFullCoefficients(linearisedStart(scene.model, *scene.at_rest, *makeSolver("dogleg"), {}));
+  const SolverResult result = makeSolver("dogleg")->solve(*system, start, SolverOptions{});
   ASSERT_TRUE(result.converged()) << result.summary();
   const Eigen::VectorXd full = system->fullCoefficients(result.solution);
   ASSERT_TRUE(full.allFinite());

@@ -1,0 +1,201 @@
+// The bolted lap joint (problems/lap-joint.toml) against its linear limits:
+// under small forcing every slider sticks and the response is the linear
+// system with the tangential springs k_t; under large forcing the sliders
+// slide at their limit and the response tends to the system without them;
+// and the energy the forcing feeds in per cycle is what the damping and the
+// contacts take out.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "eqhb/app/solve.h"
+#include "eqhb/error.h"
+#include "eqhb/laws/joints/jenkins_aft.h"
+#include "eqhb/laws/penalty_contact.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+constexpr int kForcedDof = 58;  // 0-based: the upper beam's w at pair 11 (mid-span)
+constexpr int kPreloads = 42;   // two per pair
+
+// The scene at `omega` under forcing `force`, reached by continuation in the
+// force from `from` (a stuck response, solved from the static state) in
+// steps of at most `ratio`: a solve from the static state straight into
+// microslip near the resonance stalls or finds a spurious harmonic-balance
+// solution (see the scene's header).
+std::vector<app::Solution> solveLap(const std::vector<double>& forces, double omega,
+                                    const std::vector<std::string>& overrides = {}) {
+  app::SceneSettings scene;
+  scene.path = test::problem("lap-joint.toml");
+  scene.omega = omega;
+  app::SolveOptions options;
+  options.fallback = "none";
+  std::vector<app::Solution> out;
+  double level = std::min(2.0, forces.front());
+  for (double force : forces) {
+    while (true) {
+      scene.overrides = overrides;
+      scene.overrides.push_back("forcing[0].cos=" + formatNumber(level));
+      app::Solution s = app::solve(scene, options);
+      EXPECT_TRUE(s.converged()) << "force " << level << ": " << terminationName(s.run.result.termination);
+      if (!s.converged()) return out;
+      options.initial = s.full;
+      if (level == force) {
+        out.push_back(std::move(s));
+        break;
+      }
+      level = std::min(force, 1.5 * level);
+    }
+  }
+  return out;
+}
+
+app::Solution solveLap(double force, double omega, const std::vector<std::string>& overrides = {}) {
+  std::vector<app::Solution> s = solveLap(std::vector<double>{force}, omega, overrides);
+  if (s.empty()) throw std::runtime_error("no solution");
+  return std::move(s.back());
+}
+
+// The bolt `factor` times the scene's, the friction limits kept.
+std::vector<std::string> boltTimes(double factor) {
+  const Scene scene = loadScene(test::problem("lap-joint.toml"));
+  EXPECT_EQ(scene.preload.size(), static_cast<size_t>(kPreloads));
+  std::vector<std::string> out;
+  for (int i = 0; i < kPreloads; ++i)
+    out.push_back("preload[" + std::to_string(i) + "].force=" + formatNumber(factor * scene.preload[i].cos_amplitude));
+  return out;
+}
+
+// The harmonic-1 response (a1 + i b1 per DOF, x = a1 cos ωt + b1 sin ωt) of
+// the structure with each law replaced by a linear spring along its
+// direction: penalty contacts by k_n, sliders by k_t when `stuck` (else none).
+Eigen::VectorXcd linearResponse(const HbModel& model, bool stuck) {
+  const LinearStructure& s = model.structure;
+  Eigen::MatrixXd k(s.stiffness);
+  for (const AttachedLaw& law : model.laws) {
+    double spring = 0.0;
+    if (const auto* wall = dynamic_cast<const PenaltyContact*>(law.law.get())) spring = wall->stiffness();
+    if (const auto* slider = dynamic_cast<const JenkinsAft*>(law.law.get()); slider && stuck)
+      spring = slider->sliders().front().k_t;
+    const Eigen::MatrixXd w = law.attachment.transposeDense(s.dofs());  // n x 1
+    k += spring * w * w.transpose();
+  }
+  const double omega = model.omega;
+  Eigen::MatrixXcd dynamic = (k - omega * omega * Eigen::MatrixXd(s.mass)).cast<std::complex<double>>();
+  dynamic += std::complex<double>(0.0, omega) * Eigen::MatrixXd(s.damping).cast<std::complex<double>>();
+  Eigen::VectorXcd f = Eigen::VectorXcd::Zero(s.dofs());
+  for (const HarmonicLoad& load : s.loads)
+    if (load.harmonic == 1) f[load.dof] += std::complex<double>(load.cos_amplitude, -load.sin_amplitude);
+  // X = a − i b with x = Re(X e^{iωt}).
+  const Eigen::VectorXcd x = dynamic.partialPivLu().solve(f);
+  return x.conjugate();
+}
+
+// a_k + i b_k of every DOF from the full solution.
+Eigen::VectorXcd harmonic(const app::Solution& s, int k) {
+  const int size = s.model().basis.size(), n = s.model().structure.dofs();
+  Eigen::VectorXcd out(n);
+  for (int j = 0; j < n; ++j) out[j] = {s.full[j * size + 2 * k - 1], s.full[j * size + 2 * k]};
+  return out;
+}
+
+TEST(LapJoint, SmallForcingIsTheLinearStuckSystem) {
+  const app::Solution s = solveLap(0.1, 1530.0);
+  ASSERT_TRUE(s.run.scene.at_rest);
+  const Eigen::VectorXcd stuck = linearResponse(s.model(), true);
+  const Eigen::VectorXcd x1 = harmonic(s, 1);
+  EXPECT_LT((x1 - stuck).cwiseAbs().maxCoeff(), 1e-6 * stuck.cwiseAbs().maxCoeff());
+  // Not the sliding system: the sliders' k_t stiffens the first mode.
+  const Eigen::VectorXcd sliding = linearResponse(s.model(), false);
+  EXPECT_GT((sliding - stuck).cwiseAbs().maxCoeff(), 0.05 * stuck.cwiseAbs().maxCoeff());
+  // The mean is the static state; no higher harmonic.
+  const int size = s.model().basis.size();
+  for (int j = 0; j < s.model().structure.dofs(); ++j) {
+    EXPECT_NEAR(s.full[j * size], s.run.scene.at_rest->displacement[j], 1e-9 * stuck.cwiseAbs().maxCoeff());
+    for (int k = 2; k <= 7; ++k) EXPECT_LT(std::abs(harmonic(s, k)[j]), 1e-9 * stuck.cwiseAbs().maxCoeff());
+  }
+}
+
+// With the bolt 20 times the scene's (the lap's end pairs then stay closed)
+// and the friction limits kept, the sliders' force is bounded while the
+// forcing grows: the response per unit force leaves the stuck system's and
+// tends to the linear sliding system's.
+TEST(LapJoint, LargeForcingTendsToTheSlidingSystem) {
+  const std::vector<std::string> bolt = boltTimes(20.0);
+  std::vector<double> gaps;
+  const std::vector<app::Solution> solutions = solveLap({10.0, 30.0, 100.0, 300.0}, 1400.0, bolt);
+  ASSERT_EQ(solutions.size(), 4u);
+  for (const app::Solution& s : solutions) {
+    const double force = s.model().structure.loads[0].cos_amplitude;
+    const std::complex<double> sliding = linearResponse(s.model(), false)[kForcedDof] / force;
+    const std::complex<double> stuck = linearResponse(s.model(), true)[kForcedDof] / force;
+    const std::complex<double> x = harmonic(s, 1)[kForcedDof] / force;
+    gaps.push_back(std::abs(x - sliding) / std::abs(sliding));
+    // Between the two linear limits.
+    EXPECT_LT(std::abs(x), std::max(std::abs(sliding), std::abs(stuck)));
+    EXPECT_GT(std::abs(x), std::min(std::abs(sliding), std::abs(stuck)));
+    std::printf("force %g: |x1|/f = %.6g, sliding %.6g, stuck %.6g, gap to sliding %.3g\n", force, std::abs(x),
+                std::abs(sliding), std::abs(stuck), gaps.back());
+  }
+  // 10 and 30 N: stuck, the stuck system's gap (0.41 at this omega); then
+  // the sliders give way and the gap closes (0.38 at 100 N, 0.17 at 300 N).
+  // Beyond about 450 N the continuation stalls.
+  EXPECT_NEAR(gaps[1], gaps[0], 1e-6);
+  EXPECT_LT(gaps[2], gaps[1]);
+  EXPECT_LT(gaps[3], 0.5 * gaps[2]);
+  EXPECT_LT(gaps[3], 0.2);
+}
+
+// Per cycle: the forcing's work π Σ f_c b1 − f_s a1 equals the damping's
+// π ω Σ k² (a_kᵀ C a_k + b_kᵀ C b_k) plus what the contacts dissipate,
+// −∮ s λ · u̇ dt = −π Σ_k k (c_k β_k − d_k α_k) summed over the laws
+// (λ = c_k cos + d_k sin, u = W x = α_k cos + β_k sin). The penalty
+// contacts are elastic: the sliders dissipate it all.
+TEST(LapJoint, EnergyFedInIsWhatTheDampingAndTheSlidersDissipate) {
+  for (double force : {2.0, 15.0}) {
+    const app::Solution s = solveLap(force, 1534.0);
+    const HbModel& model = s.model();
+    const int size = model.basis.size(), n = model.structure.dofs();
+    const Eigen::MatrixXd c(model.structure.damping);
+    double input = 0.0, damping = 0.0, sliders = 0.0, walls = 0.0;
+    for (const HarmonicLoad& load : model.structure.loads)
+      if (load.harmonic == 1)
+        input += M_PI * (load.cos_amplitude * harmonic(s, 1)[load.dof].imag() -
+                         load.sin_amplitude * harmonic(s, 1)[load.dof].real());
+    for (int k = 1; k <= 7; ++k) {
+      const Eigen::VectorXcd x = harmonic(s, k);
+      damping += M_PI * model.omega * k * k *
+                 (x.real().dot(c * x.real()) + x.imag().dot(c * x.imag()));
+    }
+    for (size_t l = 0; l < model.laws.size(); ++l) {
+      const AttachedLaw& law = model.laws[l];
+      const int lambda = (n + model.componentIndex(static_cast<int>(l), 0)) * size;
+      double work = 0.0;
+      for (int k = 1; k <= 7; ++k) {
+        Eigen::VectorXd cos_x(n), sin_x(n);
+        for (int j = 0; j < n; ++j) {
+          cos_x[j] = s.full[j * size + 2 * k - 1];
+          sin_x[j] = s.full[j * size + 2 * k];
+        }
+        const double alpha = law.attachment.gather(cos_x, 0), beta = law.attachment.gather(sin_x, 0);
+        work += M_PI * k * (s.full[lambda + 2 * k - 1] * beta - s.full[lambda + 2 * k] * alpha);
+      }
+      (dynamic_cast<const PenaltyContact*>(law.law.get()) ? walls : sliders) -= law.law->forceSign() * work;
+    }
+    if (force > 2.0) EXPECT_GT(sliders, 0.1 * input) << "force " << force;
+    EXPECT_NEAR(input, damping + sliders + walls, 1e-7 * input) << "force " << force;
+    EXPECT_LT(std::abs(walls), 1e-6 * input) << "force " << force;
+    std::printf("force %g: input %.6g J, damping %.6g J, sliders %.6g J, walls %.3g J\n", force, input, damping,
+                sliders, walls);
+  }
+}
+
+}  // namespace
+}  // namespace eqhb
