@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "eqhb/error.h"
+#include "eqhb/sparse_slots.h"
 #include "eqhb/harmonic_balance/dense_from_pattern.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
 #include "eqhb/harmonic_balance/system_memory.h"
@@ -94,14 +95,6 @@ double FullSystem::responseAtLaws() const {
 }
 
 namespace {
-// Index of entry (row, col) in a compressed column-major matrix's values.
-int slotOf(const SparseMatrix& m, int row, int col) {
-  const int* begin = m.innerIndexPtr() + m.outerIndexPtr()[col];
-  const int* end = m.innerIndexPtr() + m.outerIndexPtr()[col + 1];
-  const int* it = std::lower_bound(begin, end, row);
-  if (it == end || *it != row) throw std::logic_error("sparse Jacobian: entry outside the pattern");
-  return static_cast<int>(it - m.innerIndexPtr());
-}
 
 // Values of m at the entries of pattern p (zeros where m has none).
 Eigen::VectorXd valuesOnPattern(const SparseMatrix& m, const SparseMatrix& p) {

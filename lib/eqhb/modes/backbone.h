@@ -1,10 +1,12 @@
 // A nonlinear mode followed in modal amplitude (mode_system.h): from the
 // linearised structure's mode K at the smallest amplitude (linear_modes.h),
-// over N amplitudes spaced evenly in log a, each point started from the
-// secant through the last two (the linear mode for the first). A step whose
-// solve fails is halved in log a, down to max_halvings times, through
-// intermediate points that are not recorded; a point still failed is listed
-// as such and the next one starts from the last converged point.
+// the path is continued in pseudo-arclength through (shape, ω, ξ, log a)
+// (mode_path_system.h), which passes the folds where the backbone turns
+// back in amplitude, and the mode is recorded at N amplitudes spaced evenly
+// in log a, at each crossing of the path in the order of the path: between
+// two folds an amplitude has three modes, all listed. An arclength step
+// whose corrector fails is halved, up to max_halvings times in a row; the
+// grid amplitudes a path that stops did not reach are failed points.
 #pragma once
 
 #include <Eigen/Dense>
@@ -23,7 +25,7 @@ struct BackboneOptions {
   double from = 0.0;     // smallest modal amplitude, > 0 (modes.h chooses one when not given)
   double to = 0.0;       // largest, > from
   int points = 50;       // >= 2
-  int max_halvings = 8;  // of a failed step in log a, >= 0
+  int max_halvings = 8;  // of a failed arclength step, in a row, >= 0
   // Throws InputError naming the field; `modes`: how many the structure has.
   void validate(int modes) const;
 };
@@ -41,9 +43,23 @@ struct BackbonePoint {
   Eigen::VectorXd full;              // [x̂; λ̂]
 };
 
+// Where the path turns back in amplitude: the turn of the quadratic through
+// the path points on either side of it.
+struct BackboneFold {
+  double amplitude = 0.0, omega = 0.0, damping_ratio = 0.0;
+};
+
+// Where and why a path stopped short of `to` (empty `why` when it did not).
+struct BackboneStop {
+  std::string why;
+  double amplitude = 0.0, omega = 0.0, damping_ratio = 0.0;  // its last point
+};
+
 struct Backbone {
   LinearMode start;                  // the linear mode it started from
-  std::vector<BackbonePoint> points;
+  std::vector<BackbonePoint> points;  // in the order of the path
+  std::vector<BackboneFold> folds;
+  BackboneStop stop;
   int failed_points = 0;
   bool complete() const { return failed_points == 0 && !points.empty(); }
   double seconds = 0.0;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "eqhb/error.h"
+#include "eqhb/sparse_slots.h"
 #include "eqhb/harmonic_balance/dense_from_pattern.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
 
@@ -17,14 +18,6 @@ HbModel unforced(HbModel model) {
   return model;
 }
 
-// Index of entry (row, col) in a compressed column-major matrix's values.
-int slotOf(const SparseMatrix& m, int row, int col) {
-  const int* begin = m.innerIndexPtr() + m.outerIndexPtr()[col];
-  const int* end = m.innerIndexPtr() + m.outerIndexPtr()[col + 1];
-  const int* it = std::lower_bound(begin, end, row);
-  if (it == end || *it != row) throw std::logic_error("mode system: entry outside the Jacobian pattern");
-  return static_cast<int>(it - m.innerIndexPtr());
-}
 }  // namespace
 
 ModeSystem::ModeSystem(const HbModel& model, const Eigen::VectorXd& shape)

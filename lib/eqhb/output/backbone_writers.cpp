@@ -35,6 +35,9 @@ nlohmann::json backboneJson(const app::ModesRun& run) {
   model.structure.loads.clear();
   nlohmann::json points = nlohmann::json::array();
   for (const BackbonePoint& p : b.points) points.push_back(pointJson(model, p));
+  nlohmann::json folds = nlohmann::json::array();
+  for (const BackboneFold& f : b.folds)
+    folds.push_back({{"amplitude", f.amplitude}, {"omega", f.omega}, {"damping_ratio", f.damping_ratio}});
   const std::vector<double> shape(b.start.shape.data(), b.start.shape.data() + b.start.shape.size());
   return {{"scene", run.scene.name},
           {"mode", run.options.mode},
@@ -44,6 +47,12 @@ nlohmann::json backboneJson(const app::ModesRun& run) {
           {"linear_mode", {{"omega", b.start.omega}, {"damping_ratio", b.start.damping_ratio}, {"shape", shape}}},
           {"complete", b.complete()},
           {"failed_points", b.failed_points},
+          {"folds", folds},
+          {"stop", b.stop.why.empty() ? nlohmann::json(nullptr)
+                                      : nlohmann::json{{"why", b.stop.why},
+                                                       {"amplitude", b.stop.amplitude},
+                                                       {"omega", b.stop.omega},
+                                                       {"damping_ratio", b.stop.damping_ratio}}},
           {"seconds", b.seconds},
           {"points", points}};
 }
@@ -74,6 +83,16 @@ void writeBackboneText(std::ostream& out, const app::ModesRun& run) {
                 run.scene.name.c_str(), run.options.mode, b.start.omega, b.start.damping_ratio,
                 static_cast<int>(b.points.size()), b.failed_points, b.seconds);
   out << line;
+  for (const BackboneFold& f : b.folds) {
+    std::snprintf(line, sizeof line, "fold: the backbone turns back at amplitude %.5g (omega = %.8g, zeta = %.6g)\n",
+                  f.amplitude, f.omega, f.damping_ratio);
+    out << line;
+  }
+  if (!b.stop.why.empty()) {
+    std::snprintf(line, sizeof line, "the path %s, at amplitude %.5g (omega = %.8g, zeta = %.6g)\n",
+                  b.stop.why.c_str(), b.stop.amplitude, b.stop.omega, b.stop.damping_ratio);
+    out << line;
+  }
   out << "   amplitude        omega         zeta   energy/cycle\n";
   for (const BackbonePoint& p : b.points) {
     if (p.converged)
