@@ -8,8 +8,6 @@ eqhb_cli_expect(element_zero_normal 2 "law\\[0\\].normal = \\[0, 0\\]: must be a
                 solve ${BAD}/element-zero-normal.toml)
 eqhb_cli_expect(refine_refuses_element_between_nodes 2 "law\\[1\\].between = .*: a cubic law between two nodes"
                 solve ${PROJECT_SOURCE_DIR}/problems/field/nlvib-02-2dof-cubic-relative.toml --refine shoot)
-eqhb_cli_expect(modes_refuse_element_between_nodes 2 "law\\[1\\].between = \\[x1 - x2\\]: a cubic law between two nodes: nonlinear modes"
-                modes ${PROJECT_SOURCE_DIR}/problems/field/nlvib-02-2dof-cubic-relative.toml)
 eqhb_cli_expect(extra_argument 2 "not expected: extra" solve ${SCENE} extra)
 eqhb_cli_expect(out_of_range_option 2 "--repeat: Value 0 not in range" solve ${SCENE} --repeat 0)
 eqhb_cli_expect(harmonics_beyond_int 2 "--harmonics = 4294967306" solve ${SCENE} --harmonics 4294967306)

@@ -9,8 +9,10 @@
 #include <memory>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/laws/cubic_stiffness.h"
 #include "eqhb/laws/joints/jenkins.h"
+#include "eqhb/laws/law_attachment.h"
 #include "eqhb/modes/backbone.h"
 #include "eqhb/modes/mode_path_system.h"
 #include "eqhb/modes/mode_system.h"
@@ -296,6 +298,46 @@ TEST(Backbone, BeamDamperPassesTheFoldWhereTheBackboneTurnsBackInAmplitude) {
   EXPECT_LT(below_fold[0]->damping_ratio, below_fold[1]->damping_ratio);
   for (size_t i = 1; i < b.points.size(); ++i)  // the path's order: 7.6e-4 up, then back, never skipped
     if (b.points[i].amplitude < b.points[i - 1].amplitude) EXPECT_EQ(&b.points[i - 1], below_fold[0]);
+}
+
+// NLvib's example 02 chain with its cubic spring between DOFs 1 and 2, and
+// with exact Coulomb friction between them: the same structure in the
+// coordinates y = (x1, x1 − x2), where both elements are grounded, has the
+// same backbone (the modal amplitude φᵀ M x̂₁ does not depend on the
+// coordinates). Coulomb ties the two DOFs at small amplitude.
+TEST(Backbone, ElementsBetweenTwoNodesGiveTheBackboneOfTheSameStructureInGroundedCoordinates) {
+  Eigen::MatrixXd m(2, 2), c(2, 2), k(2, 2), t(2, 2);
+  m << 1.0, 0.0, 0.0, 0.05;
+  c << 0.015, -0.013, -0.013, 0.013;
+  k << 1.0453, -0.0453, -0.0453, 0.0453;
+  t << 1.0, 0.0, 1.0, -1.0;  // x = T y
+  const std::vector<Eigen::VectorXd> along = {Eigen::VectorXd::Ones(1)};
+  for (const bool friction : {false, true}) {
+    HbModel relative = oneDof(1.0, 0.0, 1.0, HarmonicKind::kOdd, 5, 64);
+    relative.structure = LinearStructure(m, c, k);
+    HbModel grounded = relative;
+    grounded.structure = LinearStructure(t.transpose() * m * t, t.transpose() * c * t, t.transpose() * k * t);
+    relative.laws.push_back({{0}, std::make_shared<CubicStiffness>(1.0)});
+    grounded.laws.push_back({{0}, std::make_shared<CubicStiffness>(1.0)});
+    std::shared_ptr<Law> between = std::make_shared<CubicStiffness>(0.0042);
+    if (friction) between = std::make_shared<Coulomb1D>(0.05, CoulombForm::kMinMax);
+    relative.laws.push_back({LawAttachment::relative({0}, {1}, along), between});
+    grounded.laws.push_back({{1}, between});
+    ASSERT_FALSE(relative.laws.back().attachment.grounded());
+    const Backbone a = backboneOf(relative, 1, 0.01, friction ? 20.0 : 1.0, 9);
+    const Backbone b = backboneOf(grounded, 1, 0.01, friction ? 20.0 : 1.0, 9);
+    EXPECT_NEAR(a.start.omega, b.start.omega, 1e-12);
+    ASSERT_TRUE(a.complete());
+    ASSERT_TRUE(b.complete());
+    ASSERT_EQ(a.points.size(), b.points.size());
+    double spread = 0.0;
+    for (size_t i = 0; i < a.points.size(); ++i) {
+      EXPECT_NEAR(a.points[i].omega, b.points[i].omega, 1e-8 * b.points[i].omega) << i;
+      EXPECT_NEAR(a.points[i].damping_ratio, b.points[i].damping_ratio, 1e-8) << i;
+      spread = std::max(spread, std::abs(a.points[i].omega - a.points.front().omega));
+    }
+    EXPECT_GT(spread, 0.01) << "the range reaches the nonlinear regime";
+  }
 }
 
 TEST(Backbone, RefusesAModeAboveTheStructuresAndABadAmplitudeRange) {

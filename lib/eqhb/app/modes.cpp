@@ -26,18 +26,18 @@ bool ModesOptions::isValid(std::string* why) const {
 
 namespace {
 // The modal amplitude at which the first law reaches its force level (a
-// friction law its slip limit μN) on the linear mode: each law's force is
-// the mode's reaction at its DOF, (K − ω² M) φ per unit amplitude; 0 when
-// no law has a force level or a reaction.
+// friction law its slip limit μN) on the linear mode: the laws' forces are
+// those that supply the mode's reaction (K − ω² M) φ per unit amplitude
+// (lawForcesFor); 0 when no law has a force level or a force.
 double onsetAmplitude(const HbModel& model, const LinearMode& mode) {
   const LinearStructure& s = model.structure;
-  const Eigen::VectorXd reaction =
-      s.stiffness * mode.shape - mode.omega * mode.omega * (s.mass * mode.shape);
+  const Eigen::VectorXd forces =
+      lawForcesFor(model, s.stiffness * mode.shape - mode.omega * mode.omega * (s.mass * mode.shape));
   double onset = 0.0;
-  for (const AttachedLaw& attached : model.laws) {
-    const double level = std::abs(attached.law->forceLevel());
-    for (int dof : attached.attachment.dofs()) {
-      const double per_amplitude = std::abs(reaction[dof]);
+  for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
+    const double level = std::abs(model.laws[l].law->forceLevel());
+    for (int c = 0; c < model.laws[l].law->dimension(); ++c) {
+      const double per_amplitude = std::abs(forces[model.componentIndex(l, c)]);
       if (!(level > 0.0) || !(per_amplitude > 0.0)) continue;
       const double a = level / per_amplitude;
       if (onset == 0.0 || a < onset) onset = a;

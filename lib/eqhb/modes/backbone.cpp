@@ -39,9 +39,9 @@ double dissipatedEnergy(const HbModel& model, const Eigen::VectorXd& full, doubl
 
 namespace {
 
-// The linear mode at amplitude a: x̂ = a φ cos ωt, each law's force the
-// reaction A₁(ω, ξ) x̂ at its DOF (a held DOF's support force, a spring's
-// force), ω and ξ = 2ζω of the mode.
+// The linear mode at amplitude a: x̂ = a φ cos ωt, the laws' forces those
+// that supply A₁(ω, ξ) x̂ (lawForcesFor: a held DOF's support force, a
+// spring's force), ω and ξ = 2ζω of the mode.
 Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, double a) {
   const HbModel& model = system.model();
   const int n = model.structure.dofs(), nb = model.basis.size();
@@ -53,20 +53,11 @@ Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, do
   const double w = mode.omega, xi = 2.0 * mode.damping_ratio * mode.omega;
   const LinearStructure& s = model.structure;
   const Eigen::VectorXd x = a * mode.shape;
-  const Eigen::VectorXd cos_row = s.stiffness * x - w * w * (s.mass * x);
-  const Eigen::VectorXd sin_row = -w * (s.damping * x - xi * (s.mass * x));
-  std::vector<bool> taken(n, false);
-  for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
-    const AttachedLaw& attached = model.laws[l];
-    for (int c = 0; c < attached.law->dimension(); ++c) {
-      const int dof = attached.attachment.dof(c);  // grounded: linearModes checked
-      if (taken[dof]) continue;  // a second law on one DOF starts at no force
-      taken[dof] = true;
-      const int row = (n + model.componentIndex(l, c)) * nb + fundamental;
-      const double sign = attached.law->forceSign();
-      z[row] = cos_row[dof] / sign;
-      z[row + 1] = sin_row[dof] / sign;
-    }
+  const Eigen::VectorXd cos_forces = lawForcesFor(model, s.stiffness * x - w * w * (s.mass * x));
+  const Eigen::VectorXd sin_forces = lawForcesFor(model, -w * (s.damping * x - xi * (s.mass * x)));
+  for (int c = 0; c < cos_forces.size(); ++c) {
+    z[(n + c) * nb + fundamental] = cos_forces[c];
+    z[(n + c) * nb + fundamental + 1] = sin_forces[c];
   }
   z[system.omegaIndex()] = w;
   z[system.xiIndex()] = xi;

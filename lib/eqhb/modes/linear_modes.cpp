@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "eqhb/laws/grounded_laws.h"
 
 namespace eqhb {
 
@@ -35,20 +34,23 @@ LinearisedStructure linearisedStructure(const HbModel& model) {
   out.stiffness = Eigen::MatrixXd(s.stiffness);
   out.damping = Eigen::MatrixXd(s.damping);
   out.held.assign(n, false);
-  requireGroundedLaws(model.laws, "nonlinear modes");
   for (const AttachedLaw& attached : model.laws) {
     const Law& law = *attached.law;
     for (int a = 0; a < law.dimension(); ++a) {
       const RestPartials p = partialsAtRest(law, a);
-      const int i = attached.attachment.dof(a);
       const double sign = law.forceSign();
+      const Eigen::VectorXd w = attached.attachment.transposeDense(n).col(a);
+      const bool one_dof = attached.attachment.row(a).size() == 1 && attached.attachment.row(a).front().weight == 1.0;
       if (p.force != 0.0) {
-        out.stiffness(i, i) += sign * p.displacement / p.force;
-        out.damping(i, i) += sign * p.velocity / p.force;
+        out.stiffness += (sign * p.displacement / p.force) * w * w.transpose();
+        out.damping += (sign * p.velocity / p.force) * w * w.transpose();
       } else if (p.force_rate != 0.0) {
-        out.stiffness(i, i) += sign * p.velocity / p.force_rate;
+        out.stiffness += (sign * p.velocity / p.force_rate) * w * w.transpose();
       } else if (p.displacement != 0.0 || p.velocity != 0.0) {
-        out.held[i] = true;
+        if (one_dof)
+          out.held[attached.attachment.dof(a)] = true;
+        else
+          out.ties.push_back(w);
       }
     }
   }
@@ -62,16 +64,30 @@ std::vector<LinearMode> linearModes(const HbModel& model) {
   std::vector<int> free;
   for (int i = 0; i < n; ++i)
     if (!lin.held[i]) free.push_back(i);
-  const int m = static_cast<int>(free.size());
   std::vector<LinearMode> modes;
+  if (free.empty()) return modes;
+  // The motions the ties allow: x_free = N y, N an orthonormal basis of the
+  // null space of the ties (restricted to the free DOFs).
+  const int f = static_cast<int>(free.size());
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(f, f);
+  if (!lin.ties.empty()) {
+    Eigen::MatrixXd ties(lin.ties.size(), f);
+    for (size_t t = 0; t < lin.ties.size(); ++t)
+      for (int r = 0; r < f; ++r) ties(t, r) = lin.ties[t][free[r]];
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(ties.transpose());
+    const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(f, f);
+    basis = q.rightCols(f - qr.rank());
+  }
+  const int m = static_cast<int>(basis.cols());
   if (m == 0) return modes;
-  Eigen::MatrixXd k(m, m), mm(m, m);
-  for (int r = 0; r < m; ++r)
-    for (int c = 0; c < m; ++c) {
-      k(r, c) = lin.stiffness(free[r], free[c]);
-      mm(r, c) = mass(free[r], free[c]);
+  Eigen::MatrixXd k_free(f, f), m_free(f, f);
+  for (int r = 0; r < f; ++r)
+    for (int c = 0; c < f; ++c) {
+      k_free(r, c) = lin.stiffness(free[r], free[c]);
+      m_free(r, c) = mass(free[r], free[c]);
     }
-  // Symmetrised: the laws' springs are on the diagonal, K and M symmetric.
+  const Eigen::MatrixXd k = basis.transpose() * k_free * basis, mm = basis.transpose() * m_free * basis;
+  // Symmetrised: the laws' springs are w wᵀ, K and M symmetric.
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (k + k.transpose()), mm);
   if (eigen.info() != Eigen::Success)
     throw std::runtime_error("linear modes: the eigenproblem (K, M) of the linearised structure failed");
@@ -83,16 +99,52 @@ std::vector<LinearMode> linearModes(const HbModel& model) {
     mode.omega = std::sqrt(lambda);
     mode.shape = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd phi = eigen.eigenvectors().col(j);
-    phi /= std::sqrt(phi.dot(mm * phi));
+    phi /= std::sqrt(phi.dot(mm * phi));  // Nᵀ M N is M on the motions: φᵀ M φ = 1 in x too
     // One sign for every run: the largest component positive.
     Eigen::Index largest_at = 0;
     phi.cwiseAbs().maxCoeff(&largest_at);
     if (phi[largest_at] < 0.0) phi = -phi;
-    for (int r = 0; r < m; ++r) mode.shape[free[r]] = phi[r];
+    const Eigen::VectorXd x = basis * phi;
+    for (int r = 0; r < f; ++r) mode.shape[free[r]] = x[r];
     mode.damping_ratio = mode.shape.dot(lin.damping * mode.shape) / (2.0 * mode.omega);
     modes.push_back(mode);
   }
   return modes;
+}
+
+Eigen::VectorXd lawForcesFor(const HbModel& model, const Eigen::VectorXd& needed) {
+  const int n = model.structure.dofs();
+  int components = 0;
+  for (const AttachedLaw& attached : model.laws) components += attached.law->dimension();
+  Eigen::VectorXd forces = Eigen::VectorXd::Zero(components);
+  Eigen::VectorXd remaining = needed;
+  std::vector<bool> taken(n, false);
+  std::vector<int> shared;  // components not on one DOF
+  Eigen::MatrixXd directions(n, 0);
+  for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
+    const AttachedLaw& attached = model.laws[l];
+    const double sign = attached.law->forceSign();
+    for (int c = 0; c < attached.law->dimension(); ++c) {
+      const auto& row = attached.attachment.row(c);
+      const int index = model.componentIndex(l, c);
+      if (row.size() == 1 && row.front().weight == 1.0) {
+        const int dof = row.front().dof;
+        if (taken[dof]) continue;
+        taken[dof] = true;
+        forces[index] = needed[dof] / sign;
+        remaining[dof] = 0.0;
+        continue;
+      }
+      shared.push_back(index);
+      directions.conservativeResize(n, directions.cols() + 1);
+      directions.rightCols(1) = sign * attached.attachment.transposeDense(n).col(c);
+    }
+  }
+  if (!shared.empty()) {
+    const Eigen::VectorXd lambda = directions.completeOrthogonalDecomposition().solve(remaining);
+    for (size_t k = 0; k < shared.size(); ++k) forces[shared[k]] = lambda[k];
+  }
+  return forces;
 }
 
 }  // namespace eqhb
