@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "eqhb/app/modes.h"
 #include "eqhb/app/solve.h"
 #include "eqhb/error.h"
 #include "eqhb/laws/joints/jenkins_aft.h"
@@ -195,6 +196,51 @@ TEST(LapJoint, EnergyFedInIsWhatTheDampingAndTheSlidersDissipate) {
     std::printf("force %g: input %.6g J, damping %.6g J, sliders %.6g J, walls %.3g J\n", force, input, damping,
                 sliders, walls);
   }
+}
+
+// The first bending frequency of the structure with each law a linear
+// spring (as linearResponse): penalty contacts by k_n, sliders by k_t when
+// `stuck`.
+double firstFrequency(const HbModel& model, bool stuck) {
+  const LinearStructure& s = model.structure;
+  Eigen::MatrixXd k(s.stiffness);
+  for (const AttachedLaw& law : model.laws) {
+    double spring = 0.0;
+    if (const auto* wall = dynamic_cast<const PenaltyContact*>(law.law.get())) spring = wall->stiffness();
+    if (const auto* slider = dynamic_cast<const JenkinsAft*>(law.law.get()); slider && stuck)
+      spring = slider->sliders().front().k_t;
+    const Eigen::MatrixXd w = law.attachment.transposeDense(s.dofs());
+    k += spring * w * w.transpose();
+  }
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eigen(k, Eigen::MatrixXd(s.mass));
+  return std::sqrt(eigen.eigenvalues()[0]);
+}
+
+// The joint's nonlinear mode about its bolted state: at small amplitude the
+// stuck structure's first bending mode (the sliders' k_t in), at large
+// amplitude, the pairs sliding, the sliding structure's, the damping ratio
+// peaking in between (microslip).
+TEST(LapJoint, NonlinearModeGoesFromTheStuckJointToTheSlidingOneAboutTheBoltedState) {
+  app::SceneSettings scene;
+  scene.path = test::problem("lap-joint.toml");
+  app::ModesOptions o;
+  o.from = 1e-6;
+  o.to = 1e-3;
+  o.points = 10;
+  const app::ModesRun run = app::modes(scene, o);
+  const Backbone& b = run.backbone;
+  ASSERT_TRUE(b.complete());
+  const double stuck = firstFrequency(run.scene.model, true), sliding = firstFrequency(run.scene.model, false);
+  std::printf("lap joint: linear %.8g (stuck %.8g), a = 1e-3: %.8g (sliding %.8g)\n", b.start.omega, stuck,
+              b.points.back().omega, sliding);
+  EXPECT_NEAR(b.start.omega, stuck, 1e-9 * stuck);
+  EXPECT_NEAR(b.points.front().omega, stuck, 1e-6 * stuck);
+  EXPECT_NEAR(b.points.back().omega, sliding, 2e-3 * sliding);
+  EXPECT_GT(stuck - sliding, 0.02 * stuck);  // the check above tells the two apart
+  double peak = 0.0;
+  for (const BackbonePoint& p : b.points) peak = std::max(peak, p.damping_ratio);
+  EXPECT_GT(peak, 3.0 * b.points.front().damping_ratio);
+  EXPECT_GT(peak, 1.2 * b.points.back().damping_ratio);
 }
 
 }  // namespace

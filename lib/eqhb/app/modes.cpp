@@ -48,8 +48,8 @@ double onsetAmplitude(const HbModel& model, const LinearMode& mode) {
 
 // The default range (ModesOptions): 10⁻² .. 10³ times the onset amplitude,
 // else the scene's length scale over max|φ|.
-BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o) {
-  const std::vector<LinearMode> modes = linearModes(model);
+BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const StaticContactState* at_rest) {
+  const std::vector<LinearMode> modes = linearModes(model, at_rest);
   const int count = static_cast<int>(modes.size());
   if (o.mode > count)
     throwInputError("mode", std::to_string(o.mode),
@@ -82,9 +82,10 @@ ModesRun modes(const SceneSettings& scene, const ModesOptions& o) {
   ModesRun run;
   run.scene = loadScene(scene);
   run.solver = o.solver;
-  run.options = chosenRange(run.scene.model, o);
+  const StaticContactState* at_rest = run.scene.at_rest ? &*run.scene.at_rest : nullptr;
+  run.options = chosenRange(run.scene.model, o, at_rest);
   auto solver = makeSolver(o.solver);
-  run.backbone = followBackbone(run.scene.model, *solver, o.solver_options, run.options);
+  run.backbone = followBackbone(run.scene.model, *solver, o.solver_options, run.options, nullptr, at_rest);
   return run;
 }
 

@@ -8,6 +8,7 @@
 #include "eqhb/error.h"
 #include "eqhb/modes/mode_path_system.h"
 #include "eqhb/modes/mode_system.h"
+#include "eqhb/preload/operating_point.h"
 
 namespace eqhb {
 
@@ -42,7 +43,8 @@ namespace {
 // The linear mode at amplitude a: x̂ = a φ cos ωt, the laws' forces those
 // that supply A₁(ω, ξ) x̂ (lawForcesFor: a held DOF's support force, a
 // spring's force), ω and ξ = 2ζω of the mode.
-Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, double a) {
+Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, double a,
+                            const StaticContactState* at_rest) {
   const HbModel& model = system.model();
   const int n = model.structure.dofs(), nb = model.basis.size();
   int fundamental = 0;
@@ -59,6 +61,7 @@ Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, do
     z[(n + c) * nb + fundamental] = cos_forces[c];
     z[(n + c) * nb + fundamental + 1] = sin_forces[c];
   }
+  if (at_rest) z.head(system.omegaIndex()) += operatingPoint(model, *at_rest);
   z[system.omegaIndex()] = w;
   z[system.xiIndex()] = xi;
   return z;
@@ -97,8 +100,9 @@ BackbonePoint describe(const ModeSystem& system, const Eigen::VectorXd& z, doubl
 class PathTracer {
  public:
   PathTracer(ModeSystem& system, Solver& solver, const SolverOptions& solver_options, const BackboneOptions& o,
-             const BackboneProgress& progress, Backbone* backbone)
-      : system_(system), path_(system), solver_(solver), solver_options_(solver_options), o_(o),
+             const BackboneProgress& progress, const StaticContactState* at_rest, Backbone* backbone)
+      : at_rest_(at_rest), system_(system),
+        path_(system, at_rest ? operatingPoint(system.model(), *at_rest) : Eigen::VectorXd()), solver_(solver), solver_options_(solver_options), o_(o),
         progress_(progress), backbone_(*backbone), s_from_(std::log(o.from)), s_to_(std::log(o.to)),
         grid_step_((s_to_ - s_from_) / (o.points - 1)) {}
 
@@ -253,7 +257,7 @@ class PathTracer {
   int startingPoint() {
     for (int i = 0; i < o_.points; ++i) {
       const double a = std::exp(gridS(i));
-      const SolverResult r = solveAt(system_, solver_, solver_options_, a, linearStart(system_, backbone_.start, a));
+      const SolverResult r = solveAt(system_, solver_, solver_options_, a, linearStart(system_, backbone_.start, a, at_rest_));
       addWork(r);
       if (r.converged()) {
         record(i, r, a);
@@ -384,6 +388,7 @@ class PathTracer {
   }
 
 
+  const StaticContactState* at_rest_;
   ModeSystem& system_;
   ModePathSystem path_;
   Solver& solver_;
@@ -405,14 +410,15 @@ class PathTracer {
 }  // namespace
 
 Backbone followBackbone(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
-                        const BackboneOptions& o, const BackboneProgress& progress) {
+                        const BackboneOptions& o, const BackboneProgress& progress,
+                        const StaticContactState* at_rest) {
   const auto start_time = std::chrono::steady_clock::now();
-  const std::vector<LinearMode> modes = linearModes(model);
+  const std::vector<LinearMode> modes = linearModes(model, at_rest);
   o.validate(static_cast<int>(modes.size()));
   Backbone backbone;
   backbone.start = modes[o.mode - 1];
-  ModeSystem system(model, backbone.start.shape);
-  PathTracer(system, solver, solver_options, o, progress, &backbone).run();
+  ModeSystem system(model, backbone.start.shape, at_rest != nullptr);
+  PathTracer(system, solver, solver_options, o, progress, at_rest, &backbone).run();
   backbone.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return backbone;
 }

@@ -68,9 +68,13 @@ struct Backbone {
 using BackboneProgress = std::function<void(const BackbonePoint&, int index)>;
 
 // Throws InputError for bad options or a model without the fundamental, or
-// when the solver rejects its options.
+// when the solver rejects its options. `at_rest`: a preloaded scene's static
+// state (Scene::at_rest), about which the mode vibrates: its loads stay
+// applied, the linear mode is the structure's linearised there, and every
+// start adds the static state's constant terms.
 Backbone followBackbone(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
-                        const BackboneOptions& options, const BackboneProgress& progress = nullptr);
+                        const BackboneOptions& options, const BackboneProgress& progress = nullptr,
+                        const StaticContactState* at_rest = nullptr);
 
 // ξ ∮ ẋᵀ M ẋ dt over one period = ξ π ω Σ_{k>0} k² (x̂_cᵀ M x̂_c + x̂_sᵀ M x̂_s):
 // what −ξ M ẋ feeds in, equal to what the structure and its laws dissipate.

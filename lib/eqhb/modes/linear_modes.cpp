@@ -7,15 +7,19 @@
 namespace eqhb {
 
 namespace {
-// The partials (a, b, c, e) of component `a` of `law` at rest.
+// The partials (a, b, c, e) of component `a` of `law` at rest: at zero, or
+// on `rest`, the law's inputs in a static state (one sample).
 struct RestPartials {
   double displacement = 0.0, velocity = 0.0, force = 0.0, force_rate = 0.0;
 };
 
-RestPartials partialsAtRest(const Law& law, int component) {
+RestPartials partialsAtRest(const Law& law, int component, const LawSamples* rest) {
   const int d = law.dimension();
   LawSamples samples;
-  samples.resize(1, d, law.historyTerms());
+  if (rest)
+    samples = *rest;
+  else
+    samples.resize(1, d, law.historyTerms());
   law.evaluate(samples, true);
   const int ab = component * d + component;
   RestPartials p;
@@ -27,17 +31,18 @@ RestPartials partialsAtRest(const Law& law, int component) {
 }
 }  // namespace
 
-LinearisedStructure linearisedStructure(const HbModel& model) {
+LinearisedStructure linearisedStructure(const HbModel& model, const StaticContactState* at_rest) {
   const LinearStructure& s = model.structure;
   const int n = s.dofs();
   LinearisedStructure out;
   out.stiffness = Eigen::MatrixXd(s.stiffness);
   out.damping = Eigen::MatrixXd(s.damping);
   out.held.assign(n, false);
-  for (const AttachedLaw& attached : model.laws) {
+  for (size_t l = 0; l < model.laws.size(); ++l) {
+    const AttachedLaw& attached = model.laws[l];
     const Law& law = *attached.law;
     for (int a = 0; a < law.dimension(); ++a) {
-      const RestPartials p = partialsAtRest(law, a);
+      const RestPartials p = partialsAtRest(law, a, at_rest ? &at_rest->rest[l] : nullptr);
       const double sign = law.forceSign();
       const Eigen::VectorXd w = attached.attachment.transposeDense(n).col(a);
       const bool one_dof = attached.attachment.row(a).size() == 1 && attached.attachment.row(a).front().weight == 1.0;
@@ -57,8 +62,8 @@ LinearisedStructure linearisedStructure(const HbModel& model) {
   return out;
 }
 
-std::vector<LinearMode> linearModes(const HbModel& model) {
-  const LinearisedStructure lin = linearisedStructure(model);
+std::vector<LinearMode> linearModes(const HbModel& model, const StaticContactState* at_rest) {
+  const LinearisedStructure lin = linearisedStructure(model, at_rest);
   const Eigen::MatrixXd mass(model.structure.mass);
   const int n = model.structure.dofs();
   std::vector<int> free;

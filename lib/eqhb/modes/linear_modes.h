@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/preload/static_contact.h"
 
 namespace eqhb {
 
@@ -37,12 +38,15 @@ struct LinearisedStructure {
   std::vector<Eigen::VectorXd> ties;   // w of each held component not on one DOF: w·x = 0
 };
 
-// The structure of `model` with its laws linearised about rest (above).
-LinearisedStructure linearisedStructure(const HbModel& model);
+// The structure of `model` with its laws linearised about rest (above), or
+// about the static state `at_rest` under a preload (each law's partials on
+// its static inputs: a pressed penalty contact is its spring, a stuck
+// slider its k_t).
+LinearisedStructure linearisedStructure(const HbModel& model, const StaticContactState* at_rest = nullptr);
 
 // Every mode of the linearised structure by increasing frequency (those of
 // zero frequency, rigid-body motion, are left out).
-std::vector<LinearMode> linearModes(const HbModel& model);
+std::vector<LinearMode> linearModes(const HbModel& model, const StaticContactState* at_rest = nullptr);
 
 // The laws' forces (one per component, model.componentIndex order) that
 // supply `needed`, the force the structure's dynamics asks of its laws

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "eqhb/harmonic_balance/dense_from_pattern.h"
 #include "eqhb/sparse_slots.h"
@@ -29,7 +30,10 @@ PathWeights PathWeights::at(const ModeSystem& system, const Eigen::VectorXd& y, 
   return p;
 }
 
-ModePathSystem::ModePathSystem(ModeSystem& mode) : mode_(mode), inner_(mode.size()), size_(mode.size() + 1) {
+ModePathSystem::ModePathSystem(ModeSystem& mode, const Eigen::VectorXd& offset)
+    : mode_(mode), inner_(mode.size()), size_(mode.size() + 1) {
+  offset_ = offset.size() ? offset : Eigen::VectorXd::Zero(mode.omegaIndex());
+  if (offset_.size() != mode.omegaIndex()) throw std::invalid_argument("ModePathSystem: one offset per coefficient");
   z_.setZero(inner_);
   constraint_.setZero(size_);
   predicted_.setZero(size_);
@@ -60,7 +64,7 @@ void ModePathSystem::buildPattern() {
 Eigen::VectorXd ModePathSystem::pathPoint(const Eigen::VectorXd& z, double amplitude) const {
   Eigen::VectorXd y(size_);
   const int coefficients = mode_.omegaIndex();
-  y.head(coefficients) = z.head(coefficients) / amplitude;
+  y.head(coefficients) = (z.head(coefficients) - offset_) / amplitude;
   y.segment(coefficients, 2) = z.segment(coefficients, 2);
   y[inner_] = std::log(amplitude);
   return y;
@@ -69,7 +73,7 @@ Eigen::VectorXd ModePathSystem::pathPoint(const Eigen::VectorXd& z, double ampli
 Eigen::VectorXd ModePathSystem::modePoint(const Eigen::VectorXd& y) const {
   Eigen::VectorXd z(inner_);
   const int coefficients = mode_.omegaIndex();
-  z.head(coefficients) = y.head(coefficients) * std::exp(y[inner_]);
+  z.head(coefficients) = offset_ + y.head(coefficients) * std::exp(y[inner_]);
   z.tail(2) = y.segment(coefficients, 2);
   return z;
 }
@@ -106,7 +110,7 @@ bool ModePathSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen:
   if (!std::isfinite(s) || std::abs(s) > 700.0) return false;  // e^s stays a finite, nonzero amplitude
   const double a = std::exp(s);
   const int coefficients = mode_.omegaIndex();
-  z_.head(coefficients) = a * y.head(coefficients);
+  z_.head(coefficients) = offset_ + a * y.head(coefficients);
   z_.tail(2) = y.segment(coefficients, 2);
   mode_.setAmplitude(a);
   g[inner_] = constraint_.dot(y - predicted_);
@@ -124,7 +128,7 @@ bool ModePathSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen:
         continue;
       }
       values[mode_slot_[p]] = a * mode_values[p];
-      ds[mode_jacobian_.innerIndexPtr()[p]] += mode_values[p] * z_[j];  // ∂g/∂z_q · (a q)
+      ds[mode_jacobian_.innerIndexPtr()[p]] += mode_values[p] * (z_[j] - offset_[j]);  // ∂g/∂z_q · (a q)
     }
   }
   ds[mode_.omegaIndex()] -= a;  // the amplitude row: φᵀ M x̂₁ − eˢ

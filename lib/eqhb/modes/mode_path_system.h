@@ -2,9 +2,10 @@
 // in pseudo-arclength past the points where the backbone folds in amplitude
 // (two modes at one amplitude: ω and ξ turn back as a grows).
 //
-// Unknowns y = [q; ω; ξ; s]: q = [x̂; λ̂] / a, the mode's coefficients per
-// unit modal amplitude, and s = log a (as NLvib's EPMC continuation), so
-// that every unknown stays of one size over decades of amplitude. The
+// Unknowns y = [q; ω; ξ; s]: q = ([x̂; λ̂] − c) / a, the mode's coefficients
+// per unit modal amplitude about an offset c (0, or a preload's static
+// state), and s = log a (as NLvib's EPMC continuation), so that every
+// unknown stays of one size over decades of amplitude. The
 // equations are the mode system's (mode_system.h) at z(y) = [a q; ω; ξ],
 // a = eˢ, bordered by the arclength condition
 //
@@ -40,7 +41,8 @@ struct PathWeights {
 
 class ModePathSystem : public SquareSystem {
  public:
-  explicit ModePathSystem(ModeSystem& mode);
+  // `offset`: c above, the mode system's coefficients (empty: 0).
+  explicit ModePathSystem(ModeSystem& mode, const Eigen::VectorXd& offset = Eigen::VectorXd());
   int size() const override { return size_; }
   int sIndex() const { return size_ - 1; }
 
@@ -68,6 +70,7 @@ class ModePathSystem : public SquareSystem {
   ModeSystem& mode_;
   int inner_, size_;  // inner_: the mode system's size (q, ω, ξ)
   Eigen::VectorXd constraint_, predicted_, z_, values_;  // constraint_: w ∘ τ
+  Eigen::VectorXd offset_;                                // c, one per coefficient
   SparseMatrix pattern_, mode_jacobian_;
   std::vector<int> mode_slot_;  // path slot of each mode-Jacobian value
   int s_column_ = 0, constraint_row_slot_ = 0;

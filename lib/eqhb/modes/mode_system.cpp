@@ -13,15 +13,18 @@
 namespace eqhb {
 
 namespace {
-HbModel unforced(HbModel model) {
-  model.structure.loads.clear();
+HbModel unforced(HbModel model, bool keep_static_loads) {
+  auto& loads = model.structure.loads;
+  loads.erase(std::remove_if(loads.begin(), loads.end(),
+                             [&](const HarmonicLoad& load) { return !(keep_static_loads && load.harmonic == 0); }),
+              loads.end());
   return model;
 }
 
 }  // namespace
 
-ModeSystem::ModeSystem(const HbModel& model, const Eigen::VectorXd& shape)
-    : inner_(unforced(model)), shape_(shape) {
+ModeSystem::ModeSystem(const HbModel& model, const Eigen::VectorXd& shape, bool keep_static_loads)
+    : inner_(unforced(model, keep_static_loads)), shape_(shape) {
   inner_.scaleRhoByStaticCompliance();  // ω is the mode's resonance: its dynamic compliance is 0 or ∞
   const HbModel& m = inner_.model();
   if (!m.basis.contains(1))

@@ -28,10 +28,11 @@ namespace eqhb {
 
 class ModeSystem : public SquareSystem {
  public:
-  // `model`: the scene's (its loads are ignored); `shape`: φ, n values with
-  // φᵀ M φ = 1. Throws InputError as FullSystem does, and for a basis
-  // without the fundamental.
-  ModeSystem(const HbModel& model, const Eigen::VectorXd& shape);
+  // `model`: the scene's (its loads are ignored, but for the constant ones
+  // when `keep_static_loads`: a preload the mode vibrates about); `shape`:
+  // φ, n values with φᵀ M φ = 1. Throws InputError as FullSystem does, and
+  // for a basis without the fundamental.
+  ModeSystem(const HbModel& model, const Eigen::VectorXd& shape, bool keep_static_loads = false);
 
   int size() const override { return size_; }
   int omegaIndex() const { return inner_size_; }
