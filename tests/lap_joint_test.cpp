@@ -74,10 +74,9 @@ std::vector<std::string> boltTimes(double factor) {
   return out;
 }
 
-// The harmonic-1 response (a1 + i b1 per DOF, x = a1 cos ωt + b1 sin ωt) of
-// the structure with each law replaced by a linear spring along its
-// direction: penalty contacts by k_n, sliders by k_t when `stuck` (else none).
-Eigen::VectorXcd linearResponse(const HbModel& model, bool stuck) {
+// K with each law a linear spring along its direction: penalty contacts by
+// k_n, sliders by k_t when `stuck` (else none).
+Eigen::MatrixXd springStiffness(const HbModel& model, bool stuck) {
   const LinearStructure& s = model.structure;
   Eigen::MatrixXd k(s.stiffness);
   for (const AttachedLaw& law : model.laws) {
@@ -88,6 +87,15 @@ Eigen::VectorXcd linearResponse(const HbModel& model, bool stuck) {
     const Eigen::MatrixXd w = law.attachment.transposeDense(s.dofs());  // n x 1
     k += spring * w * w.transpose();
   }
+  return k;
+}
+
+// The harmonic-1 response (a1 + i b1 per DOF, x = a1 cos ωt + b1 sin ωt) of
+// the structure with each law replaced by a linear spring along its
+// direction: penalty contacts by k_n, sliders by k_t when `stuck` (else none).
+Eigen::VectorXcd linearResponse(const HbModel& model, bool stuck) {
+  const LinearStructure& s = model.structure;
+  const Eigen::MatrixXd k = springStiffness(model, stuck);
   const double omega = model.omega;
   Eigen::MatrixXcd dynamic = (k - omega * omega * Eigen::MatrixXd(s.mass)).cast<std::complex<double>>();
   dynamic += std::complex<double>(0.0, omega) * Eigen::MatrixXd(s.damping).cast<std::complex<double>>();
@@ -199,20 +207,10 @@ TEST(LapJoint, EnergyFedInIsWhatTheDampingAndTheSlidersDissipate) {
 }
 
 // The first bending frequency of the structure with each law a linear
-// spring (as linearResponse): penalty contacts by k_n, sliders by k_t when
-// `stuck`.
+// spring (springStiffness).
 double firstFrequency(const HbModel& model, bool stuck) {
-  const LinearStructure& s = model.structure;
-  Eigen::MatrixXd k(s.stiffness);
-  for (const AttachedLaw& law : model.laws) {
-    double spring = 0.0;
-    if (const auto* wall = dynamic_cast<const PenaltyContact*>(law.law.get())) spring = wall->stiffness();
-    if (const auto* slider = dynamic_cast<const JenkinsAft*>(law.law.get()); slider && stuck)
-      spring = slider->sliders().front().k_t;
-    const Eigen::MatrixXd w = law.attachment.transposeDense(s.dofs());
-    k += spring * w * w.transpose();
-  }
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eigen(k, Eigen::MatrixXd(s.mass));
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eigen(springStiffness(model, stuck),
+                                                                         Eigen::MatrixXd(model.structure.mass));
   return std::sqrt(eigen.eigenvalues()[0]);
 }
 
