@@ -1,0 +1,19 @@
+// The nonlinear mode's path followed in pseudo-arclength from the linear
+// mode at the smallest amplitude (backbone.h has the account): the tracer
+// behind followBackbone, kept apart from the backbone's public types.
+#pragma once
+
+#include "eqhb/modes/backbone.h"
+#include "eqhb/modes/mode_system.h"
+#include "eqhb/preload/static_contact.h"
+#include "eqhb/solvers/solver.h"
+
+namespace eqhb {
+
+// Fills `backbone`'s points, folds and stop (its `start` set by the caller)
+// on `system`, built on the start's shape. Throws InputError when the solver
+// rejects its options.
+void tracePath(ModeSystem& system, Solver& solver, const SolverOptions& solver_options, const BackboneOptions& o,
+               const BackboneProgress& progress, const StaticContactState* at_rest, Backbone* backbone);
+
+}  // namespace eqhb
