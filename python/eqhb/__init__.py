@@ -307,11 +307,16 @@ def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, sa
     """The nonlinear mode `mode` (K, from 1, of the structure linearised about
     rest) by the extended periodic motion concept, as `eqhb modes`: the
     unforced structure with an added damping -xi M x' that makes the motion
-    periodic, followed over `points` modal amplitudes phi^T M x1 evenly spaced
-    in log from `start` to `stop` (`eqhb modes --from/--to`; None: 1e-2 and
-    1e3 of the scene's length scale). Returns the keys of `eqhb modes
-    --json`: mode, from, to, linear_mode (omega, damping_ratio, shape),
-    complete, failed_points, seconds and points, each with amplitude, omega,
+    periodic, continued in pseudo-arclength (past the folds where it turns
+    back in amplitude) and reported at `points` modal amplitudes phi^T M x1
+    evenly spaced in log from `start` to `stop` (`eqhb modes --from/--to`;
+    None: 1e-2 and 1e3 of the slip onset, else of the scene's length scale),
+    at every crossing of the path in its order; a preloaded scene's mode is
+    taken about its static state. Returns the keys of `eqhb modes --json`:
+    mode, from, to, linear_mode (omega, damping_ratio, shape), complete,
+    failed_points, folds (amplitude, omega, damping_ratio at each turn),
+    stop (None, or why and where the path stopped), seconds and points, each
+    with amplitude, omega,
     xi, damping_ratio (xi / 2 omega), dissipated_energy (per cycle), max_abs
     (per DOF), the solve's counts and "channels" (every DOF's and law
     force's Fourier coefficients)."""
