@@ -5,10 +5,12 @@
 // stuck system, its mean fixed by the static state) and the input errors.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <unistd.h>
 
+#include "eqhb/app/modes.h"
 #include "eqhb/app/solve.h"
 #include "eqhb/error.h"
 #include "eqhb/output/solution_json.h"
@@ -163,6 +165,25 @@ TEST(StaticPreload, SolveJsonReportsTheStaticState) {
   EXPECT_EQ(j["preload"]["elements"][0]["state"], "closed");
   EXPECT_NEAR(j["preload"]["elements"][0]["normal_force"].get<double>(), 10.0 * (7.0 / 11.0 - 0.5), 1e-12);
   EXPECT_NEAR(j["preload"]["elements"][0]["gap"].get<double>(), 0.5 - 7.0 / 11.0, 1e-12);
+}
+
+// A nonlinear mode vibrates about the static state its constant loads set:
+// pressed on the wall (a [[preload]], or a constant [[forcing]] term) the
+// oscillator's small-amplitude mode is the pressed one, ω = √(k + k_n) = √11,
+// not the free one at rest (ω = 1, the wall 0.5 away).
+TEST(StaticPreload, NonlinearModeVibratesAboutTheStaticState) {
+  for (const std::string& load : {preload(2.0), forcing(2.0, 0)}) {
+    app::ModesOptions o;
+    o.from = 1e-4;
+    o.to = 1e-3;
+    o.points = 3;
+    const app::ModesRun run = app::modes(written(oscillator(kWall, load)), o);
+    ASSERT_TRUE(run.backbone.complete()) << load;
+    ASSERT_TRUE(run.scene.at_rest) << load;
+    EXPECT_NEAR(run.backbone.start.omega, std::sqrt(11.0), 1e-12) << load;
+    for (const BackbonePoint& p : run.backbone.points) EXPECT_NEAR(p.omega, std::sqrt(11.0), 1e-9) << load;
+    EXPECT_NEAR(run.scene.at_rest->displacement[0], 7.0 / 11.0, 1e-12) << load;
+  }
 }
 
 TEST(StaticPreload, BadInputNamesTheField) {

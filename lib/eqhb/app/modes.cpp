@@ -5,6 +5,8 @@
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
+#include "eqhb/preload/operating_point.h"
+#include "eqhb/preload/static_contact.h"
 
 namespace eqhb::app {
 
@@ -25,6 +27,12 @@ bool ModesOptions::isValid(std::string* why) const {
 }
 
 namespace {
+bool hasConstantLoad(const HbModel& model) {
+  for (const HarmonicLoad& load : model.structure.loads)
+    if (load.harmonic == 0 && (load.cos_amplitude != 0.0 || load.sin_amplitude != 0.0)) return true;
+  return false;
+}
+
 // The modal amplitude at which the first law reaches its force level (a
 // friction law its slip limit μN) on the linear mode: the laws' forces are
 // those that supply the mode's reaction (K − ω² M) φ per unit amplitude
@@ -82,6 +90,14 @@ ModesRun modes(const SceneSettings& scene, const ModesOptions& o) {
   ModesRun run;
   run.scene = loadScene(scene);
   run.solver = o.solver;
+  // A mode vibrates about the structure's static state under its constant
+  // loads: a scene's [[preload]] is settled already; constant forcing (a
+  // centrifugal load pressing a damper) is settled here.
+  if (!run.scene.at_rest && hasConstantLoad(run.scene.model)) {
+    auto statics = makeSolver("dogleg");
+    run.scene.at_rest = solveStaticContact(run.scene.model, *statics, SolverOptions{});
+    run.scene.model = anchoredAtRest(std::move(run.scene.model), *run.scene.at_rest);
+  }
   const StaticContactState* at_rest = run.scene.at_rest ? &*run.scene.at_rest : nullptr;
   run.options = chosenRange(run.scene.model, o, at_rest);
   auto solver = makeSolver(o.solver);
