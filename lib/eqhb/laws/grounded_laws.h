@@ -1,6 +1,6 @@
-// The computations that read one DOF per law component (exact orbits, the
-// linear modes a nonlinear mode starts from) refuse elements between nodes
-// through this check, which names the law and the computation.
+// The computations that read one DOF per law component (the exact orbits'
+// flows) refuse elements between nodes through this check, which names the
+// law and the computation.
 #pragma once
 
 #include <string>
