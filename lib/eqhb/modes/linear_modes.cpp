@@ -29,6 +29,11 @@ RestPartials partialsAtRest(const Law& law, int component, const LawSamples* res
   if (law.usesForceRate()) p.force_rate = samples.dpsi_dforce_rate(0, ab);
   return p;
 }
+// Component a reads one DOF as it is (the grounded form): its force is that
+// DOF's, and held it holds that DOF.
+bool onOneDof(const LawAttachment& attachment, int a) {
+  return attachment.row(a).size() == 1 && attachment.row(a).front().weight == 1.0;
+}
 }  // namespace
 
 LinearisedStructure linearisedStructure(const HbModel& model, const StaticContactState* at_rest) {
@@ -45,14 +50,13 @@ LinearisedStructure linearisedStructure(const HbModel& model, const StaticContac
       const RestPartials p = partialsAtRest(law, a, at_rest ? &at_rest->rest[l] : nullptr);
       const double sign = law.forceSign();
       const Eigen::VectorXd w = attached.attachment.transposeDense(n).col(a);
-      const bool one_dof = attached.attachment.row(a).size() == 1 && attached.attachment.row(a).front().weight == 1.0;
       if (p.force != 0.0) {
         out.stiffness += (sign * p.displacement / p.force) * w * w.transpose();
         out.damping += (sign * p.velocity / p.force) * w * w.transpose();
       } else if (p.force_rate != 0.0) {
         out.stiffness += (sign * p.velocity / p.force_rate) * w * w.transpose();
       } else if (p.displacement != 0.0 || p.velocity != 0.0) {
-        if (one_dof)
+        if (onOneDof(attached.attachment, a))
           out.held[attached.attachment.dof(a)] = true;
         else
           out.ties.push_back(w);
@@ -124,29 +128,29 @@ Eigen::VectorXd lawForcesFor(const HbModel& model, const Eigen::VectorXd& needed
   Eigen::VectorXd forces = Eigen::VectorXd::Zero(components);
   Eigen::VectorXd remaining = needed;
   std::vector<bool> taken(n, false);
-  std::vector<int> shared;  // components not on one DOF
-  Eigen::MatrixXd directions(n, 0);
+  std::vector<int> shared;                // components not on one DOF
+  std::vector<Eigen::VectorXd> directions;  // their sign · W_aᵀ
   for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
     const AttachedLaw& attached = model.laws[l];
     const double sign = attached.law->forceSign();
     for (int c = 0; c < attached.law->dimension(); ++c) {
-      const auto& row = attached.attachment.row(c);
       const int index = model.componentIndex(l, c);
-      if (row.size() == 1 && row.front().weight == 1.0) {
-        const int dof = row.front().dof;
-        if (taken[dof]) continue;
-        taken[dof] = true;
-        forces[index] = needed[dof] / sign;
-        remaining[dof] = 0.0;
+      if (!onOneDof(attached.attachment, c)) {
+        shared.push_back(index);
+        directions.push_back(sign * attached.attachment.transposeDense(n).col(c));
         continue;
       }
-      shared.push_back(index);
-      directions.conservativeResize(n, directions.cols() + 1);
-      directions.rightCols(1) = sign * attached.attachment.transposeDense(n).col(c);
+      const int dof = attached.attachment.dof(c);
+      if (taken[dof]) continue;
+      taken[dof] = true;
+      forces[index] = needed[dof] / sign;
+      remaining[dof] = 0.0;
     }
   }
   if (!shared.empty()) {
-    const Eigen::VectorXd lambda = directions.completeOrthogonalDecomposition().solve(remaining);
+    Eigen::MatrixXd w(n, shared.size());
+    for (size_t k = 0; k < shared.size(); ++k) w.col(k) = directions[k];
+    const Eigen::VectorXd lambda = w.completeOrthogonalDecomposition().solve(remaining);
     for (size_t k = 0; k < shared.size(); ++k) forces[shared[k]] = lambda[k];
   }
   return forces;

@@ -36,7 +36,6 @@ ModePathSystem::ModePathSystem(ModeSystem& mode, const Eigen::VectorXd& offset)
   if (offset_.size() != mode.omegaIndex()) throw std::invalid_argument("ModePathSystem: one offset per coefficient");
   z_.setZero(inner_);
   constraint_.setZero(size_);
-  predicted_.setZero(size_);
   mode_jacobian_ = mode_.jacobianPattern();
   buildPattern();
 }
@@ -81,7 +80,7 @@ Eigen::VectorXd ModePathSystem::modePoint(const Eigen::VectorXd& y) const {
 void ModePathSystem::setConstraint(const PathWeights& weights, const Eigen::VectorXd& tangent,
                                    const Eigen::VectorXd& predicted) {
   constraint_ = weights.w.cwiseProduct(tangent);
-  predicted_ = predicted;
+  constraint_at_prediction_ = constraint_.dot(predicted);
 }
 
 bool ModePathSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> g) {
@@ -113,7 +112,7 @@ bool ModePathSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen:
   z_.head(coefficients) = offset_ + a * y.head(coefficients);
   z_.tail(2) = y.segment(coefficients, 2);
   mode_.setAmplitude(a);
-  g[inner_] = constraint_.dot(y - predicted_);
+  g[inner_] = constraint_.dot(y) - constraint_at_prediction_;  // ⟨τ, y − y_pred⟩ without a temporary
   if (!values) return mode_.residual(z_, g.head(inner_)) && std::isfinite(g[inner_]);
   if (!mode_.residualAndSparseJacobian(z_, g.head(inner_), mode_jacobian_)) return false;
 

@@ -69,7 +69,8 @@ class ModePathSystem : public SquareSystem {
   void buildPattern();
   ModeSystem& mode_;
   int inner_, size_;  // inner_: the mode system's size (q, ω, ξ)
-  Eigen::VectorXd constraint_, predicted_, z_, values_;  // constraint_: w ∘ τ
+  Eigen::VectorXd constraint_, z_, values_;  // constraint_: w ∘ τ
+  double constraint_at_prediction_ = 0.0;     // ⟨τ, y_pred⟩
   Eigen::VectorXd offset_;                                // c, one per coefficient
   SparseMatrix pattern_, mode_jacobian_;
   std::vector<int> mode_slot_;  // path slot of each mode-Jacobian value

@@ -360,19 +360,23 @@ void readMarketStructure(TableReader& s, const std::string& source, const ModelS
   read->structure = toLinearStructure(matrices);
 }
 
+// Bounds an element assembly before it is built: `dofs` unknowns, `entries`
+// in each of M, C and K, and the triplets M and K are summed from; named by
+// `field` = `value`.
+void boundAssembly(const std::string& source, const ModelSizes& settings, const std::string& field,
+                   const std::string& value, const std::string& what, double dofs, double entries) {
+  bounded(source, [&] { checkBytes(field, value, what, 3.0 * sparseBytes(dofs, entries) + 2.0 * 16.0 * entries); });
+  checkModelBeforeBuilding(source, settings, field, value, dofs, 3.0 * entries);
+}
+
 // A cantilever Euler–Bernoulli beam (structures/beam.h), with a damping model.
 void readBeam(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
   BeamParameters beam;
   beam.elements = s.integer("elements");
-  // Two DOFs per node, 16 entries per element in M and K (and C), and the
-  // assembly's triplets: bounded before they are built.
+  // Two DOFs per node, 16 entries per element in M and K (and C).
   const double e = std::max(beam.elements, 0);
-  bounded(source, [&] {
-    checkBytes("structure.elements", std::to_string(beam.elements), "a beam's sparse M, C and K",
-               3.0 * sparseBytes(2.0 * e, 16.0 * e) + 2.0 * 16.0 * 16.0 * e);
-  });
-  checkModelBeforeBuilding(source, settings, "structure.elements", std::to_string(beam.elements), 2.0 * e,
-                           3.0 * 16.0 * e);
+  boundAssembly(source, settings, "structure.elements", std::to_string(beam.elements), "a beam's sparse M, C and K",
+                2.0 * e, 16.0 * e);
   beam.youngs_modulus = s.number("E");
   beam.second_moment = s.number("I");
   beam.mass_per_length = s.number("rhoA");
@@ -387,15 +391,10 @@ void readBeam(TableReader& s, const std::string& source, const ModelSizes& setti
 void readFrame(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
   FrameParameters frame;
   frame.elements = s.integer("elements");
-  // Three DOFs per node, 20 entries per element in M and K (and C), and the
-  // assembly's triplets: bounded before they are built.
+  // Three DOFs per node, 20 entries per element in M and K (and C).
   const double e = std::max(frame.elements, 0);
-  bounded(source, [&] {
-    checkBytes("structure.elements", std::to_string(frame.elements), "a frame's sparse M, C and K",
-               3.0 * sparseBytes(3.0 * e, 20.0 * e) + 2.0 * 16.0 * 20.0 * e);
-  });
-  checkModelBeforeBuilding(source, settings, "structure.elements", std::to_string(frame.elements), 3.0 * e,
-                           3.0 * 20.0 * e);
+  boundAssembly(source, settings, "structure.elements", std::to_string(frame.elements),
+                "a frame's sparse M, C and K", 3.0 * e, 20.0 * e);
   frame.section.youngs_modulus = s.number("E");
   frame.section.area = s.number("A");
   frame.section.second_moment = s.number("I");
@@ -416,11 +415,8 @@ void readLapJoint(TableReader& s, const std::string& source, const ModelSizes& s
   p.pairs = s.integer("pairs");
   p.elements = s.integer("elements");
   const double dofs = 6.0 * (std::max(p.pairs, 0) + std::max(p.elements, 0));
-  bounded(source, [&] {
-    checkBytes("structure.pairs", std::to_string(p.pairs), "a lap joint's sparse M, C and K",
-               3.0 * sparseBytes(dofs, 12.0 * dofs) + 2.0 * 16.0 * 12.0 * dofs);
-  });
-  checkModelBeforeBuilding(source, settings, "structure.pairs", std::to_string(p.pairs), dofs, 3.0 * 12.0 * dofs);
+  boundAssembly(source, settings, "structure.pairs", std::to_string(p.pairs), "a lap joint's sparse M, C and K",
+                dofs, 12.0 * dofs);
   p.length = s.number("L");
   p.overlap = s.number("overlap");
   p.thickness = s.number("h");

@@ -41,13 +41,7 @@ StructureMatrices cantileverBeam(const BeamParameters& beam) {
         m.emplace_back(i, j, ra * me[a][b]);
       }
   }
-  StructureMatrices s;
-  s.mass.resize(n, n);
-  s.stiffness.resize(n, n);
-  s.damping.resize(n, n);
-  s.mass.setFromTriplets(m.begin(), m.end());
-  s.stiffness.setFromTriplets(k.begin(), k.end());
-  return s;
+  return fromElementTriplets(n, m, k);
 }
 
 std::vector<double> cantileverFrequencies(const BeamParameters& beam, int count) {

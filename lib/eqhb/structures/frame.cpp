@@ -61,13 +61,7 @@ StructureMatrices cantileverFrame(const FrameParameters& frame) {
     }
     addFrameElement(frame.section, l, dofs, &k, &m);
   }
-  StructureMatrices s;
-  s.mass.resize(n, n);
-  s.stiffness.resize(n, n);
-  s.damping.resize(n, n);
-  s.mass.setFromTriplets(m.begin(), m.end());
-  s.stiffness.setFromTriplets(k.begin(), k.end());
-  return s;
+  return fromElementTriplets(n, m, k);
 }
 
 std::vector<double> axialBarFrequencies(const FrameParameters& frame, int count) {

@@ -59,11 +59,7 @@ LapJoint lapJoint(const LapJointParameters& p) {
   const double outer = (p.length - p.overlap) / p.elements, inner = p.overlap / (p.pairs - 1);
   std::vector<Eigen::Triplet<double>> k, m;
   for (int beam = 0; beam < 2; ++beam) assembleBeam(section, beam, joint.beam_nodes, p.elements, outer, inner, &k, &m);
-  StructureMatrices frame;
-  frame.mass.resize(n, n);
-  frame.stiffness.resize(n, n);
-  frame.mass.setFromTriplets(m.begin(), m.end());
-  frame.stiffness.setFromTriplets(k.begin(), k.end());
+  const StructureMatrices frame = fromElementTriplets(n, m, k);
 
   // x = T x̃: u = u_s − (h/2) θ on the upper beam's overlap nodes, u = u_s + (h/2) θ on the lower's.
   std::vector<Eigen::Triplet<double>> t;

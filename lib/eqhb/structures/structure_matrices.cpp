@@ -10,6 +10,17 @@
 
 namespace eqhb {
 
+StructureMatrices fromElementTriplets(int n, const std::vector<Eigen::Triplet<double>>& mass,
+                                      const std::vector<Eigen::Triplet<double>>& stiffness) {
+  StructureMatrices s;
+  s.mass.resize(n, n);
+  s.stiffness.resize(n, n);
+  s.damping.resize(n, n);
+  s.mass.setFromTriplets(mass.begin(), mass.end());
+  s.stiffness.setFromTriplets(stiffness.begin(), stiffness.end());
+  return s;
+}
+
 namespace {
 
 double largestEntry(const Eigen::SparseMatrix<double>& m) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/SparseCore>
 #include <string>
+#include <vector>
 
 #include "eqhb/structures/linear_structure.h"
 
@@ -14,6 +15,11 @@ struct StructureMatrices {
   Eigen::SparseMatrix<double> mass, damping, stiffness;  // n x n, symmetric
   int dofs() const { return static_cast<int>(mass.rows()); }
 };
+
+// M and K (n x n) summed from element triplets, C zero: the end of every
+// element assembly (beam, frame, lap joint).
+StructureMatrices fromElementTriplets(int n, const std::vector<Eigen::Triplet<double>>& mass,
+                                      const std::vector<Eigen::Triplet<double>>& stiffness);
 
 // C = α M + β K.
 Eigen::SparseMatrix<double> rayleighDamping(const StructureMatrices& s, double alpha, double beta);
