@@ -11,7 +11,7 @@ namespace {
 const std::pair<const char*, const char*> kFlags[] = {
     {"from_harmonics", "--from-harmonics"}, {"max_harmonics", "--max-harmonics"},
     {"refine_harmonics", "--refine-harmonics"}, {"cold_start", "--cold-start"},
-    {"linear_algebra", "--linear-algebra"}, 
+    {"linear_algebra", "--linear-algebra"}, {"backbone_time_limit", "--backbone-time-limit"},
     {"accuracy", "--accuracy"}, {"fallback", "--fallback"},
     {"options", "--option"}, {"repeat", "--repeat"},
     {"form", "--form"}, {"formulation", "--formulation"}, {"rho", "--rho"},

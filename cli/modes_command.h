@@ -15,6 +15,8 @@ struct ModesArguments {
   int mode = app::ModesOptions{}.mode;
   std::optional<double> from, to;
   int points = app::ModesOptions{}.points;
+  double backbone_time_limit = 0.0;
+  bool synthesis = false;
   bool csv = false;
 };
 

@@ -68,5 +68,7 @@ eqhb_cli_expect(chain_model_by_memory 2 "structure.dofs = 16777216: the model \\
 eqhb_cli_expect(modes_mode_too_high 2 "mode = 2: must be in \\[1, 1\\]" modes ${SCENE} --mode 2)
 eqhb_cli_expect(modes_from_zero 2 "from = 0: must be finite and > 0" modes ${SCENE} --from 0 --to 1)
 eqhb_cli_expect(modes_to_nan 2 "to = nan: must be finite and > 0" modes ${SCENE} --to nan)
+eqhb_cli_expect(modes_backbone_time_limit_negative 2 "--backbone-time-limit = -1: must be finite and >= 0" modes ${SCENE} --backbone-time-limit -1)
+eqhb_cli_expect(modes_synthesis_without_forcing 2 "forcing = none at harmonic 1" modes ${PROJECT_SOURCE_DIR}/problems/field/modes/nlvib-05-2dof-friction-modes.toml --synthesis)
 eqhb_cli_expect(modes_reversed 2 "to = 0.1: must be > from" modes ${SCENE} --from 1 --to 0.1)
 eqhb_cli_expect(modes_json 0 "\"damping_ratio\": 0.0141421356" modes ${SCENE} --from 0.1 --to 1 --points 3 --json)

@@ -300,6 +300,27 @@ TEST(Backbone, BeamDamperPassesTheFoldWhereTheBackboneTurnsBackInAmplitude) {
     if (b.points[i].amplitude < b.points[i - 1].amplitude) EXPECT_EQ(&b.points[i - 1], below_fold[0]);
 }
 
+// A time limit for the whole backbone stops the path and says so; the
+// amplitudes it did not reach are failed points (beam-damper's backbone
+// takes seconds: it stalls past its folds).
+TEST(Backbone, TimeLimitStopsThePathAndFailsTheAmplitudesNotReached) {
+  const Scene scene = loadScene(test::problem("beam-damper.toml"));
+  auto solver = makeSolver("dogleg");
+  BackboneOptions o;
+  o.from = 7.6e-7;
+  o.to = 7.6e-2;
+  o.points = 30;
+  o.time_limit = 0.2;
+  const Backbone b = followBackbone(scene.model, *solver, SolverOptions(), o);
+  EXPECT_NE(b.stop.why.find("time limit of 0.2 s"), std::string::npos) << b.stop.why;
+  ASSERT_GT(b.failed_points, 0);
+  EXPECT_FALSE(b.points.back().converged);
+  EXPECT_EQ(b.points.back().termination, b.stop.why);
+  EXPECT_LT(b.seconds, 3.0);  // not a speed target: the unlimited backbone takes 4-17 s
+  o.time_limit = -1.0;
+  EXPECT_THROW(followBackbone(scene.model, *solver, SolverOptions(), o), InputError);
+}
+
 // NLvib's example 02 chain with its cubic spring between DOFs 1 and 2, and
 // with exact Coulomb friction between them: the same structure in the
 // coordinates y = (x1, x1 − x2), where both elements are grounded, has the

@@ -303,14 +303,16 @@ def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
 def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, samples=None, form=None, rho=None,
           formulation=None,
           solver="dogleg", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
-          linear_algebra="auto"):
+          linear_algebra="auto", backbone_time_limit=0.0, synthesis=False):
     """The nonlinear mode `mode` (K, from 1, of the structure linearised about
     rest) by the extended periodic motion concept, as `eqhb modes`: the
     unforced structure with an added damping -xi M x' that makes the motion
     periodic, continued in pseudo-arclength (past the folds where it turns
     back in amplitude) and reported at `points` modal amplitudes phi^T M x1
     evenly spaced in log from `start` to `stop` (`eqhb modes --from/--to`;
-    None: 1e-2 and 1e3 of the slip onset, else of the scene's length scale),
+    None: 1e-2 and 1e3 of the slip onset, else of the scene's length scale;
+    about a preload, `stop` no further than where a pressed contact would
+    open on the linear mode, nor below 10 times the onset),
     at every crossing of the path in its order; a preloaded scene's mode is
     taken about its static state. Returns the keys of `eqhb modes --json`:
     mode, from, to, linear_mode (omega, damping_ratio, shape), complete,
@@ -319,7 +321,13 @@ def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, sa
     with amplitude, omega,
     xi, damping_ratio (xi / 2 omega), dissipated_energy (per cycle), max_abs
     (per DOF), the solve's counts and "channels" (every DOF's and law
-    force's Fourier coefficients)."""
+    force's Fourier coefficients). `time_limit` bounds each solve,
+    `backbone_time_limit` the whole backbone (0: none): the path stops there,
+    saying so in `stop`, and the amplitudes not reached are failed points.
+    With `synthesis`, the key "synthesis" also holds the forced response the
+    mode predicts under the scene's forcing (`eqhb modes --synthesis`): its
+    points (omega, amplitude, branch, max_abs), peak, and the forced sweep
+    across that resonance (forced) with their differences (errors)."""
     start, stop = _real(start, "start", True), _real(stop, "stop", True)
     for value, field in ((start, "start"), (stop, "stop")):
         if value is not None and not (math.isfinite(value) and value > 0.0):
@@ -327,7 +335,9 @@ def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, sa
     if start is not None and stop is not None and not stop > start:
         raise InputError(f"stop = {stop!r}: must be > start ({start!r})")
     args = _scene_args(None, harmonics, samples, form, rho, formulation)
-    args.update(mode=_integer(mode, "mode"), points=_integer(points, "points"), **{"from": start, "to": stop})
+    args.update(mode=_integer(mode, "mode"), points=_integer(points, "points"), **{"from": start, "to": stop},
+                backbone_time_limit=_real(backbone_time_limit, "backbone_time_limit"),
+                synthesis=_flag(synthesis, "synthesis"))
     args.update(_hb_args(solver, "full", tolerance, max_iterations, max_evaluations, time_limit, options,
                          linear_algebra, "coarse", "none"))
     return _modes(_model(model), args)

@@ -27,6 +27,8 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
 #include "eqhb/output/backbone_writers.h"
+#include "eqhb/output/synthesis_writers.h"
+#include "eqhb/app/synthesis.h"
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/solvers/deadline.h"
 #include "eqhb/orbits/smooth_flow.h"
@@ -285,9 +287,18 @@ py::dict modes(const PyModel& m, const py::dict& args) {
   o.from = args["from"].cast<std::optional<double>>();
   o.to = args["to"].cast<std::optional<double>>();
   o.points = args["points"].cast<int>();
+  o.backbone_time_limit = args["backbone_time_limit"].cast<double>();
   o.solver = args["solver"].cast<std::string>();
   o.solver_options = solverOptions(args);
-  return fromJson(output::backboneJson(withoutGil([&] { return app::modes(scene, o); }))).cast<py::dict>();
+  const bool synthesis = args["synthesis"].cast<bool>();
+  o.synthesis = synthesis;
+  nlohmann::json out = withoutGil([&] {
+    const app::ModesRun run = app::modes(scene, o);
+    nlohmann::json j = output::backboneJson(run);
+    if (synthesis) j["synthesis"] = output::synthesisJson(app::compareWithForcedSweep(scene, run, o, app::SweepOptions()));
+    return j;
+  });
+  return fromJson(out).cast<py::dict>();
 }
 
 py::list lawList(const HbModel& model) {

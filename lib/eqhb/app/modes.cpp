@@ -1,10 +1,12 @@
 #include "eqhb/app/modes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
+#include "eqhb/modes/mode_synthesis.h"
 #include "eqhb/preload/operating_point.h"
 #include "eqhb/preload/static_contact.h"
 
@@ -23,6 +25,8 @@ bool ModesOptions::isValid(std::string* why) const {
   if (from && to && !(*to > *from))
     return fail("to", formatNumber(*to), "must be > from (" + formatNumber(*from) + ")");
   if (points < 2) return fail("points", std::to_string(points), "must be >= 2");
+  if (!(backbone_time_limit >= 0.0) || !std::isfinite(backbone_time_limit))
+    return fail("backbone_time_limit", formatNumber(backbone_time_limit), "must be finite and >= 0 (seconds; 0 = none)");
   return solver_options.isValid(why);
 }
 
@@ -54,8 +58,32 @@ double onsetAmplitude(const HbModel& model, const LinearMode& mode) {
   return onset;
 }
 
+// The modal amplitude at which a contact closed at rest (a bolt's pressed
+// interface) would open on the linear mode: its static normal force over
+// the normal force the mode's reaction asks of it per unit amplitude (a
+// contact's first component is its normal one); 0 when none is closed.
+double separationAmplitude(const HbModel& model, const LinearMode& mode, const StaticContactState& at_rest) {
+  const LinearStructure& s = model.structure;
+  const Eigen::VectorXd forces =
+      lawForcesFor(model, s.stiffness * mode.shape - mode.omega * mode.omega * (s.mass * mode.shape));
+  double separation = 0.0;
+  for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
+    const std::optional<StaticStatus>& status = at_rest.status[l];
+    if (!status || !status->normal_force || !(*status->normal_force > 0.0)) continue;
+    const double per_amplitude = std::abs(forces[model.componentIndex(l, 0)]);
+    if (!(per_amplitude > 0.0)) continue;
+    const double a = *status->normal_force / per_amplitude;
+    if (separation == 0.0 || a < separation) separation = a;
+  }
+  return separation;
+}
+
 // The default range (ModesOptions): 10⁻² .. 10³ times the onset amplitude,
-// else the scene's length scale over max|φ|.
+// else the scene's length scale over max|φ|. About a static state whose
+// contacts are pressed, the range ends where the first would open on the
+// linear mode (not below 10 times the onset): a joint's microslip and
+// macroslip lie below it, and beyond it the joint separates, a different
+// and far costlier regime that --to can still ask for.
 BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const StaticContactState* at_rest) {
   const std::vector<LinearMode> modes = linearModes(model, at_rest);
   const int count = static_cast<int>(modes.size());
@@ -76,6 +104,10 @@ BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const S
   }
   b.from = o.from ? *o.from : 1e-2 * reach;
   b.to = o.to ? *o.to : 1e3 * reach;
+  if (!o.to && at_rest) {
+    const double separation = separationAmplitude(model, mode, *at_rest);
+    if (separation > 0.0) b.to = std::clamp(separation, 10.0 * reach, b.to);
+  }
   if (!(b.to > b.from))
     throwInputError(o.to ? "to" : "from", formatNumber(o.to ? b.to : b.from),
                     "the range must have to > from (from = " + formatNumber(b.from) + ", to = " +
@@ -84,11 +116,12 @@ BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const S
 }
 }  // namespace
 
-ModesRun modes(const SceneSettings& scene, const ModesOptions& o) {
+ModesRun modes(const SceneSettings& scene, const ModesOptions& o, const BackboneProgress& progress) {
   std::string why;
   if (!o.isValid(&why)) throw InputError(why);
   ModesRun run;
   run.scene = loadScene(scene);
+  if (o.synthesis) synthesisForcing(run.scene.model);
   run.solver = o.solver;
   // A mode vibrates about the structure's static state under its constant
   // loads: a scene's [[preload]] is settled already; constant forcing (a
@@ -100,8 +133,9 @@ ModesRun modes(const SceneSettings& scene, const ModesOptions& o) {
   }
   const StaticContactState* at_rest = run.scene.at_rest ? &*run.scene.at_rest : nullptr;
   run.options = chosenRange(run.scene.model, o, at_rest);
+  run.options.time_limit = o.backbone_time_limit;
   auto solver = makeSolver(o.solver);
-  run.backbone = followBackbone(run.scene.model, *solver, o.solver_options, run.options, nullptr, at_rest);
+  run.backbone = followBackbone(run.scene.model, *solver, o.solver_options, run.options, progress, at_rest);
   return run;
 }
 

@@ -20,9 +20,16 @@ struct ModesOptions {
   // 10³ times the amplitude at which the linear mode's reaction at a law
   // reaches the law's force level (a friction law's slip onset), so that
   // the range runs from well below it to well above; without a force level,
-  // the scene's length scale (problem_scales.h) over max|φ|.
+  // the scene's length scale (problem_scales.h) over max|φ|. About a static
+  // state with pressed contacts, `to` is lowered to where the first would
+  // open on the linear mode (not below 10 times the onset): a joint's micro-
+  // and macroslip lie below it, separation (far costlier) above.
   std::optional<double> from, to;
   int points = 50;                 // >= 2, evenly spaced in log a
+  double backbone_time_limit = 0.0;  // seconds for the whole backbone, 0 = none
+  // The caller synthesises a forced response from the backbone (synthesis.h):
+  // a scene without first-harmonic forcing is refused before any solve.
+  bool synthesis = false;
   std::string solver = "dogleg";   // a registered backend
   SolverOptions solver_options;    // tolerance, limits, backend settings
 
@@ -39,6 +46,7 @@ struct ModesRun {
 
 // Throws InputError naming the option or the scene's field (a mode above
 // the structure's count, an amplitude range <= 0 or not finite).
-ModesRun modes(const SceneSettings& scene, const ModesOptions& options);
+// `progress` is called at each amplitude recorded, in the path's order.
+ModesRun modes(const SceneSettings& scene, const ModesOptions& options, const BackboneProgress& progress = nullptr);
 
 }  // namespace eqhb::app

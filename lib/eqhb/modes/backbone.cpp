@@ -19,6 +19,8 @@ void BackboneOptions::validate(int modes) const {
     throwInputError("to", formatNumber(to), "must be finite and > from (" + formatNumber(from) + ")");
   if (points < 2) throwInputError("points", std::to_string(points), "must be >= 2");
   if (max_halvings < 0) throwInputError("max_halvings", std::to_string(max_halvings), "must be >= 0");
+  if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
+    throwInputError("time_limit", formatNumber(time_limit), "must be finite and >= 0 (seconds; 0 = none)");
 }
 
 double dissipatedEnergy(const HbModel& model, const Eigen::VectorXd& full, double omega, double xi) {

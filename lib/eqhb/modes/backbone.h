@@ -26,6 +26,9 @@ struct BackboneOptions {
   double to = 0.0;       // largest, > from
   int points = 50;       // >= 2
   int max_halvings = 8;  // of a failed arclength step, in a row, >= 0
+  // Seconds for the whole backbone, 0 = none (finite, >= 0): the path stops
+  // there, saying so, and the amplitudes not reached are failed points.
+  double time_limit = 0.0;
   // Throws InputError naming the field; `modes`: how many the structure has.
   void validate(int modes) const;
 };

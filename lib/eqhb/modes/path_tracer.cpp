@@ -10,6 +10,7 @@
 #include "eqhb/error.h"
 #include "eqhb/modes/mode_path_system.h"
 #include "eqhb/preload/operating_point.h"
+#include "eqhb/solvers/deadline.h"
 
 namespace eqhb {
 
@@ -53,18 +54,6 @@ SolverResult solveAt(ModeSystem& system, Solver& solver, const SolverOptions& op
   return r;
 }
 
-BackbonePoint describe(const ModeSystem& system, const Eigen::VectorXd& z, double a) {
-  BackbonePoint p;
-  p.amplitude = a;
-  p.full = system.fullCoefficients(z);
-  p.omega = z[system.omegaIndex()];
-  p.xi = z[system.xiIndex()];
-  p.damping_ratio = p.xi / (2.0 * p.omega);
-  p.dissipated_energy = dissipatedEnergy(system.model(), p.full, p.omega, p.xi);
-  p.max_abs = describePoint(system.model(), p.full).max_abs;
-  return p;
-}
-
 // Follows the mode's path in pseudo-arclength (mode_path_system.h) from a
 // solution at the first grid amplitude, and records the mode at every grid
 // amplitude the path crosses, in the order it crosses them: where the
@@ -83,7 +72,8 @@ class PathTracer {
         solver_options_(solver_options),
         o_(o),
         progress_(progress), backbone_(*backbone), s_from_(std::log(o.from)), s_to_(std::log(o.to)),
-        grid_step_((s_to_ - s_from_) / (o.points - 1)) {}
+        grid_step_((s_to_ - s_from_) / (o.points - 1)),
+        deadline_(o.time_limit) {}
 
   void run() {
     const int first = startingPoint();
@@ -99,6 +89,10 @@ class PathTracer {
     std::string stop;
     int halvings = 0;
     for (int taken = 0; reached_ < o_.points - 1; ++taken) {
+      if (deadline_.passed()) {
+        stop = timeLimitReached();
+        break;
+      }
       if (taken >= kMaxStepsPerPoint * o_.points) {
         stop = "stopped after " + std::to_string(taken) + " arclength steps";
         break;
@@ -168,7 +162,7 @@ class PathTracer {
     if (!(land <= step_)) return false;
     const Eigen::VectorXd predicted = y_ + land * tangent;
     const double a = std::exp(gridS(next));
-    const SolverResult r = solveAt(system_, solver_, solver_options_, a, path_.modePoint(predicted));
+    const SolverResult r = solveAt(system_, solver_, options(), a, path_.modePoint(predicted));
     addWork(r);
     if (!r.converged()) return false;
     Eigen::VectorXd reached_point = path_.pathPoint(r.solution, a);
@@ -224,6 +218,20 @@ class PathTracer {
 
   double gridS(int i) const { return s_from_ + grid_step_ * i; }
 
+  // The solver's options with its time limit cut to what the backbone has left.
+  SolverOptions options() const {
+    SolverOptions limited = solver_options_;
+    if (deadline_.limited()) {
+      const double left = std::max(deadline_.remaining(), 1e-3);
+      limited.time_limit = limited.time_limit > 0.0 ? std::min(limited.time_limit, left) : left;
+    }
+    return limited;
+  }
+
+  std::string timeLimitReached() const {
+    return "stopped: the time limit of " + formatNumber(deadline_.seconds()) + " s was reached";
+  }
+
   void addWork(const SolverResult& r) {
     work_.iterations += r.iterations;
     work_.residual_evaluations += r.residual_evaluations;
@@ -235,8 +243,13 @@ class PathTracer {
   // (the ones before it failed); -1 if none does.
   int startingPoint() {
     for (int i = 0; i < o_.points; ++i) {
+      if (deadline_.passed()) {
+        backbone_.stop.why = timeLimitReached();
+        for (; i < o_.points; ++i) recordFailed(i, backbone_.stop.why);
+        return -1;
+      }
       const double a = std::exp(gridS(i));
-      const SolverResult r = solveAt(system_, solver_, solver_options_, a, linearStart(system_, backbone_.start, a, at_rest_));
+      const SolverResult r = solveAt(system_, solver_, options(), a, linearStart(system_, backbone_.start, a, at_rest_));
       addWork(r);
       if (r.converged()) {
         record(i, r, a);
@@ -254,7 +267,7 @@ class PathTracer {
     system_.setAmplitude(std::exp(predicted[path_.sIndex()]));
     system_.prepareAt(z[system_.omegaIndex()]);
     path_.setConstraint(weights, tangent, predicted);
-    SolverResult r = solver_.solve(path_, predicted, solver_options_);
+    SolverResult r = solver_.solve(path_, predicted, options());
     if (r.termination == Termination::kInvalidOptions) throw InputError("options: " + r.native_message);
     addWork(r);
     return r;
@@ -274,7 +287,7 @@ class PathTracer {
     for (int i : crossed) {
       const double a = std::exp(gridS(i));
       const Eigen::VectorXd guess = path_.modePoint(from + (to - from) * ((gridS(i) - s0) / (s1 - s0)));
-      const SolverResult r = solveAt(system_, solver_, solver_options_, a, guess);
+      const SolverResult r = solveAt(system_, solver_, options(), a, guess);
       addWork(r);
       if (r.converged())
         record(i, r, a);
@@ -293,7 +306,8 @@ class PathTracer {
   // max_halvings times.
   void stepInAmplitude() {
     for (int i = reached_ + 1; i < o_.points; ++i) {
-      if (highest_.empty()) {
+      if (highest_.empty() || deadline_.passed()) {
+        if (deadline_.passed() && backbone_.stop.why.empty()) backbone_.stop.why = timeLimitReached();
         recordFailed(i, backbone_.stop.why);
         continue;
       }
@@ -301,7 +315,7 @@ class PathTracer {
       SolverResult r;
       for (int halvings = 0; halvings <= o_.max_halvings;) {
         const double s = std::min(done + step, gridS(i));
-        r = solveAt(system_, solver_, solver_options_, std::exp(s), secantAt(s));
+        r = solveAt(system_, solver_, options(), std::exp(s), secantAt(s));
         addWork(r);
         if (!r.converged()) {
           ++halvings;
@@ -342,7 +356,7 @@ class PathTracer {
       highest_index_ = index;
       keepHighest(gridS(index), r.solution);
     }
-    BackbonePoint point = describe(system_, r.solution, a);
+    BackbonePoint point = describeModePoint(system_, r.solution, a);
     point.converged = true;
     point.termination = terminationName(r.termination);
     push(point, index);
@@ -376,6 +390,7 @@ class PathTracer {
   const BackboneProgress& progress_;
   Backbone& backbone_;
   const double s_from_, s_to_, grid_step_;
+  const Deadline deadline_;  // of the whole backbone (BackboneOptions::time_limit)
   Eigen::VectorXd y_;          // the last path point
   Eigen::VectorXd previous_;   // the one before
   Eigen::VectorXd direction_;  // of the last step
@@ -387,6 +402,18 @@ class PathTracer {
 };
 
 }  // namespace
+
+BackbonePoint describeModePoint(const ModeSystem& system, const Eigen::VectorXd& z, double a) {
+  BackbonePoint p;
+  p.amplitude = a;
+  p.full = system.fullCoefficients(z);
+  p.omega = z[system.omegaIndex()];
+  p.xi = z[system.xiIndex()];
+  p.damping_ratio = p.xi / (2.0 * p.omega);
+  p.dissipated_energy = dissipatedEnergy(system.model(), p.full, p.omega, p.xi);
+  p.max_abs = describePoint(system.model(), p.full).max_abs;
+  return p;
+}
 
 void tracePath(ModeSystem& system, Solver& solver, const SolverOptions& solver_options, const BackboneOptions& o,
                const BackboneProgress& progress, const StaticContactState* at_rest, Backbone* backbone) {

@@ -10,6 +10,10 @@
 
 namespace eqhb {
 
+// The mode at amplitude a from a solution z of `system` (the solver's counts
+// and `converged` left for the caller).
+BackbonePoint describeModePoint(const ModeSystem& system, const Eigen::VectorXd& z, double a);
+
 // Fills `backbone`'s points, folds and stop (its `start` set by the caller)
 // on `system`, built on the start's shape. Throws InputError when the solver
 // rejects its options.
