@@ -91,6 +91,10 @@ case "${1:-}" in
     { printf '\n## Lap joint (problems/lap-joint.toml, arclength sweeps)\n\n'
       /usr/bin/python3 bench/lap_joint_chart.py results/lap_joint 59 3=results/lap-joint-3.csv \
         15=results/lap-joint-15.csv 50=results/lap-joint-50.csv; } >> results/report.md
+    # Backbones of the friction scenes, the beams and the lap joint, with the
+    # forced response each mode predicts against the forced sweep (charts
+    # results/modes_*.png and a section of the report).
+    /usr/bin/python3 bench/modes_section.py build/eqhb results results/report.md
     ./build/eqhb-convergence --out results $quick | tee results/convergence.txt
     ./build/eqhb-orbits --out results $quick >/dev/null
     # Work-precision against the exact orbits and the rates in H: CSV, JSON,

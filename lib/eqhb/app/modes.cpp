@@ -80,10 +80,15 @@ double separationAmplitude(const HbModel& model, const LinearMode& mode, const S
 
 // The default range (ModesOptions): 10⁻² .. 10³ times the onset amplitude,
 // else the scene's length scale over max|φ|. About a static state whose
-// contacts are pressed, the range ends where the first would open on the
-// linear mode (not below 10 times the onset): a joint's microslip and
-// macroslip lie below it, and beyond it the joint separates, a different
-// and far costlier regime that --to can still ask for.
+// contacts are pressed, the range ends at kPastSeparation times where the
+// first would open on the linear mode (not below 10 times the onset): a
+// joint's micro- and macroslip lie below, and further on the joint
+// separates, a different and far costlier regime that --to can still ask
+// for. The linear mode's estimate is rough once the contacts slip (the lap
+// joint opens at 13 times it, the damper slides from 1.4 to 1.7 times it),
+// hence the margin.
+constexpr double kPastSeparation = 3.0;
+
 BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const StaticContactState* at_rest) {
   const std::vector<LinearMode> modes = linearModes(model, at_rest);
   const int count = static_cast<int>(modes.size());
@@ -106,7 +111,7 @@ BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const S
   b.to = o.to ? *o.to : 1e3 * reach;
   if (!o.to && at_rest) {
     const double separation = separationAmplitude(model, mode, *at_rest);
-    if (separation > 0.0) b.to = std::clamp(separation, 10.0 * reach, b.to);
+    if (separation > 0.0) b.to = std::clamp(kPastSeparation * separation, 10.0 * reach, b.to);
   }
   if (!(b.to > b.from))
     throwInputError(o.to ? "to" : "from", formatNumber(o.to ? b.to : b.from),

@@ -21,9 +21,9 @@ struct ModesOptions {
   // reaches the law's force level (a friction law's slip onset), so that
   // the range runs from well below it to well above; without a force level,
   // the scene's length scale (problem_scales.h) over max|φ|. About a static
-  // state with pressed contacts, `to` is lowered to where the first would
-  // open on the linear mode (not below 10 times the onset): a joint's micro-
-  // and macroslip lie below it, separation (far costlier) above.
+  // state with pressed contacts, `to` is lowered to 3 times where the first
+  // would open on the linear mode (not below 10 times the onset): a joint's
+  // micro- and macroslip lie below, separation (far costlier) above.
   std::optional<double> from, to;
   int points = 50;                 // >= 2, evenly spaced in log a
   double backbone_time_limit = 0.0;  // seconds for the whole backbone, 0 = none

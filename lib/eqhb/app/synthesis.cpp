@@ -80,13 +80,19 @@ SynthesisComparison compareWithForcedSweep(const SceneSettings& scene, const Mod
   }
   const ModeSynthesis& s = c.synthesis;
   if (!s.closed) {
+    if (c.synthesis.peak_below_from) {
+      c.not_compared = "the forcing drives this mode only below the backbone's smallest amplitude (from = " +
+                       formatNumber(run.options.from) +
+                       "): its work on the mode is small (a forcing nearly orthogonal to it); give a smaller from";
+      return c;
+    }
     double reached = 0.0;
     for (const BackbonePoint& p : run.backbone.points)
       if (p.converged) reached = std::max(reached, p.amplitude);
     c.not_compared = "the synthesised response has no peak up to the backbone's largest converged amplitude (" +
-                     formatNumber(reached) + (reached < run.options.to ? ", short of to = " : ", to = ") +
+                     formatNumber(reached) + (reached < 0.999 * run.options.to ? ", short of to = " : ", to = ") +
                      formatNumber(run.options.to) + ")" +
-                     (reached < run.options.to ? "" : ": give a larger to");
+                     (reached < 0.999 * run.options.to ? "" : ": give a larger to");
     return c;
   }
   c.dof = peakDof(s);

@@ -70,6 +70,7 @@ ModeSynthesis synthesizeForcedResponse(const HbModel& forced, const Backbone& ba
         (r - 2.0 * p.damping_ratio * p.omega * p.omega * std::sqrt(1.0 - p.damping_ratio * p.damping_ratio)) * p.amplitude;
     double low = 0.0, high = 0.0;
     if (!forcingFrequencies(p.omega, p.damping_ratio, r, &low, &high)) {
+      if (!below && !out.closed) out.peak_below_from = true;
       if (below && !out.closed && p.amplitude > below->amplitude) {
         const double t = h_below / (h_below - h);
         const double omega = below->omega + t * (p.omega - below->omega);
@@ -84,6 +85,7 @@ ModeSynthesis synthesizeForcedResponse(const HbModel& forced, const Backbone& ba
       continue;
     }
     if (!out.closed) {
+      out.peak_below_from = false;
       below = &p;
       h_below = h;
       if (p.amplitude > out.peak_amplitude) {

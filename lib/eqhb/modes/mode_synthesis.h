@@ -41,6 +41,10 @@ struct ModeSynthesis {
   double peak_amplitude = 0.0, peak_omega = 0.0;
   std::vector<double> peak_max_abs;  // per DOF
   bool closed = false;
+  // No amplitude of the backbone has a real Ω, the first already beyond the
+  // peak: the forcing drives this mode only below `from` (a forcing nearly
+  // orthogonal to the mode).
+  bool peak_below_from = false;
 };
 
 // F̂ per DOF from `forced`'s harmonic-1 loads (its other loads do not
