@@ -19,7 +19,7 @@ PACKAGES=(cmake g++ make pkg-config libeigen3-dev libspectra-dev libceres-dev li
   python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest
   libopenmpi-dev openmpi-bin
   python3-sphinx python3-myst-parser python3-breathe doxygen
-  python3-venv python3-pip python3-setuptools python3-wheel
+  python3-venv python3-pip python3-setuptools python3-wheel libhdf5-dev python3-h5py
   clang libclang-rt-14-dev)
 
 install_packages() {
@@ -106,6 +106,7 @@ case "${1:-}" in
       --benchmark_out_format=json >/dev/null
     /usr/bin/python3 bench/micro_slopes.py results/micro.json results/micro.md
     /usr/bin/python3 bench/charts.py results
+    /usr/bin/python3 bench/report_charts.py results  # every chart embedded in report.md
     echo "report: results/report.md (and micro.md, convergence.txt, charts *.png/*.svg)"
     ;;
   field)

@@ -19,7 +19,7 @@ const std::pair<const char*, const char*> kFlags[] = {
     {"from", "--from"}, {"to", "--to"}, {"step", "--step"},
     {"min_step", "--min-step"}, {"max_step", "--max-step"}, {"stability", "--stability"}, {"stability_method", "--stability-method"},
     {"dof", "--dof"}, {"coarse_points", "--coarse-points"}, {"max_peaks", "--max-peaks"},
-    {"vary", "--vary"}, {"lhs", "--lhs"}, {"out", "--out"}, {"threads", "--threads"},
+    {"show", "--show"}, {"peak_dof", "--peak-dof"}, {"vary", "--vary"}, {"lhs", "--lhs"}, {"out", "--out"}, {"threads", "--threads"},
     // Phrases, replaced wherever they begin a word.
     {"refine = shoot", "--refine shoot"},
     {"give from and to", "give --from and --to"}, {"differ from from", "differ from --from"},

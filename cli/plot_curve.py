@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""Frequency-response chart of an `eqhb sweep` CSV: max|x| per DOF vs omega,
+"""Frequency-response chart of an `eqhb sweep` CSV: max|x| per DOF shown vs omega
+(the CSV's max_abs_<label> columns: x3, a beam's w10; legend in numeric order, inside the axes),
 folds marked, failed points (the companion CSV.failed.csv) shown; with a `stable` column (sweep --stability)
 stable branches solid, unstable ones dashed, bifurcations marked by kind.
 Usage: plot_curve.py CSV PREFIX [TITLE] [--log-amplitude]"""
 import argparse
 import csv
+import math
 import os
+import re
 
 import matplotlib
 
@@ -17,6 +20,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 MARKERS = {"fold": ("kx", "fold"), "branch-point": ("k+", "branch point (real +1)"),
            "period-doubling": ("rs", "period doubling"), "neimark-sacker": ("m^", "Neimark-Sacker")}
 labelled_kinds = set()
+
+
+def numeric_order(label):
+    """x2 before x10, theta5 and w5 before w10: by the number, then the name."""
+    match = re.match(r"([^0-9]*)([0-9]+)$", label)
+    return (int(match.group(2)), match.group(1)) if match else (math.inf, label)
 
 
 def draw_by_stability(ax, rows, key, label):
@@ -66,7 +75,7 @@ def main():
     failed = [float(r["omega"]) for r in csv.DictReader(open(failed_csv))] if os.path.exists(failed_csv) else []
     if not rows:
         parser.exit(1, f"{args.csv}: no points to plot\n")
-    dofs = sorted(k for k in rows[0] if k.startswith("max_abs_x"))
+    dofs = sorted((k for k in rows[0] if k.startswith("max_abs_")), key=lambda k: numeric_order(k[len("max_abs_"):]))
     with_stability = "stable" in rows[0]
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for key in dofs:
@@ -86,14 +95,16 @@ def main():
         bottom = ax.get_ylim()[0] if args.log_amplitude else 0.0
         ax.plot(failed, [bottom] * len(failed), "r|", ms=12, label=f"{len(failed)} failed")
     ax.set_xlabel("forcing frequency ω")
-    ax.set_ylabel("max |x| over one period" + (" (log scale)" if args.log_amplitude else ""))
+    ax.set_ylabel("max over one period of |DOF|" + (" (log scale)" if args.log_amplitude else ""))
     has_folds = any(r["fold"] == "true" for r in rows)
     if with_stability:
         ax.set_title(f"{args.title}: frequency response (solid: stable, dashed: unstable)")
     else:
         ax.set_title(f"{args.title}: frequency response" + (" (x: folds)" if has_folds else ""))
     ax.grid(True, alpha=0.3, which="both" if args.log_amplitude else "major")
-    ax.legend()
+    # Inside the axes; in columns of at most 12 entries when many DOFs are shown.
+    entries = len(ax.get_legend_handles_labels()[0])
+    ax.legend(loc="best", fontsize="small" if entries > 6 else None, ncol=max(1, math.ceil(entries / 12)))
     fig.tight_layout()
     for ext in ("png", "svg"):
         fig.savefig(f"{args.prefix}.{ext}")

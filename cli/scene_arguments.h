@@ -1,6 +1,6 @@
 // Options shared by the commands that load a scene: the file, the common
 // overrides (--omega, --harmonics, --samples, --form,
-// --formulation, --rho) and --set,
+// --formulation, --rho), --set and the outputs' --show and --peak-dof,
 // read into the application layer's scene settings.
 #pragma once
 

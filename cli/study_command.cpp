@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
 #include "eqhb/app/study.h"
 #include "eqhb/error.h"
@@ -13,6 +14,8 @@
 #include "eqhb/studies/study_journal.h"
 #include "eqhb/studies/study_scheduler.h"
 #include "flag_names.h"
+#include "hdf5_option.h"
+#include "terminal/run_program.h"
 #ifdef EQHB_WITH_MPI
 #include "eqhb/studies/mpi_study.h"
 #endif
@@ -40,6 +43,10 @@ void addStudyCommand(CLI::App& app, SolveArguments& s, StudyArguments& a) {
       ->capture_default_str();
   cmd->add_option("--max-peaks", a.max_peaks, "Resonances (local maxima in [from, to]) followed at once")
       ->capture_default_str();
+  addHdf5Option(cmd, a.hdf5, "the samples (parameters, peaks, amplitudes)");
+  cmd->add_option("--chart", a.chart,
+                  "Write the design chart: the peak of --dof against the last varied value, one curve per value of "
+                  "the others, the smallest starred (PREFIX.png and PREFIX.svg, matplotlib)");
   cmd->add_option("--threads", a.threads, "Threads (default: every core; one per MPI rank under mpirun)");
   cmd->add_option("--out", a.out, "Study folder: study.csv, study.json, journal.csv, plan.txt (resumable)")
       ->required();
@@ -65,8 +72,18 @@ app::StudyOptions studyOptions(const SolveArguments& s, const StudyArguments& a)
   return o;
 }
 
-// study.json, the summary on stdout; the exit code.
-int finish(const app::StudyRun& run) {
+// The design chart of the study folder (plot_study.py, installed beside plot_curve.py).
+void writeStudyChart(const app::StudyRun& run, const StudyArguments& a) {
+  const std::vector<std::string> command = {python3(), findDataFile("plot_study.py"), run.setup.settings.out_dir,
+                                            a.chart, "--dof", std::to_string(a.dof), "--title",
+                                            run.setup.scene_name};
+  std::fflush(stdout);  // the plotter prints the table of the smallest peaks after the summary
+  if (runProgram(command) != 0)
+    throw std::runtime_error("--chart: plotting failed (needs " + command[0] + " with matplotlib)");
+}
+
+// study.json, the summary on stdout, the chart when asked; the exit code.
+int finish(const app::StudyRun& run, const StudyArguments& a) {
   const std::string& out = run.setup.settings.out_dir;
   output::writeStudyJson(out + "/study.json", run);
   const bool peak = run.setup.settings.mode == StudyMode::kPeak;
@@ -76,6 +93,14 @@ int finish(const app::StudyRun& run) {
   for (const auto& [id, r] : run.rows)
     if (!r.ok) std::printf("  sample %d failed: %s\n", id, r.reason.c_str());
   std::printf("  %s/study.csv, %s/study.json\n", out.c_str(), out.c_str());
+  if (!a.hdf5.empty()) {
+    writeStudyHdf5File(a.hdf5, run);
+    std::printf("  %s\n", a.hdf5.c_str());
+  }
+  if (!a.chart.empty()) {
+    writeStudyChart(run, a);
+    std::printf("  chart: %s.png, %s.svg\n", a.chart.c_str(), a.chart.c_str());
+  }
   return run.succeeded() ? 0 : 1;
 }
 
@@ -85,7 +110,7 @@ int finish(const app::StudyRun& run) {
 namespace {
 
 // Rank 0 keeps the journal and coordinates; the other ranks compute.
-int runOnMpi(const MpiEnvironment& mpi, const app::StudySetup& setup) {
+int runOnMpi(const MpiEnvironment& mpi, const app::StudySetup& setup, const StudyArguments& a) {
   const StudySettings& settings = setup.settings;
   std::unique_ptr<StudyJournal> journal;
   std::string error;
@@ -127,7 +152,7 @@ int runOnMpi(const MpiEnvironment& mpi, const app::StudySetup& setup) {
   run.total = static_cast<int>(settings.plan.samples.size());
   run.computed = static_cast<int>(pending.size());
   run.how = std::to_string(mpi.size()) + " MPI ranks (" + std::to_string(mpi.size() - 1) + " workers)";
-  const int code = finish(run);
+  const int code = finish(run, a);
   std::printf("  coordinator: %ld messages, %ld bytes, busy %.3g s\n", traffic.messages, traffic.bytes,
               traffic.coordinator_busy_seconds);
   return code;
@@ -144,7 +169,7 @@ int runStudy(const SolveArguments& s, const StudyArguments& a) {
 #endif
   const app::StudySetup setup = app::setupStudy(s.scene, studyOptions(s, a));
 #ifdef EQHB_WITH_MPI
-  if (mpi && mpi->size() > 1) return runOnMpi(*mpi, setup);
+  if (mpi && mpi->size() > 1) return runOnMpi(*mpi, setup, a);
 #endif
   const bool terminal = isatty(STDERR_FILENO);
   const app::StudyRun run = app::runStudy(setup, a.threads, [terminal](int done, int todo) {
@@ -153,7 +178,7 @@ int runStudy(const SolveArguments& s, const StudyArguments& a) {
     std::fflush(stderr);
   });
   if (terminal) std::fprintf(stderr, "\n");
-  return finish(run);
+  return finish(run, a);
 }
 
 }  // namespace eqhb::cli

@@ -24,6 +24,8 @@ struct StudyArguments {
   int max_peaks = 4;
   int threads = 0;                 // 0: every core
   std::string out;
+  std::string chart;               // PREFIX of the design chart (plot_study.py)
+  std::string hdf5;                // HDF5 file of the samples
 };
 
 void addStudyCommand(CLI::App& app, SolveArguments& solve, StudyArguments& study);

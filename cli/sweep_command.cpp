@@ -9,8 +9,10 @@
 #include "eqhb/app/sweep.h"
 #include "eqhb/error.h"
 #include "eqhb/curves/curve_writers.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/output/sweep_output.h"
 #include "flag_names.h"
+#include "hdf5_option.h"
 #include "terminal/progress.h"
 #include "terminal/run_program.h"
 #include "terminal/verbosity.h"
@@ -36,6 +38,7 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
   cmd->add_option("--max-points", w.max_points, "Most points on the curve")->capture_default_str();
   cmd->add_option("--out", w.out, "Write the curve as CSV");
   cmd->add_option("--chart", w.chart, "Write a chart of the curve: PREFIX.png and PREFIX.svg (matplotlib)");
+  addHdf5Option(cmd, w.hdf5, "the curve");
   cmd->add_flag("--log-amplitude", w.log_amplitude, "Chart: logarithmic amplitude axis");
   addStabilityFlag(cmd, s);
   cmd->add_flag("--error-estimate", s.accuracy.error_estimate,
@@ -106,11 +109,11 @@ class SweepProgress {
     // estimate along an arclength curve that may turn back).
     const ContinuationOptions& c = plan_.continuation;
     const double fraction = std::clamp((p.omega - c.from) / (c.to - c.from), 0.0, 1.0);
-    const int dofs = plan_.scene.model.structure.dofs();
+    const int peak = plan_.scene.output.peak;
     const int expected = plan_.expectedPoints();
     char detail[96];
-    std::snprintf(detail, sizeof detail, "omega = %.5f  max|x%d| = %.5g%s", p.omega, dofs,
-                  p.converged ? p.max_abs[dofs - 1] : NAN,
+    std::snprintf(detail, sizeof detail, "omega = %.5f  max|%s| = %.5g%s", p.omega,
+                  dofLabel(plan_.scene.model, peak).c_str(), p.converged ? p.max_abs[peak] : NAN,
                   failed_ ? ("  " + std::to_string(failed_) + " failed").c_str() : "");
     line_.update(fraction, "point " + std::to_string(index + 1) + (expected ? "/" + std::to_string(expected) : ""),
                  detail);
@@ -130,7 +133,7 @@ class SweepProgress {
 
 void writeChart(const SweepArguments& w, const app::SweepResult& r) {
   const std::string csv = w.out.empty() ? w.chart + ".csv" : w.out;
-  if (w.out.empty()) writeCurveCsv(csv, r.curve, r.plan.scene.model.structure.dofs());
+  if (w.out.empty()) output::writeSweepCsv(csv, r);
   std::vector<std::string> command = {python3(), findDataFile("plot_curve.py"), csv, w.chart, r.plan.scene.name};
   if (w.log_amplitude) command.push_back("--log-amplitude");
   if (runProgram(command) != 0)
@@ -167,8 +170,9 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   if (w.json) std::cout << output::sweepJson(r).dump(2) << "\n";
   // With --json, stdout is the JSON object alone; the summary goes to stderr.
   writeCurveSummary(w.json ? std::cerr : std::cout, r.curve, run);
-  if (!w.out.empty()) writeCurveCsv(w.out, r.curve, plan.scene.model.structure.dofs());
+  if (!w.out.empty()) output::writeSweepCsv(w.out, r);
   if (!w.chart.empty()) writeChart(w, r);
+  if (!w.hdf5.empty()) writeSweepHdf5File(w.hdf5, r);
   if (r.accurate && !r.accurate->not_met.empty()) reportAccuracyNotMet(r);
   return r.succeeded() ? 0 : 1;
 }

@@ -17,6 +17,7 @@ struct SweepArguments {
   int max_points = 20000;
   std::string out;    // CSV file
   std::string chart;  // PNG/SVG prefix
+  std::string hdf5;   // HDF5 file of the curve
   bool json = false;  // the curve as one JSON object on stdout, with each point's coefficients
   bool log_amplitude = false;  // chart: logarithmic amplitude axis
 };

@@ -151,7 +151,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
           rho=None, formulation=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
           max_step=None, stability=False, stability_method="hill", error_estimate=False, accuracy=None,
-          max_harmonics=320):
+          max_harmonics=320, peak_dof=None):
     """A frequency-response curve by continuation in omega, as `eqhb sweep`
     runs it ("sequential" on a grid of `step`, by default a hundredth of the
     range, or "arclength", which passes turning points, from a scaled step
@@ -162,7 +162,11 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     energy, fold, x_cos/x_sin (points x dofs x harmonics), and folds,
     stop_reason, complete, failed_points, seconds and the settings of `eqhb
     sweep --json` (scene, solver, method, from, to, step, system,
-    harmonic_set, samples); "fallback" per point names the step that
+    harmonic_set, samples), "dof_labels" (each DOF's name, the columns of
+    max_abs: "x1", ..., a beam's "w1", "theta1", ...) and "peak_dof" (the
+    label of the DOF whose maximum defines the peak: peak_dof, by number from
+    1 or name, else the model's [output] peak, on a beam its tip deflection,
+    else the last DOF); "fallback" per point names the step that
     converged a point that failed from the previous one (see solve). The
     grid points that did not converge are in "failed", a list of dicts
     (omega, termination, iterations, residual_evaluations,
@@ -188,7 +192,8 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
                 min_step=_real(min_step, "min_step", True), max_step=_real(max_step, "max_step", True),
                 stability=_flag(stability, "stability"), stability_method=_text(stability_method, "stability_method"),
                 error_estimate=_flag(error_estimate, "error_estimate"),
-                accuracy=_real(accuracy, "accuracy", True), max_harmonics=_integer(max_harmonics, "max_harmonics"))
+                accuracy=_real(accuracy, "accuracy", True), max_harmonics=_integer(max_harmonics, "max_harmonics"),
+                peak_dof=_dof(peak_dof, "peak_dof"))
     return _sweep(_model(model), args)
 
 
@@ -410,6 +415,15 @@ def _integer(value, field, optional=False):
     if not _INT_RANGE[0] <= int(value) <= _INT_RANGE[1]:
         raise InputError(f"{field} = {value!r}: out of range of a 32-bit integer")
     return int(value)
+
+
+def _dof(value, field):
+    """A DOF by number from 1 or name ("w60"), as text; None stays None."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (numbers.Integral, str)):
+        raise InputError(f"{field} = {value!r}: must be a DOF number (from 1) or name such as \"w60\"")
+    return str(value)
 
 
 def _text(value, field):

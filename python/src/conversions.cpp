@@ -202,7 +202,7 @@ const std::pair<const char*, const char*> kPointFields[] = {
 const char* const kRunFields[] = {"scene",        "solver",       "method",       "from",
                                   "to",           "step",         "system",       "harmonic_set",
                                   "samples",      "bifurcations", "stability_seconds", "solve_seconds",
-                                  "rho",          "accuracy"};
+                                  "rho",          "accuracy",     "dof_labels",   "peak_dof"};
 
 py::object pointValue(const std::string& key, const nlohmann::json& value) {
   if (key != "multipliers") return fromJson(value);

@@ -83,8 +83,13 @@ struct SceneArgs {
   std::optional<std::string> form;
   std::optional<double> rho;
   std::optional<std::string> formulation;
+  std::optional<std::vector<std::string>> show;  // the outputs' DOFs (scenes/dof_choice.h)
+  std::optional<std::string> peak_dof;
   app::SceneSettings of(const PyModel& m) const {
-    return sceneSettings(m, omega, harmonics, samples, form, rho, formulation);
+    app::SceneSettings s = sceneSettings(m, omega, harmonics, samples, form, rho, formulation);
+    s.show = show;
+    s.peak_dof = peak_dof;
+    return s;
   }
 };
 
@@ -121,6 +126,8 @@ SceneArgs sceneArgs(const py::dict& a) {
   s.form = a["form"].cast<std::optional<std::string>>();
   s.rho = a["rho"].cast<std::optional<double>>();
   s.formulation = a["formulation"].cast<std::optional<std::string>>();
+  if (a.contains("show")) s.show = a["show"].cast<std::optional<std::vector<std::string>>>();
+  if (a.contains("peak_dof")) s.peak_dof = a["peak_dof"].cast<std::optional<std::string>>();
   return s;
 }
 

@@ -45,6 +45,7 @@ PyModel modelFromArrays(const std::string& text, const py::object& mass, const p
     arrays.loads = scene.model.structure.loads;
     scene.model.structure = std::move(arrays);
     scene.model.validate();
+    scene.output = defaultDofChoice(scene.model);  // of the arrays, not of the document's placeholder chain
     return scene;
   };
   PyModel m{load({}), {}};

@@ -317,3 +317,17 @@ def test_preload_static_state_is_eqhb_solves(tmp_path):
     # Pressed on the wall: x = (F + k_n g0)/(k + k_n) = 7/11, p = k_n (x − g0).
     assert py["preload"]["displacement"][0] == pytest.approx(7 / 11, rel=1e-12)
     assert element["normal_force"] == pytest.approx(10 * (7 / 11 - 0.5), rel=1e-12)
+
+
+def test_a_beams_dofs_are_named_and_its_tip_deflection_defines_the_peak():
+    beam = eqhb.load_scene(PROBLEMS / "beam-damper.toml")
+    curve = eqhb.sweep(beam, 3.4, 3.6, step=0.1)
+    assert curve["dof_labels"][:2] == ["w1", "theta1"] and curve["dof_labels"][-1] == "theta60"
+    assert curve["peak_dof"] == "w60"
+    chosen = eqhb.sweep(beam, 3.4, 3.6, step=0.1, peak_dof="theta60")
+    assert chosen["peak_dof"] == "theta60"
+    assert eqhb.sweep(beam, 3.4, 3.6, step=0.1, peak_dof=119)["peak_dof"] == "w60"
+    with pytest.raises(eqhb.InputError, match=r"peak_dof = \"w61\": no DOF of the structure is named so"):
+        eqhb.sweep(beam, 3.4, 3.6, step=0.1, peak_dof="w61")
+    with pytest.raises(eqhb.InputError, match="peak_dof"):
+        eqhb.sweep(beam, 3.4, 3.6, step=0.1, peak_dof=1.5)

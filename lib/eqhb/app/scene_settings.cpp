@@ -54,6 +54,8 @@ Scene loadScene(const SceneSettings& s) {
     o.insert(o.end(), laws.begin(), laws.end());
   }
   Scene scene = loadDocument(s, o);
+  if (s.show) scene.output.shown = resolveDofs(scene.model, *s.show, "show");
+  if (s.peak_dof) scene.output.peak = resolveDof(scene.model, *s.peak_dof, "peak_dof");
   settleUnderPreload(scene);
   return scene;
 }

@@ -28,6 +28,11 @@ struct SceneSettings {
   // "equality" or "aft", for every law that has that formulation
   // (lawFormulationOverrides, scenes/scene.h).
   std::optional<std::string> formulation;
+  // The DOFs the outputs show and the one that defines a peak, by number
+  // from 1 or name ("w10"); unset: the scene's [output] or its default
+  // (scenes/dof_choice.h).
+  std::optional<std::vector<std::string>> show;
+  std::optional<std::string> peak_dof;
 
   // A scene held in memory rather than in `path`: the scene and each law's ρ
   // as its document sets them, with the given overrides applied.

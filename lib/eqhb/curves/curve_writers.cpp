@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/io_error.h"
 
 namespace eqhb {
@@ -78,13 +79,35 @@ void writeFailedRuns(std::ostream& out, const Curve& curve) {
 
 }  // namespace
 
+CurveColumns curveColumns(const HbModel& model) {
+  std::vector<int> all(model.structure.dofs());
+  for (int i = 0; i < model.structure.dofs(); ++i) all[i] = i;
+  return curveColumns(model, all);
+}
+
+CurveColumns curveColumns(const HbModel& model, const std::vector<int>& shown) {
+  CurveColumns columns;
+  columns.dofs = shown;
+  for (int dof : shown) columns.labels.push_back(dofLabel(model, dof));
+  return columns;
+}
+
 void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
+  CurveColumns columns;
+  for (int i = 0; i < dofs; ++i) {
+    columns.dofs.push_back(i);
+    columns.labels.push_back(dofLabel(i));
+  }
+  writeCurveCsv(path, curve, columns);
+}
+
+void writeCurveCsv(const std::string& path, const Curve& curve, const CurveColumns& columns) {
   const CurveParts parts = splitCurve(curve);
   std::ofstream out(path);
   if (!out) throwIoError(path, "cannot create the curve file");
   out << "omega,converged,termination,iterations,residual_evaluations,jacobian_evaluations,seconds";
-  for (int i = 1; i <= dofs; ++i) out << ",max_abs_x" << i;
-  for (int i = 1; i <= dofs; ++i) out << ",first_harmonic_x" << i;
+  for (const std::string& label : columns.labels) out << ",max_abs_" << label;
+  for (const std::string& label : columns.labels) out << ",first_harmonic_" << label;
   bool with_stability = false, with_estimate = false, with_accuracy = false, with_fallback = false;
   for (const CurvePoint* p : parts.converged) {
     with_stability = with_stability || p->stable.has_value();
@@ -100,8 +123,8 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
     const CurvePoint& p = *point;
     out << p.omega << ",true," << p.termination << "," << p.iterations << "," << p.residual_evaluations << ","
         << p.jacobian_evaluations << "," << p.seconds;
-    for (int i = 0; i < dofs; ++i) out << "," << p.max_abs[i];
-    for (int i = 0; i < dofs; ++i) out << "," << p.first_harmonic[i];
+    for (int i : columns.dofs) out << "," << p.max_abs[i];
+    for (int i : columns.dofs) out << "," << p.first_harmonic[i];
     out << "," << p.energy << "," << (p.fold ? "true" : "false");
     if (with_stability) out << "," << (p.stable ? (*p.stable ? "1" : "0") : "") << "," << p.bifurcation;
     // A point whose solve at 2H failed has no estimate: nan, as the column is numeric.
@@ -121,10 +144,10 @@ void writeCurveCsv(const std::string& path, const Curve& curve, int dofs) {
 
 void writeCurveSummary(std::ostream& out, const Curve& curve, const CurveRun& s) {
   const CurveParts parts = splitCurve(curve);
-  const int dofs = s.model->structure.dofs(), last = dofs - 1;
+  const int at = s.peak_dof >= 0 ? s.peak_dof : s.model->structure.dofs() - 1;
   const CurvePoint* peak = nullptr;
   for (const CurvePoint* p : parts.converged)
-    if (!peak || p->max_abs[last] > peak->max_abs[last]) peak = p;
+    if (!peak || p->max_abs[at] > peak->max_abs[at]) peak = p;
   out << s.scene << ": " << (s.arclength ? "arclength" : "sequential") << " sweep " << s.from << " -> " << s.to
       << " with " << s.solver << ", H = " << s.model->basis.count() << ": " << curve.points.size() << " points, "
       << curve.failed_points << " failed, " << curve.seconds << " s\n"
@@ -132,7 +155,7 @@ void writeCurveSummary(std::ostream& out, const Curve& curve, const CurveRun& s)
   if (!curve.complete)
     for (const std::string& advice : s.advice) out << "  " << advice << "\n";
   writeFailedRuns(out, curve);
-  if (peak) out << "  peak: omega = " << peak->omega << ", max|x" << dofs << "| = " << peak->max_abs[last] << "\n";
+  if (peak) out << "  peak: omega = " << peak->omega << ", max|" << dofLabel(*s.model, at) << "| = " << peak->max_abs[at] << "\n";
   if (!curve.fold_omegas.empty()) {
     out << "  folds at omega =";
     for (double f : curve.fold_omegas) out << " " << f;

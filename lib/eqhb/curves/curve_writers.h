@@ -33,8 +33,18 @@ constexpr const char* kFailedPointFields[] = {"omega",    "termination",        
                                               "residual_evaluations", "jacobian_evaluations",
                                               "residual_norm", "seconds"};
 
+// The DOFs a CSV shows, by index (0-based) and label ("x3", a beam's "w3").
+struct CurveColumns {
+  std::vector<int> dofs;
+  std::vector<std::string> labels;
+};
+// Every DOF of `model` under its label (dofLabel, hb_solution.h), or the
+// `shown` ones.
+CurveColumns curveColumns(const HbModel& model);
+CurveColumns curveColumns(const HbModel& model, const std::vector<int>& shown);
+
 // The curve as CSV: one row per converged point with ω, converged, the
-// termination, counts, time, max|x_i|, first-harmonic amplitude of x_i,
+// termination, counts, time, max|x_i| (column max_abs_<label>), first-harmonic amplitude of x_i,
 // energy, fold; when stability was computed for some point: stable (1/0,
 // empty if not computed) and bifurcation; error_estimate when estimated;
 // harmonics, samples, accuracy_met and accuracy_seconds when an accuracy
@@ -42,6 +52,8 @@ constexpr const char* kFailedPointFields[] = {"omega",    "termination",        
 // failedCurvePath(path) (kFailedPointFields, termination quoted) when there
 // are any; a stale file of that name is removed when there are none.
 // Throws an I/O error naming the file that cannot be written.
+void writeCurveCsv(const std::string& path, const Curve& curve, const CurveColumns& columns);
+// All of `dofs` DOFs, labelled x1..xn.
 void writeCurveCsv(const std::string& path, const Curve& curve, int dofs);
 // "curve.csv" -> "curve.failed.csv"; any other name gets ".failed.csv" appended.
 std::string failedCurvePath(const std::string& path);
@@ -57,11 +69,12 @@ struct CurveRun {
   std::vector<std::string> advice;          // the summary's advice when the curve is not complete
   bool error_estimate = false;              // per-point estimates were asked (not with an accuracy target)
   std::string accuracy;                     // an accuracy target's summary line, in place of the estimates' line
+  int peak_dof = -1;                        // the DOF whose maximum defines the peak (−1: the last)
 };
 // The text summary: counts and time, the stop reason (and the advice when
 // not complete), the failed points (ω and termination; neighbours that
 // failed alike on one line, the first ten lines), the
-// peak of the last DOF, the folds, the largest error estimate or the
+// peak of run.peak_dof under its label, the folds, the largest error estimate or the
 // accuracy line, stability.
 void writeCurveSummary(std::ostream& out, const Curve& curve, const CurveRun& run);
 

@@ -2,6 +2,7 @@
 // the laws attached to it, the Fourier basis, the sample count N and ω.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "eqhb/harmonic_balance/harmonic_set.h"
@@ -16,6 +17,9 @@ struct HbModel {
   HarmonicSet basis{HarmonicKind::kOdd, 1};
   int samples = 64;
   double omega = 1.0;
+  // What each DOF is, for the outputs (beams: "w3", "theta3"; frames also
+  // "u3"); empty: "x1".."xn" (dofLabel, hb_solution.h).
+  std::vector<std::string> dof_names;
 
   // Throws InputError naming the field: structure (see LinearStructure),
   // ω finite and > 0, N >= 2H+1, every law on existing, distinct DOFs with

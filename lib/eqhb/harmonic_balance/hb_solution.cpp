@@ -26,6 +26,10 @@ ChannelSummary channel(FourierTransform& transform, double omega, std::string la
 
 std::string dofLabel(int dof) { return "x" + std::to_string(dof + 1); }
 
+std::string dofLabel(const HbModel& model, int dof) {
+  return static_cast<size_t>(dof) < model.dof_names.size() ? model.dof_names[dof] : dofLabel(dof);
+}
+
 std::string lawComponentLabel(const HbModel& model, int law, int component) {
   std::string label = "law" + std::to_string(law + 1) + ".lambda";
   if (model.laws[law].law->dimension() > 1) label += std::to_string(component + 1);
@@ -45,7 +49,7 @@ HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full) {
   const int nb = model.basis.size();
   HbSolution solution;
   for (int i = 0; i < model.structure.dofs(); ++i)
-    solution.displacements.push_back(channel(transform, model.omega, dofLabel(i),
+    solution.displacements.push_back(channel(transform, model.omega, dofLabel(model, i),
                                               full.segment(i * nb, nb)));
   const int base = model.structure.dofs() * nb;
   for (size_t l = 0; l < model.laws.size(); ++l)

@@ -25,9 +25,11 @@ struct HbSolution {
 };
 
 // The one labelling of a solution's channels, in every output: DOF i
-// (0-based) is "x<i+1>"; component a of law l is "law<l+1>.lambda", with the
+// (0-based) is "x<i+1>" unless the model names it; component a of law l is "law<l+1>.lambda", with the
 // component's number after it for a law of more than one ("law2.lambda1").
 std::string dofLabel(int dof);
+// The model's name of DOF `dof` (HbModel::dof_names: "w3", "theta3"), else dofLabel(dof).
+std::string dofLabel(const HbModel& model, int dof);
 std::string lawComponentLabel(const HbModel& model, int law, int component);
 // Every law component's label, in the order of the λ channels.
 std::vector<std::string> lawComponentLabels(const HbModel& model);

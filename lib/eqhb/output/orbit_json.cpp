@@ -67,7 +67,7 @@ void writeOrbitText(std::ostream& out, const app::Orbit& o) {
       << (orbit.converged ? "periodic orbit" : "NOT converged: " + orbit.failure) << ", period residual "
       << orbit.period_residual << " after " << orbit.iterations << " Newton steps, " << orbit.seconds << " s ("
       << orbit.seconds_per_orbit << " s per orbit)\n";
-  for (int i = 0; i < orbit.max_abs.size(); ++i) out << "  max|" << dofLabel(i) << "| = " << orbit.max_abs[i] << "\n";
+  for (int i = 0; i < orbit.max_abs.size(); ++i) out << "  max|" << dofLabel(model, i) << "| = " << orbit.max_abs[i] << "\n";
   if (!orbit.converged) return;
   out << "  multipliers:";
   for (int k = 0; k < orbit.multipliers.size(); ++k)

@@ -83,7 +83,7 @@ void writeReferenceText(std::ostream& out, const HbModel& model, const TimeRefer
       << " periods (change " << ref.periodicity_error << "), h = " << ref.step << " (" << ref.steps_per_period
       << " steps per period), " << ref.seconds << " s\n";
   for (int i = 0; i < model.structure.dofs(); ++i)
-    out << "  max|" << dofLabel(i) << "| = " << ref.displacement.col(i).cwiseAbs().maxCoeff() << "\n";
+    out << "  max|" << dofLabel(model, i) << "| = " << ref.displacement.col(i).cwiseAbs().maxCoeff() << "\n";
   const std::vector<std::string> labels = lawComponentLabels(model);
   for (int q = 0; q < ref.force.cols(); ++q)
     out << "  max|" << labels[q] << "| = " << ref.force.col(q).cwiseAbs().maxCoeff() << "\n";

@@ -1,5 +1,6 @@
 #include "eqhb/output/solution_text.h"
 
+#include "eqhb/output/invariant_meanings.h"
 #include "eqhb/output/solution_json.h"
 
 namespace eqhb::output {
@@ -58,8 +59,10 @@ void writeSolutionText(std::ostream& out, const app::Solution& s) {
         << (run.fallback.taken.empty() ? "; none converged" : "; the result above is " + run.fallback.taken + "'s")
         << "\n";
   writeLinearAlgebra(out, s);
-  for (const auto* channels : {&s.summary.displacements, &s.summary.forces})
-    for (const auto& c : *channels) out << "  max|" << c.label << "| = " << c.max_abs << "\n";
+  // The DOFs the scene's output choice shows (scenes/dof_choice.h), every law force.
+  for (int dof : run.scene.output.shown)
+    out << "  max|" << s.summary.displacements[dof].label << "| = " << s.summary.displacements[dof].max_abs << "\n";
+  for (const auto& c : s.summary.forces) out << "  max|" << c.label << "| = " << c.max_abs << "\n";
   if (const auto& e = s.error_estimate)
     out << "estimated relative error of max|x|: " << e->max_abs << " (solve at H = " << e->refined_harmonics
         << (e->available ? "" : ", which did NOT converge") << ")\n";
@@ -78,6 +81,7 @@ void writeSolutionText(std::ostream& out, const app::Solution& s) {
     for (const auto& [name, value] : report.violations) out << " " << name << " " << value;
     out << "\n";
   }
+  writeInvariantMeanings(out, s.invariants);
   if (s.stability) writeStability(out, *s.stability);
 }
 

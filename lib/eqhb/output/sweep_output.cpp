@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
 #include "eqhb/output/curve_json.h"
 #include "eqhb/output/solution_json.h"
@@ -40,11 +41,19 @@ CurveRun curveRun(const app::SweepResult& r, const std::string& accuracy_option)
   if (!r.curve.complete) run.advice = scaleAdvice(r.model);
   run.error_estimate = r.plan.options.error_estimate;
   if (r.accurate) run.accuracy = accuracyLine(r, accuracy_option);
+  run.peak_dof = r.plan.scene.output.peak;
   return run;
+}
+
+void writeSweepCsv(const std::string& path, const app::SweepResult& r) {
+  writeCurveCsv(path, r.curve, curveColumns(r.plan.scene.model, r.plan.scene.output.shown));
 }
 
 nlohmann::json sweepJson(const app::SweepResult& r) {
   nlohmann::json out = curveJson(r.curve, curveRun(r));
+  const HbModel& model = r.plan.scene.model;
+  out["dof_labels"] = curveColumns(model).labels;
+  out["peak_dof"] = dofLabel(model, r.plan.scene.output.peak);
   if (!r.accurate) return out;
   const AccurateCurve& a = *r.accurate;
   out["rho"] = rhoJson(r.rho.scene_rho, chosenRhoFactor(r));

@@ -24,6 +24,7 @@
 #include "eqhb/structures/market_structure_sizes.h"
 #include "eqhb/structures/matrix_market.h"
 #include "eqhb/structures/node_table.h"
+#include "eqhb/scenes/dof_choice.h"
 #include "eqhb/structures/structure_matrices.h"
 #include "eqhb/scenes/element_frame.h"
 #include "eqhb/scenes/toml_guard.h"
@@ -177,6 +178,7 @@ struct ReadStructure {
   LinearStructure structure;
   int nodes = 0;
   NodeTable node_table;  // all but beams: node i + 1 → its DOFs (node_table.h)
+  std::vector<std::string> dof_names;  // beams and frames: HbModel::dof_names
 };
 
 // How an element names nodes (`between`): a node table's node → its DOFs, a
@@ -385,6 +387,8 @@ void readBeam(TableReader& s, const std::string& source, const ModelSizes& setti
   readDampingModel(s, matrices);
   read->structure = toLinearStructure(matrices);
   read->nodes = beam.elements;
+  read->dof_names = nodeDofNames(read->structure.dofs(), beam.elements, {"w", "theta"},
+                                 [](int node, int c) { return beamTransverseDof(node) + c; });
 }
 
 // A cantilever plane frame (structures/frame.h): node i → its DOFs [u, w, θ].
@@ -406,6 +410,7 @@ void readFrame(TableReader& s, const std::string& source, const ModelSizes& sett
   read->structure = toLinearStructure(matrices);
   for (int node = 1; node <= frame.elements; ++node)
     read->node_table.push_back({frameDof(node, 0), frameDof(node, 1), frameDof(node, 2)});
+  read->dof_names = nodeDofNames(read->structure.dofs(), frame.elements, {"u", "w", "theta"}, frameDof);
 }
 
 // Two beams over a lap joint (structures/lap_joint.h): its nodes are the
@@ -464,6 +469,33 @@ ReadStructure readStructure(TableReader& top, const std::string& source, const M
     read.node_table = readNodeTableKey(s, source, read.structure.dofs());
   s.requireKnownKeys();
   return read;
+}
+
+// [output] dofs = [7, "w10"], peak = "w10": what the outputs show and the
+// DOF that defines a peak (scenes/dof_choice.h); each key optional.
+DofChoice readOutputChoice(TableReader& top, const std::string& source, const HbModel& model) {
+  DofChoice choice = defaultDofChoice(model);
+  if (!top.has("output")) return choice;
+  TableReader o(top.raw("output"), "output", source);
+  auto token = [&](const toml::value& v, const std::string& field) -> std::string {
+    if (v.is_integer()) return std::to_string(v.as_integer());
+    if (!v.is_string()) o.fail(field, describe(v), "must be a DOF number (from 1) or name (\"w7\", \"x7\")");
+    return v.as_string().str;
+  };
+  if (o.has("dofs")) {
+    const toml::value& v = o.raw("dofs");
+    if (!v.is_array()) o.fail("output.dofs", describe(v), "must be an array of DOF numbers or names");
+    std::vector<std::string> tokens;
+    for (size_t i = 0; i < v.as_array().size(); ++i)
+      tokens.push_back(token(v.as_array()[i], "output.dofs[" + std::to_string(i) + "]"));
+    bounded(source, [&] { choice.shown = resolveDofs(model, tokens, "output.dofs"); });
+  }
+  if (o.has("peak")) {
+    const std::string peak = token(o.raw("peak"), "output.peak");
+    bounded(source, [&] { choice.peak = resolveDof(model, peak, "output.peak"); });
+  }
+  o.requireKnownKeys();
+  return choice;
 }
 
 const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
@@ -707,6 +739,7 @@ Scene buildScene(toml::value root, const std::string& source,
   settings.samples = scene.model.samples;
   const ReadStructure structure = readStructure(top, source, settings);
   scene.model.structure = structure.structure;
+  scene.model.dof_names = structure.dof_names;
   const int dofs = scene.model.structure.dofs();
 
   if (top.has("forcing")) {
@@ -828,6 +861,7 @@ Scene buildScene(toml::value root, const std::string& source,
     }
     t.requireKnownKeys();
   }
+  scene.output = readOutputChoice(top, source, scene.model);
   top.allow({"forcing", "preload", "law"});
   top.requireKnownKeys();
   try {

@@ -22,6 +22,9 @@
 //               with defaults, ranges and docs; laws/law_registry.h)
 //   [harmonic_balance] harmonics, set = odd|all, samples, omega
 //   [sweep]     from, to  (optional)
+//   [output]    dofs = [7, "w10"], peak = "w10" (each optional): the DOFs
+//               the outputs show and the one defining a peak, by number
+//               from 1 or name (scenes/dof_choice.h, which gives the default)
 //   [time_reference]  step > 0, theta in [0.5, 1], periods >= 1,
 //               periodic_tolerance > 0 (each optional): the scene's own
 //               defaults for `eqhb simulate` and `compare`, where the
@@ -39,6 +42,7 @@
 
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/preload/static_contact.h"
+#include "eqhb/scenes/dof_choice.h"
 
 namespace eqhb {
 
@@ -60,6 +64,8 @@ struct Scene {
   // The static state under them, once solved (app::loadScene does): the
   // model's laws are then anchored at it (preload/operating_point.h).
   std::optional<StaticContactState> at_rest;
+  // What the outputs show ([output], else defaultDofChoice).
+  DofChoice output;
 };
 
 // Throws InputError with the file name and the field.

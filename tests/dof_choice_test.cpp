@@ -1,0 +1,165 @@
+// What the outputs show: DOF names of beams and frames, the default choice
+// (a beam's tip deflection defines the peak, not its tip rotation), the
+// scene's [output] and the errors for DOFs that are not there.
+#include "eqhb/scenes/dof_choice.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "eqhb/curves/curve_writers.h"
+#include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/scenes/scene.h"
+#include "test_support.h"
+
+namespace eqhb {
+namespace {
+
+const char* kBeam = R"(
+name = "b"
+[structure]
+type = "beam"
+elements = 10
+E = 1.0
+I = 1.0
+rhoA = 1.0
+L = 1.0
+[[forcing]]
+node = 10
+cos = 1.0
+[harmonic_balance]
+harmonics = 1
+samples = 8
+omega = 1.0
+)";
+
+const char* kChain = R"(
+name = "c"
+[structure]
+type = "chain"
+dofs = 3
+m = 1.0
+k = 1.0
+d = 0.1
+[[forcing]]
+dof = 1
+cos = 1.0
+[harmonic_balance]
+harmonics = 1
+samples = 8
+omega = 1.0
+)";
+
+// The InputError's message of `load`, "" when it loads.
+std::string errorOf(const std::string& text) {
+  try {
+    parseScene(text, "scene.toml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DofChoice, BeamDofsAreNamedDeflectionAndRotationPerNode) {
+  const Scene scene = parseScene(kBeam, "scene.toml");
+  ASSERT_EQ(scene.model.structure.dofs(), 20);
+  EXPECT_EQ(dofLabel(scene.model, 0), "w1");
+  EXPECT_EQ(dofLabel(scene.model, 1), "theta1");
+  EXPECT_EQ(dofLabel(scene.model, 18), "w10");
+  EXPECT_EQ(dofLabel(scene.model, 19), "theta10");
+  // The solution's channels carry the names (text, JSON and Python read them).
+  const HbSolution s = summarize(scene.model, Eigen::VectorXd::Zero(20 * scene.model.basis.size()));
+  EXPECT_EQ(s.displacements[19].label, "theta10");
+}
+
+TEST(DofChoice, FrameDofsAreNamedAxialDeflectionAndRotation) {
+  std::string text = kBeam;
+  text.replace(text.find("type = \"beam\""), 13, "type = \"frame\"\nA = 1.0");
+  text.replace(text.find("node = 10"), 9, "dof = 29");
+  const Scene scene = parseScene(text, "scene.toml");
+  EXPECT_EQ(dofLabel(scene.model, 0), "u1");
+  EXPECT_EQ(dofLabel(scene.model, 4), "w2");
+  EXPECT_EQ(dofLabel(scene.model, 29), "theta10");
+  EXPECT_EQ(scene.output.peak, 28);  // w10, the free end's deflection
+}
+
+TEST(DofChoice, ABeamShowsFourDeflectionsAndItsTipDeflectionDefinesThePeak) {
+  const Scene scene = parseScene(kBeam, "scene.toml");
+  // Nodes 3, 5, 8 and 10: a quarter, half, three quarters and the tip.
+  EXPECT_EQ(scene.output.shown, (std::vector<int>{4, 8, 14, 18}));
+  EXPECT_EQ(scene.output.peak, 18);
+  const Scene shipped = loadScene(test::problem("beam-damper.toml"));
+  EXPECT_EQ(dofLabel(shipped.model, shipped.output.peak), "w60");
+}
+
+TEST(DofChoice, OtherStructuresShowEveryDofAndTheLastDefinesThePeak) {
+  const Scene scene = parseScene(kChain, "scene.toml");
+  EXPECT_EQ(scene.output.shown, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(scene.output.peak, 2);
+  EXPECT_EQ(dofLabel(scene.model, 2), "x3");
+}
+
+TEST(DofChoice, TheSceneChoosesByNumberOrName) {
+  const Scene scene =
+      parseScene(std::string(kBeam) + "[output]\ndofs = [\"w10\", 3, \"x6\", \"theta2\"]\npeak = \"theta10\"\n", "s.toml");
+  EXPECT_EQ(scene.output.shown, (std::vector<int>{18, 2, 5, 3}));
+  EXPECT_EQ(scene.output.peak, 19);
+}
+
+TEST(DofChoice, DofsOutsideTheStructureOrAnEmptyListNameTheField) {
+  const std::string beam = kBeam;
+  EXPECT_NE(errorOf(beam + "[output]\ndofs = [\"w11\"]\n").find("output.dofs[0] = \"w11\": no DOF"), std::string::npos)
+      << errorOf(beam + "[output]\ndofs = [\"w11\"]\n");
+  EXPECT_NE(errorOf(beam + "[output]\ndofs = [21]\n").find("output.dofs[0] = \"21\": no such DOF (the structure has 20"),
+            std::string::npos);
+  EXPECT_NE(errorOf(beam + "[output]\ndofs = []\n").find("output.dofs = []: give at least one DOF"), std::string::npos);
+  EXPECT_NE(errorOf(beam + "[output]\ndofs = [1, \"w1\"]\n").find("output.dofs[1] = \"w1\": names a DOF given before"),
+            std::string::npos);
+  EXPECT_NE(errorOf(beam + "[output]\npeak = 0\n").find("output.peak = \"0\": no such DOF"), std::string::npos);
+  EXPECT_NE(errorOf(beam + "[output]\npeak = 1.5\n").find("output.peak"), std::string::npos);
+  EXPECT_NE(errorOf(beam + "[output]\nshow = [1]\n").find("show"), std::string::npos);
+  const Scene chain = parseScene(kChain, "scene.toml");
+  EXPECT_THROW(resolveDof(chain.model, "w1", "show"), InputError);
+  EXPECT_THROW(resolveDof(chain.model, "x4", "show"), InputError);
+  EXPECT_EQ(resolveDof(chain.model, "x3", "show"), 2);
+}
+
+TEST(DofChoice, TheCsvShowsTheChosenDofsUnderTheirNames) {
+  const Scene scene = parseScene(kBeam, "scene.toml");
+  Curve curve;
+  CurvePoint p;
+  p.converged = true;
+  for (int i = 1; i <= 20; ++i) {
+    p.max_abs.push_back(i);
+    p.first_harmonic.push_back(100 + i);
+  }
+  curve.points.push_back(p);
+  const std::string path = ::testing::TempDir() + "dof_choice_test.csv";
+  writeCurveCsv(path, curve, curveColumns(scene.model, {18, 2}));
+  std::ifstream in(path);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  EXPECT_NE(header.find(",seconds,max_abs_w10,max_abs_w2,first_harmonic_w10,first_harmonic_w2,energy"),
+            std::string::npos)
+      << header;
+  EXPECT_NE(row.find(",19,3,119,103,"), std::string::npos) << row;
+  std::remove(path.c_str());
+  // The summary's peak is the chosen DOF's, under its name.
+  CurvePoint q = p;
+  q.max_abs[18] = 0.5;  // lower tip deflection, higher elsewhere
+  q.max_abs[19] = 50.0;
+  q.omega = 2.0;
+  curve.points.push_back(q);
+  CurveRun run;
+  run.model = &scene.model;
+  run.peak_dof = scene.output.peak;
+  std::ostringstream text;
+  writeCurveSummary(text, curve, run);
+  EXPECT_NE(text.str().find("peak: omega = 0, max|w10| = 19\n"), std::string::npos) << text.str();
+}
+
+}  // namespace
+}  // namespace eqhb
