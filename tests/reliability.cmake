@@ -87,6 +87,7 @@ set_tests_properties(cli.shoot_time_limit cli.shoot_unconverged_has_no_multiplie
 # so each runs in milliseconds).
 set(CONTACT_FRICTION ${PROJECT_SOURCE_DIR}/problems/contact-friction-2d.toml)
 set(JENKINS ${PROJECT_SOURCE_DIR}/problems/jenkins-1d.toml)
+set(LAP_VARYING ${PROJECT_SOURCE_DIR}/problems/lap-joint-varying.toml)
 foreach(case
     "negative_mu|law\\[0\\]\\.mu = -0\\.1|${CONTACT_FRICTION}|law.mu=-0.1"
     "negative_preload|law\\[0\\]\\.preload = -1|${CONTACT_FRICTION}|law.preload=-1"
@@ -96,7 +97,12 @@ foreach(case
     "normal_also_tangential|law\\[0\\]\\.dofs = 1: the normal DOF is also a tangential DOF|${CONTACT_FRICTION}|law.dofs=[1,1]"
     "odd_harmonics|harmonic_balance\\.set = \"odd\": law\\[0\\] \\(contact-friction\\) needs the constant term|${CONTACT_FRICTION}|harmonic_balance.set=\"odd\""
     "jenkins_negative_k_t|law\\[0\\]\\.k_t = -1|${JENKINS}|law.k_t=-1"
-    "jenkins_negative_muN|law\\[0\\]\\.muN = -1|${JENKINS}|law.muN=-1")
+    "jenkins_negative_muN|law\\[0\\]\\.muN = -1|${JENKINS}|law.muN=-1"
+    "elastic_friction_negative_mu|law\\[0\\]\\.mu = -0\\.1: friction coefficient must be >= 0|${LAP_VARYING}|law[0].mu=-0.1"
+    "elastic_friction_nan_k_t|law\\[0\\]\\.k_t = nan: must be finite|${LAP_VARYING}|law[0].k_t=nan"
+    "elastic_friction_negative_k_t|law\\[0\\]\\.k_t = -1|${LAP_VARYING}|law[0].k_t=-1"
+    "elastic_friction_zero_k_n|law\\[0\\]\\.k_n = 0|${LAP_VARYING}|law[0].k_n=0"
+    "elastic_friction_nan_gap|law\\[0\\]\\.gap = nan: must be finite|${LAP_VARYING}|law[0].gap=nan")
   string(REPLACE "|" ";" fields "${case}")
   list(GET fields 0 name)
   list(GET fields 1 pattern)
@@ -104,6 +110,25 @@ foreach(case
   list(SUBLIST fields 3 -1 sets)
   add_test(NAME cli.joint_bad_input.${name} COMMAND ${EXPECT_EXIT} 2 "${pattern}" ${EQHB_CLI} solve ${scene} --set ${sets})
 endforeach()
+# The time reference and shooting carry no slider state for elastic-friction:
+# refused naming the law (between nodes, and on DOFs against the ground).
+add_test(NAME cli.elastic_friction_simulate_refused
+         COMMAND ${EXPECT_EXIT} 2 "law elastic-friction: the time reference does not integrate it"
+                 ${EQHB_CLI} simulate ${LAP_VARYING})
+add_test(NAME cli.elastic_friction_shoot_refused
+         COMMAND ${EXPECT_EXIT} 2 "a elastic-friction law between two nodes: exact orbits"
+                 ${EQHB_CLI} shoot ${LAP_VARYING})
+add_test(NAME cli.elastic_friction_grounded_shoot_refused
+         COMMAND ${EXPECT_EXIT} 2 "law\\[0\\]\\.type = elastic-friction: exact orbits handle"
+                 ${EQHB_CLI} shoot ${PROJECT_SOURCE_DIR}/tests/cli/bad/elastic-friction-no-k-n.toml --set law.k_n=3.0)
+# An elastic-friction law needs [normal, tangent(s)] and its three constants
+# (the DOF list is printed over lines: the field is checked in elastic_friction_test).
+add_test(NAME cli.joint_bad_input.elastic_friction_one_dof
+         COMMAND ${EXPECT_EXIT} 2 "\\]: an elastic-friction law acts on \\[normal, tangential\\] or"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/tests/cli/bad/elastic-friction-one-dof.toml)
+add_test(NAME cli.joint_bad_input.elastic_friction_missing_k_n
+         COMMAND ${EXPECT_EXIT} 2 "law\\[0\\]\\.k_n = \\(missing\\): required"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/tests/cli/bad/elastic-friction-no-k-n.toml)
 
 # "Converged" means the law holds at any ρ and in any time unit: extreme ρ and
 # a time unit 1e12 times shorter either solve to the scene's answer or exit 1.

@@ -30,8 +30,8 @@ LawAssembly::LawAssembly(const HbModel& model)
     s.omega_coefficients.setZero(nb, d);
     s.derived_coefficients.setZero(nb, 2 * d);
     most_channels = std::max(most_channels, 4 * d);  // x, ẋ, λ, λ̇ per component
-    s.samples.resize(n, d, laws_[l].law->historyTerms());
-    history_terms = std::max(history_terms, laws_[l].law->historyTerms());
+    s.samples.resize(n, d, laws_[l].law->historyTermsOn(n));
+    history_terms = std::max(history_terms, laws_[l].law->historyTermsOn(n));
     s.displacement_blocks.assign(d * d, Eigen::MatrixXd::Zero(nb, nb));
     s.force_blocks.assign(d * d, Eigen::MatrixXd::Zero(nb, nb));
   }
@@ -135,7 +135,8 @@ bool LawAssembly::evaluate(int l, double omega, bool with_jacobian) {
         transform_.gram(s.samples.dpsi_ddisplacement.col(ab).data(), block);
       else
         block.setZero();
-      if (law.historyTerms() > 0) addHistoryBlock(s.samples, ab * law.historyTerms(), law.historyTerms(), block);
+      const int terms = law.historyTermsOn(transform_.activeSamples());
+      if (terms > 0) addHistoryBlock(s.samples, ab * terms, terms, block);
       if (law.usesVelocity()) {
         transform_.gram(s.samples.dpsi_dvelocity.col(ab).data(), gram_scratch_);
         transform_.rightMultiplyDerivative(gram_scratch_, omega, velocity_scratch_);

@@ -23,7 +23,7 @@ namespace eqhb {
 // Column layout: component a of a quantity is column a; partial ∂Ψ_a/∂q_b is
 // column a * d + b. Rows are the N time samples.
 //
-// A history law (Law::historyTerms() = K > 0, the alternating frequency–time
+// A history law (Law::historyTermsOn(N) = K > 0, the alternating frequency–time
 // forms) has Ψ at sample i depend on the displacement at other samples too:
 //   ∂Ψ_a(t_i)/∂x_b(t_j) = dpsi_ddisplacement(i, ab) δ_ij
 //                         + Σ_k history_weight(i, ab K + k) [j = history_sample(i, ab K + k)],
@@ -201,6 +201,13 @@ class Law {
   // components in its Jacobian besides the diagonal. Such a law is never
   // oddSymmetric (its period is not sampled by halves).
   virtual int historyTerms() const { return 0; }
+  // K on a period of `samples` samples, for a law whose terms grow with the
+  // period (a slider whose state reaches back over every sample); on one
+  // sample it is historyTerms(). The sizes LawSamples::resize takes.
+  virtual int historyTermsOn(int samples) const {
+    static_cast<void>(samples);
+    return historyTerms();
+  }
   // True for rate-independent friction: its static step from the unloaded
   // state (preload/static_contact.h) reads the displacement increment as the
   // velocity and the force increment as the force rate (one implicit step of

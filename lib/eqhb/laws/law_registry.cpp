@@ -17,12 +17,13 @@ LawEntry iwanEntry();
 LawEntry penaltyContactEntry();
 LawEntry polynomialEntry();
 LawEntry quadraticDampingEntry();
+LawEntry elasticFrictionEntry();
 
 const std::vector<LawEntry>& lawRegistry() {
   static const std::vector<LawEntry> entries = {coulomb1DEntry(), coulomb2DEntry(),       signoriniEntry(),
                                                 stribeckEntry(),  cubicEntry(),           contactFrictionEntry(),
                                                 jenkinsEntry(),   iwanEntry(),            penaltyContactEntry(),
-                                                polynomialEntry(), quadraticDampingEntry()};
+                                                polynomialEntry(), quadraticDampingEntry(), elasticFrictionEntry()};
   return entries;
 }
 

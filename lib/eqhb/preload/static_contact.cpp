@@ -18,7 +18,7 @@ StaticContactSystem::StaticContactSystem(const HbModel& model)
     const Law& law = *attached.law;
     // At rest a history law is its copy anchored at the unloaded state.
     LawSamples unloaded;
-    unloaded.resize(1, law.dimension(), law.historyTerms());
+    unloaded.resize(1, law.dimension(), law.historyTermsOn(1));
     unloaded.displacement.setZero();
     unloaded.velocity.setZero();
     unloaded.force.setZero();
@@ -82,7 +82,7 @@ bool StaticContactSystem::residualAndJacobian(const Eigen::Ref<const Eigen::Vect
     const Law& law = *step_laws_[l];
     const LawAttachment& w = model_.laws[l].attachment;
     const LawSamples& s = samples_[l];
-    const int d = law.dimension(), terms = law.historyTerms();
+    const int d = law.dimension(), terms = law.historyTermsOn(1);
     const bool increments = law.rateIndependent();
     for (int a = 0; a < d; ++a) {
       const int row = dofs_ + model_.componentIndex(static_cast<int>(l), a);

@@ -38,7 +38,7 @@ struct LawRateWork {
   explicit LawRateWork(const HbModel& model)
       : samples(model.laws.size()), rate(model.basis.size()), reading(model.basis.size()),
         block(model.basis.size(), model.basis.size()) {
-    for (size_t l = 0; l < model.laws.size(); ++l) samples[l].resize(model.samples, model.laws[l].law->dimension(), model.laws[l].law->historyTerms());
+    for (size_t l = 0; l < model.laws.size(); ++l) samples[l].resize(model.samples, model.laws[l].law->dimension(), model.laws[l].law->historyTermsOn(model.samples));
   }
 };
 
