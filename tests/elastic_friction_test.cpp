@@ -56,28 +56,6 @@ LawSamples evaluated(const Law& law, const Eigen::MatrixXd& u, bool with_derivat
   return s;
 }
 
-// ∂Ψ_a(t_i)/∂u_b(t_j) assembled from the samples, rows i d + a, columns j d + b.
-Eigen::MatrixXd sampleJacobian(const Law& law, const LawSamples& s) {
-  const int n = static_cast<int>(s.psi.rows()), d = law.dimension(), terms = law.historyTermsOn(n);
-  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(n * d, n * d);
-  for (int i = 0; i < n; ++i)
-    for (int a = 0; a < d; ++a)
-      for (int b = 0; b < d; ++b) {
-        const int ab = a * d + b;
-        j(i * d + a, i * d + b) += s.dpsi_ddisplacement(i, ab);
-        for (int k = 0; k < terms; ++k) {
-          const double w = s.history_weight(i, ab * terms + k);
-          const int sample = s.history_sample(i, ab * terms + k);
-          if (w == 0.0) continue;
-          if (sample == LawSamples::kPeriodMean)
-            for (int m = 0; m < n; ++m) j(i * d + a, m * d + b) += w / n;
-          else
-            j(i * d + a, sample * d + b) += w;
-        }
-      }
-  return j;
-}
-
 // Samples open (p = 0), slipping (‖T‖ = μp > 0) and sticking.
 struct Phases {
   int open = 0, slip = 0, stick = 0;
@@ -127,7 +105,7 @@ TEST(ElasticFriction, UnderAConstantNormalLoadIsPenaltyContactPlusJenkins) {
     EXPECT_LT((s.psi.col(0) - normal.psi.col(0)).cwiseAbs().maxCoeff(), 1e-10 * scale) << c.amplitude;
     EXPECT_LT((s.psi.col(1) + t.psi.col(0)).cwiseAbs().maxCoeff(), 1e-10 * scale) << c.amplitude;
     // The tangential block of the Jacobian likewise (Ψ_t = λ − T, Ψ = λ − F, F = −T).
-    const Eigen::MatrixXd a = sampleJacobian(*c.law, s), b = sampleJacobian(*c.reference, t);
+    const Eigen::MatrixXd a = test::sampleJacobian(*c.law, s), b = test::sampleJacobian(*c.reference, t);
     for (int i = 0; i < 128; ++i)
       for (int j = 0; j < 128; ++j) ASSERT_NEAR(a(2 * i + 1, 2 * j + 1), -b(i, j), 1e-10) << i << ", " << j;
   }
@@ -144,7 +122,7 @@ TEST(ElasticFriction, ThreeDimensionalDrivenAlongOneTangentIsTheTwoDimensional) 
   EXPECT_GT(p.stick, 0);
   EXPECT_LT((a.psi - b.psi.leftCols(2)).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_EQ(b.psi.col(2).cwiseAbs().maxCoeff(), 0.0);
-  const Eigen::MatrixXd ja = sampleJacobian(plane, a), jb = sampleJacobian(space, b);
+  const Eigen::MatrixXd ja = test::sampleJacobian(plane, a), jb = test::sampleJacobian(space, b);
   for (int i = 0; i < 96; ++i)
     for (int j = 0; j < 96; ++j)
       for (int r = 0; r < 2; ++r)
@@ -225,7 +203,7 @@ TEST(ElasticFriction, JacobianAcrossSamplesMatchesFiniteDifferences) {
         const Phases p = phases(s, 0.4);
         EXPECT_EQ(p.open > 0, !pressed);
         EXPECT_GT(pressed ? p.slip : p.stick + p.slip, 0);
-        const Eigen::MatrixXd j = sampleJacobian(*law, s);
+        const Eigen::MatrixXd j = test::sampleJacobian(*law, s);
         const int d = 1 + tangents;
         const double h = 1e-7;
         for (int k = 0; k < 48; ++k)

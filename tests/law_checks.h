@@ -102,6 +102,30 @@ inline void expectPointwisePartialsMatch(const Law& law, const std::string& labe
   EXPECT_GT(checked, 0) << label;
 }
 
+// ∂Ψ_a(t_i)/∂x_b(t_j) of evaluated samples, assembled: rows i d + a,
+// columns j d + b; the pointwise diagonal plus the history terms
+// (LawSamples), a term on the period's mean spread over every sample.
+inline Eigen::MatrixXd sampleJacobian(const Law& law, const LawSamples& s) {
+  const int n = static_cast<int>(s.psi.rows()), d = law.dimension(), terms = law.historyTermsOn(n);
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(n * d, n * d);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b) {
+        const int ab = a * d + b;
+        j(i * d + a, i * d + b) += s.dpsi_ddisplacement(i, ab);
+        for (int k = 0; k < terms; ++k) {
+          const double w = s.history_weight(i, ab * terms + k);
+          const int sample = s.history_sample(i, ab * terms + k);
+          if (w == 0.0) continue;
+          if (sample == LawSamples::kPeriodMean)
+            for (int m = 0; m < n; ++m) j(i * d + a, m * d + b) += w / n;
+          else
+            j(i * d + a, sample * d + b) += w;
+        }
+      }
+  return j;
+}
+
 // A history law (Law::historyTerms): Ψ over all samples against central
 // differences in the displacement of each sample in turn, at random inputs
 // in [-2, 2] read as one period. Its Jacobian is ∂Ψ/∂λ = dpsi_dforce
@@ -111,23 +135,7 @@ inline void expectHistoryPartialsMatch(const Law& law, const std::string& label,
   const int d = law.dimension(), terms = law.historyTermsOn(samples);
   LawSamples s = randomSamples(samples, d, terms, seed);
   law.evaluate(s, true);
-  // The assembled ∂Ψ_a(t_i)/∂x_b(t_j), rows (i, a), columns (j, b).
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(samples * d, samples * d);
-  for (int i = 0; i < samples; ++i)
-    for (int a = 0; a < d; ++a)
-      for (int b = 0; b < d; ++b) {
-        const int ab = a * d + b;
-        jacobian(i * d + a, i * d + b) += s.dpsi_ddisplacement(i, ab);
-        for (int k = 0; k < terms; ++k) {
-          const double w = s.history_weight(i, ab * terms + k);
-          const int j = s.history_sample(i, ab * terms + k);
-          if (w == 0.0) continue;
-          if (j == LawSamples::kPeriodMean)
-            for (int m = 0; m < samples; ++m) jacobian(i * d + a, m * d + b) += w / samples;
-          else
-            jacobian(i * d + a, j * d + b) += w;
-        }
-      }
+  const Eigen::MatrixXd jacobian = sampleJacobian(law, s);
   const double h = 1e-7;
   int checked = 0;
   // The inputs alone: the differences need no Jacobian (a law whose terms
