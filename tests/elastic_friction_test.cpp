@@ -229,18 +229,7 @@ TEST(ElasticFriction, JacobianAcrossSamplesMatchesFiniteDifferences) {
 TEST(ElasticFriction, SparseJacobiansMatch) {
   for (int tangents : {1, 2}) {
     const auto law = std::make_shared<ElasticFrictionAft>(element(tangents, 0.3, 1.5, 2.5, -0.2));
-    HbModel model;
-    const int n = 3;
-    Eigen::MatrixXd k = 2.0 * Eigen::MatrixXd::Identity(n, n);
-    k(0, 1) = k(1, 0) = -1.0;
-    model.structure = LinearStructure(Eigen::MatrixXd::Identity(n, n), 0.05 * k, k);
-    model.structure.loads.push_back({0, 1, 2.0, 0.5});
-    std::vector<int> dofs;
-    for (int a = 0; a <= tangents; ++a) dofs.push_back(n - 1 - tangents + a);
-    model.laws.push_back({dofs, law});
-    model.basis = HarmonicSet(HarmonicKind::kAll, 3);
-    model.samples = 64;
-    model.omega = 0.8;
+    const HbModel model = test::lawOnChain(law);
     auto full = makeHbSystem(model, false);
     srand(5);
     const Eigen::VectorXd z = 0.7 * Eigen::VectorXd::Random(full->size());

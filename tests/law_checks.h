@@ -188,24 +188,31 @@ inline void expectJacobianMatchesFiniteDifferences(HbSystem& system, unsigned se
   EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff())) << label;
 }
 
-// The law on the last DOFs of a 3-DOF chain, all harmonics 0..3, at a random
-// z: the weak Jacobian of the full and of the condensed system.
+// The law on the last DOFs of a 3-DOF chain, forced at DOF 1, all
+// harmonics 0..3 on 64 samples, at ω = 0.8.
+inline HbModel lawOnChain(const std::shared_ptr<Law>& law) {
+  HbModel model;
+  const int n = 3;
+  Eigen::MatrixXd k = 2.0 * Eigen::MatrixXd::Identity(n, n);
+  k(0, 1) = k(1, 0) = -1.0;
+  model.structure = LinearStructure(Eigen::MatrixXd::Identity(n, n), 0.05 * k, k);
+  model.structure.loads.push_back({0, 1, 2.0, 0.5});
+  const int d = law->dimension();
+  std::vector<int> dofs;
+  for (int a = 0; a < d; ++a) dofs.push_back(n - d + a);
+  model.laws.push_back({dofs, law});
+  model.basis = HarmonicSet(HarmonicKind::kAll, 3);
+  model.samples = 64;
+  model.omega = 0.8;
+  return model;
+}
+
+// lawOnChain at a random z: the weak Jacobian of the full and of the
+// condensed system.
 inline void expectAssembledJacobiansMatch(const std::shared_ptr<Law>& law, const std::string& label,
                                           unsigned seed) {
+  const HbModel model = lawOnChain(law);
   for (bool condensed : {false, true}) {
-    HbModel model;
-    const int n = 3;
-    Eigen::MatrixXd k = 2.0 * Eigen::MatrixXd::Identity(n, n);
-    k(0, 1) = k(1, 0) = -1.0;
-    model.structure = LinearStructure(Eigen::MatrixXd::Identity(n, n), 0.05 * k, k);
-    model.structure.loads.push_back({0, 1, 2.0, 0.5});
-    const int d = law->dimension();
-    std::vector<int> dofs;
-    for (int a = 0; a < d; ++a) dofs.push_back(n - d + a);
-    model.laws.push_back({dofs, law});
-    model.basis = HarmonicSet(HarmonicKind::kAll, 3);
-    model.samples = 64;
-    model.omega = 0.8;
     expectJacobianMatchesFiniteDifferences(*makeHbSystem(model, condensed), seed,
                                            label + (condensed ? " condensed" : " full"));
   }
