@@ -89,7 +89,7 @@ case "${1:-}" in
         --out "results/lap-joint-$f.csv" | tee -a results/lap-joint.txt
     done
     { printf '\n## Lap joint (problems/lap-joint.toml, arclength sweeps)\n\n'
-      /usr/bin/python3 bench/lap_joint_chart.py results/lap_joint 59 3=results/lap-joint-3.csv \
+      /usr/bin/python3 bench/lap_joint_chart.py results/lap_joint w20 3=results/lap-joint-3.csv \
         15=results/lap-joint-15.csv 50=results/lap-joint-50.csv; } >> results/report.md
     # Backbones of the friction scenes, the beams and the lap joint, with the
     # forced response each mode predicts against the forced sweep (charts

@@ -6,6 +6,8 @@ The chart is drawn by cli/plot_study.py, the drawing of `eqhb study --chart`.
 
     damper_chart.py STUDY_DIR REPORT.md [FORCING_PATH LOAD_PATH DOF [SCENE_NAME]]
 
+DOF: the study's --dof, by name ("w60") or number from 1.
+
 LOAD_PATH may be the linked form of `--vary A,B,...` (the study's column).
 """
 import os
@@ -25,12 +27,13 @@ def main():
     dof = sys.argv[5] if len(sys.argv) > 5 else "1"
     name = sys.argv[6] if len(sys.argv) > 6 else "friction-1d"
     rows, varied = plot_study.read_study(folder)
+    dof = plot_study.dof_name(folder, dof)
     prefix = os.path.join(os.path.dirname(report) or ".", f"damper_{name}")
-    lines, failed = plot_study.draw(rows, varied, int(dof), prefix, name, x_path=load,
+    lines, failed = plot_study.draw(rows, varied, dof, prefix, name, x_path=load,
                                     x_label="normal load μN" + (" (every damper)" if "," in load else ""),
                                     group_label="forcing")
     section = ["", f"## Damper curves ({name})", "",
-               "Resonance peak (largest maximum over ω of the first-harmonic amplitude of x" + dof +
+               "Resonance peak (largest maximum over ω of the first-harmonic amplitude of " + dof +
                ") vs the normal load, per forcing level, by `eqhb study --peak` (peaks followed along the load; "
                f"{len(rows)} samples, {len(failed)} failed). Too little load and the damper slides freely, too much "
                "and it sticks; the optimum lies between.", "", *lines, "",

@@ -7,7 +7,8 @@ half-power damping ratio where both half-power points are on the curve).
     lap_joint_chart.py PREFIX DOF FORCE=SWEEP.csv [FORCE=SWEEP.csv ...]
 
 Each SWEEP.csv is an `eqhb sweep --out` curve of problems/lap-joint.toml at
-forcing FORCE (N); DOF is the forced DOF (1-based, 59 in the scene).
+forcing FORCE (N); DOF is the forced DOF's name, as the CSV's columns have it
+("w20" in the scene: the upper beam's node 20, pair 11).
 """
 import csv
 import math
@@ -46,7 +47,7 @@ def main():
         force = float(force_text)
         with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
-        points = sorted((float(r["omega"]), float(r["first_harmonic_x" + dof])) for r in rows if r["converged"] == "true")
+        points = sorted((float(r["omega"]), float(r["first_harmonic_" + dof])) for r in rows if r["converged"] == "true")
         failed = sum(1 for r in rows if r["converged"] != "true")
         peak = max(points, key=lambda p: p[1])
         zeta = half_power_ratio(points, peak)

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #ifdef EQHB_WITH_HDF5
+#include "eqhb/output/backbone_hdf5.h"
 #include "eqhb/output/results_hdf5.h"
 #endif
 
@@ -15,6 +16,7 @@ void addHdf5Option(CLI::App* command, std::string& path, const std::string& what
 #ifdef EQHB_WITH_HDF5
 void writeSweepHdf5File(const std::string& path, const app::SweepResult& r) { output::writeSweepHdf5(path, r); }
 void writeStudyHdf5File(const std::string& path, const app::StudyRun& run) { output::writeStudyHdf5(path, run); }
+void writeBackboneHdf5File(const std::string& path, const app::ModesRun& run) { output::writeBackboneHdf5(path, run); }
 #else
 namespace {
 [[noreturn]] void noHdf5(const std::string& path) {
@@ -23,6 +25,7 @@ namespace {
 }  // namespace
 void writeSweepHdf5File(const std::string& path, const app::SweepResult&) { noHdf5(path); }
 void writeStudyHdf5File(const std::string& path, const app::StudyRun&) { noHdf5(path); }
+void writeBackboneHdf5File(const std::string& path, const app::ModesRun&) { noHdf5(path); }
 #endif
 
 }  // namespace eqhb::cli

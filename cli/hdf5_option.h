@@ -1,4 +1,4 @@
-// --hdf5 FILE of the commands that write curves or studies: the option, and
+// --hdf5 FILE of the commands that write curves, studies or backbones: the option, and
 // the writers of output/results_hdf5.h when the command was built with HDF5
 // (EQHB_WITH_HDF5), else an error saying so.
 #pragma once
@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "eqhb/app/modes.h"
 #include "eqhb/app/study.h"
 #include "eqhb/app/sweep.h"
 
@@ -16,5 +17,6 @@ void addHdf5Option(CLI::App* command, std::string& path, const std::string& what
 // this build has no HDF5.
 void writeSweepHdf5File(const std::string& path, const app::SweepResult& result);
 void writeStudyHdf5File(const std::string& path, const app::StudyRun& run);
+void writeBackboneHdf5File(const std::string& path, const app::ModesRun& run);
 
 }  // namespace eqhb::cli

@@ -9,6 +9,7 @@
 #include "eqhb/app/synthesis.h"
 #include "eqhb/output/backbone_writers.h"
 #include "eqhb/output/synthesis_writers.h"
+#include "hdf5_option.h"
 #include "representable_number.h"
 #include "terminal/progress.h"
 #include "terminal/verbosity.h"
@@ -34,6 +35,7 @@ void addModesCommand(CLI::App& app, ModesArguments& a) {
                 "synthesis), beside a forced sweep across that resonance, with their differences");
   auto* json = cmd->add_flag("--json", a.solve.json, "Print one JSON object, with each point's Fourier coefficients");
   cmd->add_flag("--csv", a.csv, "Print CSV, one row a point")->excludes(json);
+  addHdf5Option(cmd, a.hdf5, "the backbone (per point amplitude, omega, damping, max|x| and coefficients)");
   cmd->add_option("--backend,--solver", a.solve.solver, "Backend name (see `eqhb solvers`)")->capture_default_str();
   cmd->add_option("--option", a.solve.backend_options, "Backend-specific option NAME=VALUE");
   cmd->add_option("--tolerance", a.solve.tolerance, "Residual tolerance on the scaled ‖g‖₂")
@@ -94,6 +96,7 @@ int runModes(const ModesArguments& a) {
   } else {
     output::writeBackboneText(std::cout, run);
   }
+  if (!a.hdf5.empty()) writeBackboneHdf5File(a.hdf5, run);
   // With --csv or --json, stdout is the data alone; the comparison goes to stderr.
   if (synthesis && !a.solve.json) output::writeSynthesisText(a.csv ? std::cerr : std::cout, *synthesis);
   if (!run.backbone.complete())

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <optional>
+#include <string>
 
 #include "eqhb/app/modes.h"
 #include "solve_command.h"
@@ -18,6 +19,7 @@ struct ModesArguments {
   double backbone_time_limit = 0.0;
   bool synthesis = false;
   bool csv = false;
+  std::string hdf5;  // HDF5 file of the backbone
 };
 
 void addModesCommand(CLI::App& app, ModesArguments& args);

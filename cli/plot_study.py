@@ -3,10 +3,12 @@
 first-harmonic amplitude of one DOF) against the last varied value, one curve
 per value of the others, the smallest peak of each curve starred (a damper's
 optimum normal load), on a logarithmic amplitude axis.
-Usage: plot_study.py STUDY_DIR PREFIX [--dof N] [--x PATH] [--title TITLE]
+Usage: plot_study.py STUDY_DIR PREFIX [--dof DOF] [--x PATH] [--title TITLE]
+(DOF: its name in study.csv's columns, "w60", or its number from 1)
 writes PREFIX.png and PREFIX.svg and prints a Markdown table of the optima."""
 import argparse
 import csv
+import json
 import os
 from collections import defaultdict
 
@@ -26,8 +28,23 @@ def read_study(folder):
     return rows, varied
 
 
+def dof_name(folder, dof):
+    """The name of DOF `dof` (a name, or a number from 1 looked up in the
+    folder's study.json, whose dof_labels name every DOF; "x<number>" without it)."""
+    dof = str(dof)
+    if not dof.isdigit():
+        return dof
+    try:
+        with open(os.path.join(folder, "study.json")) as f:
+            labels = json.load(f).get("dof_labels", [])
+    except OSError:
+        labels = []
+    return labels[int(dof) - 1] if 0 < int(dof) <= len(labels) else f"x{dof}"
+
+
 def draw(rows, varied, dof, prefix, title, x_path=None, x_label=None, group_label=None):
     """The chart (PREFIX.png, .svg); returns the table lines and the failed rows.
+    dof: the DOF's name as study.csv's columns have it ("w60", "x3").
     x_label, group_label: words for the axis and the curves (default: the paths)."""
     if not varied:
         raise SystemExit("plot_study.py: the study varies nothing")
@@ -35,7 +52,7 @@ def draw(rows, varied, dof, prefix, title, x_path=None, x_label=None, group_labe
     if x_path not in varied:
         raise SystemExit(f"plot_study.py: --x {x_path} is not a varied value ({', '.join(varied)})")
     others = [v for v in varied if v != x_path]
-    column = f"first_harmonic_x{dof}"
+    column = f"first_harmonic_{dof}"
     curves, failed = defaultdict(list), []
     for r in rows:
         if r["status"] != "ok":
@@ -62,7 +79,7 @@ def draw(rows, varied, dof, prefix, title, x_path=None, x_label=None, group_labe
         ax.plot([float(r[x_path]) for r in failed], [ax.get_ylim()[0]] * len(failed), "r|", ms=12,
                 label=f"{len(failed)} failed")
     ax.set_xlabel(x_label)
-    ax.set_ylabel(f"peak first-harmonic amplitude of x{dof}")
+    ax.set_ylabel(f"peak first-harmonic amplitude of {dof}")
     ax.set_yscale("log")
     what = f"resonance peak vs {x_label} (★ smallest)"
     ax.set_title(f"{title}: {what}" if title else what)
@@ -78,12 +95,12 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("folder")
     parser.add_argument("prefix", help="writes PREFIX.png and PREFIX.svg")
-    parser.add_argument("--dof", type=int, default=1, help="the study's --dof (from 1)")
+    parser.add_argument("--dof", default="1", help="the study's --dof: its name (\"w60\") or number from 1")
     parser.add_argument("--x", dest="x_path", help="the varied value along the axis (default: the last)")
     parser.add_argument("--title", default="")
     args = parser.parse_args()
     rows, varied = read_study(args.folder)
-    lines, _ = draw(rows, varied, args.dof, args.prefix, args.title, args.x_path)
+    lines, _ = draw(rows, varied, dof_name(args.folder, args.dof), args.prefix, args.title, args.x_path)
     print("\n".join(lines))
 
 

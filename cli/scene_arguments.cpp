@@ -36,7 +36,8 @@ void addSceneOptions(CLI::App* cmd, SceneArguments& a) {
   cmd->add_option_function<std::string>(
       "--show", [&a](const std::string& list) { a.show = commaSeparated(list); },
       "DOFs the tables, CSV and chart show, by number from 1 or name: e.g. w10,w20 on a beam (default: the "
-      "scene's [output] dofs; on beams a few deflections, else every DOF)");
+      "scene's [output] dofs; on beams a few deflections, on more than 8 DOFs four spread to the last, else every "
+      "DOF)");
   cmd->add_option_function<std::string>(
       "--peak-dof", [&a](const std::string& dof) { a.peak_dof = dof; },
       "The DOF whose maximum defines a peak, by number or name (default: the scene's [output] peak; on beams the "

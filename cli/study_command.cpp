@@ -38,7 +38,9 @@ void addStudyCommand(CLI::App& app, SolveArguments& s, StudyArguments& a) {
   cmd->add_option("--from", a.from, "Lowest frequency (default: the scene's sweep.from)");
   cmd->add_option("--to", a.to, "Highest frequency (default: the scene's sweep.to)");
   cmd->add_option("--step", a.step, "Frequency step of --sweep")->capture_default_str();
-  cmd->add_option("--dof", a.dof, "DOF whose first-harmonic amplitude defines the peak")->capture_default_str();
+  cmd->add_option("--dof", a.dof,
+                  "DOF whose first-harmonic amplitude defines the peak, by number from 1 or name (\"w60\" on a beam)")
+      ->capture_default_str();
   cmd->add_option("--coarse-points", a.coarse_points, "Points of the coarse sweep that starts a peak cold")
       ->capture_default_str();
   cmd->add_option("--max-peaks", a.max_peaks, "Resonances (local maxima in [from, to]) followed at once")
@@ -72,10 +74,16 @@ app::StudyOptions studyOptions(const SolveArguments& s, const StudyArguments& a)
   return o;
 }
 
+// The name of the study's peak DOF, as study.csv's columns have it.
+std::string dofName(const StudySettings& s) {
+  const int dof = s.peak.dof - 1;
+  return static_cast<size_t>(dof) < s.dof_labels.size() ? s.dof_labels[dof] : std::to_string(s.peak.dof);
+}
+
 // The design chart of the study folder (plot_study.py, installed beside plot_curve.py).
 void writeStudyChart(const app::StudyRun& run, const StudyArguments& a) {
   const std::vector<std::string> command = {python3(), findDataFile("plot_study.py"), run.setup.settings.out_dir,
-                                            a.chart, "--dof", std::to_string(a.dof), "--title",
+                                            a.chart, "--dof", dofName(run.setup.settings), "--title",
                                             run.setup.scene_name};
   std::fflush(stdout);  // the plotter prints the table of the smallest peaks after the summary
   if (runProgram(command) != 0)

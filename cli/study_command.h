@@ -19,7 +19,7 @@ struct StudyArguments {
   bool sweep = false, peak = false;
   std::optional<double> from, to;  // default: the scene's [sweep]
   double step = 0.01;              // --sweep grid step
-  int dof = 1;
+  std::string dof = "1";           // by number from 1 or name ("w60")
   int coarse_points = 41;
   int max_peaks = 4;
   int threads = 0;                 // 0: every core

@@ -11,6 +11,7 @@
 #include "eqhb/curves/curve_writers.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/output/sweep_output.h"
+#include "eqhb/scenes/dof_choice.h"
 #include "flag_names.h"
 #include "hdf5_option.h"
 #include "terminal/progress.h"
@@ -172,6 +173,10 @@ int runSweep(const SolveArguments& s, const SweepArguments& w) {
   writeCurveSummary(w.json ? std::cerr : std::cout, r.curve, run);
   if (!w.out.empty()) output::writeSweepCsv(w.out, r);
   if (!w.chart.empty()) writeChart(w, r);
+  if (!w.out.empty() || !w.chart.empty())
+    if (const std::string note = shownDofsNote(r.plan.scene.model, r.plan.scene.output); !note.empty())
+      (w.json ? std::cerr : std::cout) << "  " << (w.out.empty() ? "chart" : w.chart.empty() ? "CSV" : "CSV and chart")
+                                       << ": " << note << "\n";
   if (!w.hdf5.empty()) writeSweepHdf5File(w.hdf5, r);
   if (r.accurate && !r.accurate->not_met.empty()) reportAccuracyNotMet(r);
   return r.succeeded() ? 0 : 1;

@@ -101,6 +101,51 @@ TEST(DofChoice, OtherStructuresShowEveryDofAndTheLastDefinesThePeak) {
   EXPECT_EQ(dofLabel(scene.model, 2), "x3");
 }
 
+TEST(DofChoice, ALargerStructureWithoutNamesShowsFourDofsSpreadUpToTheLast) {
+  std::string text = kChain;
+  text.replace(text.find("dofs = 3"), 8, "dofs = 12");
+  const Scene scene = parseScene(text, "scene.toml");
+  EXPECT_EQ(scene.output.shown, (std::vector<int>{2, 5, 8, 11}));
+  EXPECT_EQ(scene.output.peak, 11);
+  EXPECT_EQ(shownDofsNote(scene.model, scene.output),
+            "x3, x6, x9, x12 of 12 DOFs shown; others by --show or [output] dofs, by number or name");
+  text.replace(text.find("dofs = 12"), 9, "dofs = 8");  // up to kEveryDofShownUpTo: every DOF
+  const Scene small = parseScene(text, "scene.toml");
+  EXPECT_EQ(small.output.shown, (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_EQ(shownDofsNote(small.model, small.output), "");
+  const Scene beam = parseScene(kBeam, "scene.toml");
+  EXPECT_EQ(shownDofsNote(beam.model, beam.output),
+            "w3, w5, w8, w10 of 20 DOFs shown; others by --show or [output] dofs, by number or name (\"w1\")");
+  // A choice in another order is not "every DOF".
+  DofChoice reversed{{2, 1, 0}, 0};
+  EXPECT_NE(shownDofsNote(parseScene(kChain, "scene.toml").model, reversed), "");
+}
+
+TEST(DofChoice, LapJointDofsAreNamedByBeamNodeAndDirection) {
+  const Scene scene = loadScene(test::problem("lap-joint.toml"));
+  ASSERT_EQ(scene.model.structure.dofs(), 180);
+  // The upper beam's nodes 1..30 from its clamp, the lower beam's 31..60 from its own.
+  EXPECT_EQ(dofLabel(scene.model, 0), "u1");
+  EXPECT_EQ(dofLabel(scene.model, 1), "w1");
+  EXPECT_EQ(dofLabel(scene.model, 2), "theta1");
+  EXPECT_EQ(dofLabel(scene.model, 26), "theta9");
+  // Over the lap (upper nodes 10..30, lower 40..60: pair k is nodes 9 + k
+  // and 61 − k) the axial DOF is the facing surface's slide.
+  EXPECT_EQ(dofLabel(scene.model, 27), "us10");
+  EXPECT_EQ(dofLabel(scene.model, 87), "us30");
+  EXPECT_EQ(dofLabel(scene.model, 90), "u31");
+  EXPECT_EQ(dofLabel(scene.model, 114), "u39");
+  EXPECT_EQ(dofLabel(scene.model, 117), "us40");
+  EXPECT_EQ(dofLabel(scene.model, 177), "us60");
+  EXPECT_EQ(dofLabel(scene.model, 178), "w60");
+  EXPECT_EQ(dofLabel(scene.model, 179), "theta60");
+  // The scene's forcing (DOF 59) is the upper beam's w20, which [output] makes the peak.
+  EXPECT_EQ(resolveDof(scene.model, "59", "dof"), resolveDof(scene.model, "w20", "dof"));
+  EXPECT_EQ(dofLabel(scene.model, scene.output.peak), "w20");
+  EXPECT_EQ(scene.output.shown, (std::vector<int>{28, 58, 88, 148}));
+  EXPECT_THROW(resolveDof(scene.model, "u10", "show"), InputError);  // node 10's axial DOF is us10
+}
+
 TEST(DofChoice, TheSceneChoosesByNumberOrName) {
   const Scene scene =
       parseScene(std::string(kBeam) + "[output]\ndofs = [\"w10\", 3, \"x6\", \"theta2\"]\npeak = \"theta10\"\n", "s.toml");

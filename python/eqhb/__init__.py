@@ -85,14 +85,18 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
           system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0,
           options=None, linear_algebra="auto", initial=None, cold_start="coarse", fallback="default",
           from_harmonics=None, repeat=1, stability=False, stability_method="hill", error_estimate=False,
-          accuracy=None, max_harmonics=320, refine=None, restitution=0.0, refine_harmonics=None):
+          accuracy=None, max_harmonics=320, refine=None, restitution=0.0, refine_harmonics=None, show=None):
     """One harmonic-balance solve, as `eqhb solve` runs it. Returns a dict
     with every key of `eqhb solve --json` (converged, termination, iterations,
     residual/jacobian evaluations, residual_norm, seconds, cold_start,
     fallback, "dofs" and "laws", invariants, ...) and "solution" (harmonics,
     x_cos/x_sin and lambda_cos/lambda_sin per channel, one period sampled: t,
     x, lambda; max_abs_x, and "full", the coefficient vector to pass as
-    `initial` to a later solve).
+    `initial` to a later solve). Each of "dofs" has its number from 1
+    ("dof") and name ("name": "x1", a beam's "w1", "theta1"); "shown" names
+    the DOFs the outputs show: show (DOF numbers from 1 or names, as
+    `eqhb --show`), else the model's [output] dofs, else its default (a few
+    deflections on beams, four DOFs spread over a model of more than 8).
 
     The start: `initial` (a "full" vector), else the solutions at
     from_harmonics, 2 from_harmonics, ... below H (continuation in H), else a
@@ -125,7 +129,7 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
                 error_estimate=_flag(error_estimate, "error_estimate"), accuracy=_real(accuracy, "accuracy", True),
                 max_harmonics=_integer(max_harmonics, "max_harmonics"),
                 refine=None if refine is None else _text(refine, "refine"), restitution=_real(restitution, "restitution"),
-                refine_harmonics=_integer(refine_harmonics, "refine_harmonics", True))
+                refine_harmonics=_integer(refine_harmonics, "refine_harmonics", True), show=_dofs(show, "show"))
     return _solve(_model(model), args)
 
 
@@ -151,7 +155,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
           rho=None, formulation=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
           max_step=None, stability=False, stability_method="hill", error_estimate=False, accuracy=None,
-          max_harmonics=320, peak_dof=None):
+          max_harmonics=320, peak_dof=None, show=None):
     """A frequency-response curve by continuation in omega, as `eqhb sweep`
     runs it ("sequential" on a grid of `step`, by default a hundredth of the
     range, or "arclength", which passes turning points, from a scaled step
@@ -166,7 +170,9 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     max_abs: "x1", ..., a beam's "w1", "theta1", ...) and "peak_dof" (the
     label of the DOF whose maximum defines the peak: peak_dof, by number from
     1 or name, else the model's [output] peak, on a beam its tip deflection,
-    else the last DOF); "fallback" per point names the step that
+    else the last DOF) and "shown" (the labels of the DOFs `eqhb sweep`'s CSV
+    and chart show: show, as solve's, else the model's choice; the arrays
+    keep every DOF); "fallback" per point names the step that
     converged a point that failed from the previous one (see solve). The
     grid points that did not converge are in "failed", a list of dicts
     (omega, termination, iterations, residual_evaluations,
@@ -193,20 +199,20 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
                 stability=_flag(stability, "stability"), stability_method=_text(stability_method, "stability_method"),
                 error_estimate=_flag(error_estimate, "error_estimate"),
                 accuracy=_real(accuracy, "accuracy", True), max_harmonics=_integer(max_harmonics, "max_harmonics"),
-                peak_dof=_dof(peak_dof, "peak_dof"))
+                peak_dof=_dof(peak_dof, "peak_dof"), show=_dofs(show, "show"))
     return _sweep(_model(model), args)
 
 
 def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=None, step=0.01, dof=1,
           coarse_points=41, max_peaks=4, threads=0, harmonics=None, samples=None, form=None, rho=None, formulation=None,
           solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
-          time_limit=0.0, options=None, linear_algebra="auto", fallback="default"):
+          time_limit=0.0, options=None, linear_algebra="auto", fallback="default", show=None):
     """A parameter study, as `eqhb study` runs it on threads: over a grid of
     the scene values `vary` ("PATH=FROM:TO:COUNT" strings, PATH as for
     load_scene's overrides, or "A,B,..." set together) or, with lhs=N, a
     Latin hypercube of N samples ("PATH=FROM:TO", reproducible from seed),
     each sample's resonance peak (mode="peak": the first-harmonic amplitude
-    of DOF `dof`, from 1, tracked from sample to sample, up to max_peaks
+    of DOF `dof`, by number from 1 or name ("w60"), tracked from sample to sample, up to max_peaks
     resonances, a cold start from a sweep of coarse_points) or frequency
     response (mode="sweep", a grid of `step` in omega) over [start, stop]
     (default: the model's sweep range). The model must come from a scene
@@ -214,7 +220,8 @@ def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=N
     (study.csv, study.json, journal.csv, plan.txt; a folder of the same
     study is resumed, its samples not computed again). A failed point of a
     sample's sweeps gets the `fallback` steps, as in sweep. Returns study.json
-    as a dict (scene, mode, dof, range, parameters, samples: per sample its
+    as a dict (scene, mode, dof, dof_label, dof_labels, shown: the DOFs of
+    study.csv's columns, show as solve's, and `dof`; range, parameters, samples: per sample its
     values, status, reason, start, peak_omega, first_harmonic, max_abs,
     peaks, solves, iterations, seconds, worker, curve) with total,
     computed, failed, succeeded, seconds and threads of this run."""
@@ -228,7 +235,7 @@ def study(model, vary, *, out, mode="peak", lhs=None, seed=1, start=None, stop=N
     args.update(vary=[_text(v, "vary") for v in vary], out=_text(out, "out"),
                 mode=_text(mode, "mode"), lhs=_integer(lhs, "lhs", True), seed=_integer(seed, "seed"),
                 start=_real(start, "start", True), stop=_real(stop, "stop", True), step=_real(step, "step"),
-                dof=_integer(dof, "dof"), coarse_points=_integer(coarse_points, "coarse_points"),
+                dof=_dof(dof, "dof"), show=_dofs(show, "show"), coarse_points=_integer(coarse_points, "coarse_points"),
                 max_peaks=_integer(max_peaks, "max_peaks"), threads=_integer(threads, "threads"))
     if args["seed"] < 0:
         raise InputError(f"seed = {seed!r}: must be >= 0")
@@ -424,6 +431,17 @@ def _dof(value, field):
     if isinstance(value, bool) or not isinstance(value, (numbers.Integral, str)):
         raise InputError(f"{field} = {value!r}: must be a DOF number (from 1) or name such as \"w60\"")
     return str(value)
+
+
+def _dofs(value, field):
+    """DOFs by number from 1 or name: one, or a list of them; None stays None."""
+    if value is None:
+        return None
+    if isinstance(value, (str, numbers.Integral)) and not isinstance(value, bool):
+        return [_dof(value, field)]
+    if not isinstance(value, (list, tuple)):
+        raise InputError(f"{field} = {value!r}: must be a DOF number (from 1) or name, or a list of them")
+    return [_dof(v, f"{field}[{i}]") for i, v in enumerate(value)]
 
 
 def _text(value, field):

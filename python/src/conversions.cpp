@@ -202,7 +202,8 @@ const std::pair<const char*, const char*> kPointFields[] = {
 const char* const kRunFields[] = {"scene",        "solver",       "method",       "from",
                                   "to",           "step",         "system",       "harmonic_set",
                                   "samples",      "bifurcations", "stability_seconds", "solve_seconds",
-                                  "rho",          "accuracy",     "dof_labels",   "peak_dof"};
+                                  "rho",          "accuracy",     "dof_labels",   "peak_dof",
+                                  "shown"};
 
 py::object pointValue(const std::string& key, const nlohmann::json& value) {
   if (key != "multipliers") return fromJson(value);

@@ -217,7 +217,7 @@ py::dict study(const PyModel& m, const py::dict& args) {
   o.from = args["start"].cast<std::optional<double>>();
   o.to = args["stop"].cast<std::optional<double>>();
   o.step = args["step"].cast<double>();
-  o.dof = args["dof"].cast<int>();
+  o.dof = args["dof"].cast<std::string>();
   o.coarse_points = args["coarse_points"].cast<int>();
   o.max_peaks = args["max_peaks"].cast<int>();
   o.threads = args["threads"].cast<int>();

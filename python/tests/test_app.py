@@ -331,3 +331,25 @@ def test_a_beams_dofs_are_named_and_its_tip_deflection_defines_the_peak():
         eqhb.sweep(beam, 3.4, 3.6, step=0.1, peak_dof="w61")
     with pytest.raises(eqhb.InputError, match="peak_dof"):
         eqhb.sweep(beam, 3.4, 3.6, step=0.1, peak_dof=1.5)
+
+
+def test_show_chooses_the_dofs_shown_in_solve_sweep_and_study(tmp_path):
+    beam = eqhb.load_scene(PROBLEMS / "beam-damper.toml")
+    solved = eqhb.solve(beam, omega=3.5)
+    assert solved["shown"] == ["w15", "w30", "w45", "w60"]
+    assert [d["name"] for d in solved["dofs"]][118:] == ["w60", "theta60"]
+    assert eqhb.solve(beam, omega=3.5, show=["theta60", 1])["shown"] == ["theta60", "w1"]
+    assert eqhb.solve(beam, omega=3.5, show="w10")["shown"] == ["w10"]
+    curve = eqhb.sweep(beam, 3.4, 3.6, step=0.1, show=[119, "w30"])
+    assert curve["shown"] == ["w60", "w30"] and curve["max_abs"].shape[1] == 120  # the arrays keep every DOF
+    study = eqhb.study(beam, "forcing[0].cos=1:2:2", out=str(tmp_path / "s"),
+                       start=3.3, stop=3.7, coarse_points=9, threads=1, dof="w60", show=["w30"])
+    assert study["dof"] == 119 and study["dof_label"] == "w60" and study["shown"] == ["w30", "w60"]
+    header = (tmp_path / "s" / "study.csv").read_text().splitlines()[0]
+    assert ",peak_omega,first_harmonic_w30,first_harmonic_w60,max_abs_w30,max_abs_w60,peaks," in header
+    with pytest.raises(eqhb.InputError, match=r"show\[1\] = \"w61\": no DOF of the structure is named so"):
+        eqhb.solve(beam, omega=3.5, show=["w60", "w61"])
+    with pytest.raises(eqhb.InputError, match=r"show\[0\] = 1.5: must be a DOF number"):
+        eqhb.sweep(beam, 3.4, 3.6, step=0.1, show=[1.5])
+    with pytest.raises(eqhb.InputError, match=r"dof = \"w61\": no DOF of the structure is named so"):
+        eqhb.study(beam, "forcing[0].cos=1:2:2", out=str(tmp_path / "bad"), dof="w61")

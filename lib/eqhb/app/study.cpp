@@ -9,6 +9,8 @@
 #include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
+#include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/scenes/dof_choice.h"
 #include "eqhb/studies/study_journal.h"
 #include "eqhb/studies/study_scheduler.h"
 
@@ -62,7 +64,7 @@ void resolveRange(const Scene& scene, const StudyOptions& o, StudySettings* sett
   PeakOptions& peak = settings->peak;
   peak.from = o.from ? *o.from : *scene.sweep_from;
   peak.to = o.to ? *o.to : *scene.sweep_to;
-  peak.dof = o.dof;
+  peak.dof = resolveDof(scene.model, o.dof, "dof") + 1;
   peak.coarse_points = o.coarse_points;
   peak.max_peaks = o.max_peaks;
   peak.condensed = o.condensed;
@@ -91,9 +93,13 @@ StudySetup setupStudy(const SceneSettings& scene_settings, const StudyOptions& o
   settings.scene_path = scene_settings.path;
   settings.overrides = commonOverrides(scene_settings, scene);
   settings.dofs = scene.model.structure.dofs();
+  for (int i = 0; i < settings.dofs; ++i) settings.dof_labels.push_back(dofLabel(scene.model, i));
   checkVariedPaths(settings, parameters);
   settings.mode = o.mode == "sweep" ? StudyMode::kSweep : StudyMode::kPeak;
   resolveRange(scene, o, &settings);
+  settings.csv_dofs = scene.output.shown;
+  if (std::find(settings.csv_dofs.begin(), settings.csv_dofs.end(), settings.peak.dof - 1) == settings.csv_dofs.end())
+    settings.csv_dofs.push_back(settings.peak.dof - 1);
   if (o.threads < 0 || o.threads > 4096) throwInputError("threads", std::to_string(o.threads), "must be in [0, 4096]");
   std::string why;
   if (!o.solver_options.isValid(&why)) throw InputError(why);

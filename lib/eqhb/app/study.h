@@ -28,7 +28,9 @@ struct StudyOptions : SolverChoice {
   std::string mode;                // "peak" (the resonance peak, tracked) or "sweep" (the curve)
   std::optional<double> from, to;  // default: the scene's [sweep]
   double step = 0.01;              // sweep: the grid step in ω, in (0, to - from]
-  int dof = 1;                     // peak: the DOF (from 1) whose first-harmonic amplitude peaks
+  // peak: the DOF whose first-harmonic amplitude peaks, by number from 1 or
+  // name ("w60"; scenes/dof_choice.h)
+  std::string dof = "1";
   int coarse_points = 41;          // peak: points of the coarse sweep that starts a peak cold
   int max_peaks = 4;               // peak: resonances followed at once
   int threads = 0;                 // 0: every core, in [0, 4096]
@@ -42,6 +44,9 @@ struct StudySetup {
   std::string plan_text;  // plan.txt: what makes a folder this study's
 };
 
+// study.csv has the columns of the DOFs the scene's settings show (show,
+// [output] dofs, else scenes/dof_choice.h's default), and of `dof` after
+// them when not among those.
 // Checks the options and the varied paths (a path usable at neither end of
 // its range is one error, not a failed row per sample); throws InputError
 // naming the option (vary, lhs, mode, from, to, step, dof, coarse_points,

@@ -39,11 +39,14 @@ nlohmann::json backboneJson(const app::ModesRun& run) {
   for (const BackboneFold& f : b.folds)
     folds.push_back({{"amplitude", f.amplitude}, {"omega", f.omega}, {"damping_ratio", f.damping_ratio}});
   const std::vector<double> shape(b.start.shape.data(), b.start.shape.data() + b.start.shape.size());
+  std::vector<std::string> labels;
+  for (int i = 0; i < model.structure.dofs(); ++i) labels.push_back(dofLabel(model, i));
   return {{"scene", run.scene.name},
           {"mode", run.options.mode},
           {"solver", run.solver},
           {"from", run.options.from},
           {"to", run.options.to},
+          {"dof_labels", labels},
           {"linear_mode", {{"omega", b.start.omega}, {"damping_ratio", b.start.damping_ratio}, {"shape", shape}}},
           {"complete", b.complete()},
           {"failed_points", b.failed_points},
@@ -60,7 +63,7 @@ nlohmann::json backboneJson(const app::ModesRun& run) {
 void writeBackboneCsv(std::ostream& out, const app::ModesRun& run) {
   const int n = run.scene.model.structure.dofs();
   out << "amplitude,omega,damping_ratio,xi,dissipated_energy";
-  for (int i = 0; i < n; ++i) out << ",max_abs_" << dofLabel(i);
+  for (int i = 0; i < n; ++i) out << ",max_abs_" << dofLabel(run.scene.model, i);
   out << ",converged,termination,iterations\n";
   const double nan = std::numeric_limits<double>::quiet_NaN();
   char buffer[64];

@@ -1,7 +1,8 @@
 // A nonlinear mode's backbone (app::ModesRun) as JSON (`eqhb modes --json`,
 // Python's dict), CSV (one row a point) and text: per point the modal
-// amplitude, ω, ζ, ξ, the energy dissipated per cycle, max|x| per DOF and,
-// in JSON, the Fourier coefficients of every DOF and law force.
+// amplitude, ω, ζ, ξ, the energy dissipated per cycle, max|x| per DOF (in
+// CSV under the DOF's name, "max_abs_w3"; in JSON "dof_labels" names them)
+// and, in JSON, the Fourier coefficients of every DOF and law force.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -67,6 +67,11 @@ void Hdf5File::matrix(const std::string& path, const std::vector<double>& values
   dataset(path, H5T_NATIVE_DOUBLE, values.data(), {rows, cols});
 }
 
+void Hdf5File::array(const std::string& path, const std::vector<double>& values,
+                     const std::vector<std::size_t>& dims) {
+  dataset(path, H5T_NATIVE_DOUBLE, values.data(), std::vector<unsigned long long>(dims.begin(), dims.end()));
+}
+
 void Hdf5File::integers(const std::string& path, const std::vector<std::int64_t>& values) {
   dataset(path, H5T_NATIVE_INT64, values.data(), {values.size()});
 }

@@ -24,6 +24,8 @@ class Hdf5File {
   void doubles(const std::string& path, const std::vector<double>& values);
   // rows x cols, row-major (row i: values[i * cols .. (i + 1) * cols)).
   void matrix(const std::string& path, const std::vector<double>& values, std::size_t rows, std::size_t cols);
+  // Of any rank, row-major (the last index fastest).
+  void array(const std::string& path, const std::vector<double>& values, const std::vector<std::size_t>& dims);
   void integers(const std::string& path, const std::vector<std::int64_t>& values);
   void strings(const std::string& path, const std::vector<std::string>& values);
   // On the object at `path` ("/" for the file).

@@ -43,7 +43,7 @@ nlohmann::json orbitJson(const app::Orbit& o, bool trajectory) {
   out["start_time"] = orbit.start_time;
   out["state"] = std::vector<double>(orbit.state.data(), orbit.state.data() + orbit.state.size());
   nlohmann::json dofs = nlohmann::json::array();
-  for (int i = 0; i < orbit.max_abs.size(); ++i) dofs.push_back({{"dof", i + 1}, {"max_abs", orbit.max_abs[i]}});
+  for (int i = 0; i < orbit.max_abs.size(); ++i) dofs.push_back({{"dof", i + 1}, {"name", dofLabel(model, i)}, {"max_abs", orbit.max_abs[i]}});
   out["dofs"] = dofs;
   // Floquet multipliers belong to an orbit: null when none was found.
   nlohmann::json multipliers = nlohmann::json::array();

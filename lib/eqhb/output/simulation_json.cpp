@@ -19,6 +19,7 @@ nlohmann::json referenceJson(const HbModel& model, const TimeReference& ref) {
   nlohmann::json dofs = nlohmann::json::array();
   for (int i = 0; i < model.structure.dofs(); ++i)
     dofs.push_back({{"dof", i + 1},
+                    {"name", dofLabel(model, i)},
                     {"max_abs", ref.displacement.col(i).cwiseAbs().maxCoeff()},
                     {"max_abs_velocity", ref.velocity.col(i).cwiseAbs().maxCoeff()},
                     {"first_harmonic_amplitude",

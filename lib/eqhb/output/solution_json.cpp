@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eqhb/output/static_state_json.h"
+#include "eqhb/scenes/dof_choice.h"
 
 namespace eqhb::output {
 
@@ -23,7 +24,7 @@ nlohmann::json channelsJson(const HbModel& model, const HbSolution& solution) {
   nlohmann::json dofs = nlohmann::json::array();
   for (size_t i = 0; i < solution.displacements.size(); ++i) {
     const auto& c = solution.displacements[i];
-    dofs.push_back({{"dof", i + 1}, {"max_abs", c.max_abs}, {"max_abs_velocity", c.max_abs_rate},
+    dofs.push_back({{"dof", i + 1}, {"name", c.label}, {"max_abs", c.max_abs}, {"max_abs_velocity", c.max_abs_rate},
                     {"coefficients", coefficientsJson(model.basis, c.coefficients)}});
   }
   nlohmann::json laws = nlohmann::json::array();
@@ -38,9 +39,10 @@ nlohmann::json channelsJson(const HbModel& model, const HbSolution& solution) {
       const LawAttachment& w = model.laws[l].attachment;
       if (w.grounded()) {
         component["dof"] = w.dof(a) + 1;
+        component["dof_name"] = dofLabel(model, w.dof(a));
       } else {  // u_a = Σ weight · x_dof
         nlohmann::json reads = nlohmann::json::array();
-        for (const AttachmentTerm& term : w.row(a)) reads.push_back({{"dof", term.dof + 1}, {"weight", term.weight}});
+        for (const AttachmentTerm& term : w.row(a)) reads.push_back({{"dof", term.dof + 1}, {"name", dofLabel(model, term.dof)}, {"weight", term.weight}});
         component["reads"] = reads;
       }
       components.push_back(component);
@@ -241,6 +243,7 @@ nlohmann::json solutionJson(const app::Solution& s, bool trajectory) {
   out["peak_rss_mib"] = la.peak_rss_mib;
   const nlohmann::json channels = channelsJson(s.reported, s.summary);
   out["dofs"] = channels["dofs"];
+  out["shown"] = shownLabels(model, run.scene.output);
   out["laws"] = channels["laws"];
   out["invariants"] = invariantsJson(s.invariants);
   if (run.scene.at_rest) out["preload"] = staticStateJson(model, *run.scene.at_rest);

@@ -22,14 +22,17 @@
 namespace eqhb::output {
 
 // The whole solve: settings, the solver's report, start, fallbacks, times,
-// linear algebra, "dofs" and "laws", invariants, and the optional parts
+// linear algebra, "dofs", "shown" (the names of the DOFs the outputs show,
+// scenes/dof_choice.h) and "laws", invariants, and the optional parts
 // (stability, rho and accuracy, error_estimate, refinement, trajectory).
 nlohmann::json solutionJson(const app::Solution& solution, bool trajectory);
 
 // One channel's Fourier coefficients as {"harmonics", "cos", "sin"}.
 nlohmann::json coefficientsJson(const HarmonicSet& basis, const Eigen::VectorXd& coefficients);
 // Every DOF and law component of a solution [x; λ]: "dofs" and "laws" arrays
-// with coefficients and the largest magnitude over one period.
+// with coefficients and the largest magnitude over one period; each DOF
+// and each DOF a law reads by number from 1 and name ("name", "dof_name":
+// a beam's "w3", else "x3"; dofLabel, hb_solution.h).
 nlohmann::json channelsJson(const HbModel& model, const HbSolution& solution);
 // The coarse start of a cold solve (harmonics, samples, its solve, whether the
 // fine solve was retried from zero); without one, only the kind of start,

@@ -2,6 +2,7 @@
 
 #include "eqhb/output/invariant_meanings.h"
 #include "eqhb/output/solution_json.h"
+#include "eqhb/scenes/dof_choice.h"
 
 namespace eqhb::output {
 
@@ -60,6 +61,7 @@ void writeSolutionText(std::ostream& out, const app::Solution& s) {
         << "\n";
   writeLinearAlgebra(out, s);
   // The DOFs the scene's output choice shows (scenes/dof_choice.h), every law force.
+  if (const std::string note = shownDofsNote(model, run.scene.output); !note.empty()) out << "  " << note << "\n";
   for (int dof : run.scene.output.shown)
     out << "  max|" << s.summary.displacements[dof].label << "| = " << s.summary.displacements[dof].max_abs << "\n";
   for (const auto& c : s.summary.forces) out << "  max|" << c.label << "| = " << c.max_abs << "\n";

@@ -6,6 +6,7 @@
 #include "eqhb/harmonic_balance/problem_scales.h"
 #include "eqhb/output/curve_json.h"
 #include "eqhb/output/solution_json.h"
+#include "eqhb/scenes/dof_choice.h"
 
 namespace eqhb::output {
 
@@ -54,6 +55,7 @@ nlohmann::json sweepJson(const app::SweepResult& r) {
   const HbModel& model = r.plan.scene.model;
   out["dof_labels"] = curveColumns(model).labels;
   out["peak_dof"] = dofLabel(model, r.plan.scene.output.peak);
+  out["shown"] = shownLabels(model, r.plan.scene.output);
   if (!r.accurate) return out;
   const AccurateCurve& a = *r.accurate;
   out["rho"] = rhoJson(r.rho.scene_rho, chosenRhoFactor(r));

@@ -18,7 +18,8 @@ CurveRun curveRun(const app::SweepResult& result, const std::string& accuracy_op
 // curveJson, and "rho" and "accuracy" (tolerance, reached, not_met,
 // highest_harmonics, seconds, first_point) with an accuracy target.
 // Also "dof_labels" (every DOF's label, the order of max_abs) and
-// "peak_dof" (the label of the DOF that defines the peak).
+// "peak_dof" (the label of the DOF that defines the peak) and "shown" (the
+// labels of the DOFs the CSV and chart show).
 nlohmann::json sweepJson(const app::SweepResult& result);
 // The curve's CSV with the DOFs the scene's output choice shows
 // (scenes/dof_choice.h) under their labels.

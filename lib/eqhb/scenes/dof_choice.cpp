@@ -28,25 +28,45 @@ bool allDigits(const std::string& token) {
 DofChoice defaultDofChoice(const HbModel& model) {
   const int dofs = model.structure.dofs();
   DofChoice choice;
-  std::vector<int> deflections;  // by node, in node order
+  std::vector<int> candidates;  // the DOFs the shown ones are spread over, in order
   std::vector<std::pair<int, int>> by_node;
   for (int i = 0; i < static_cast<int>(model.dof_names.size()) && i < dofs; ++i)
     if (const int node = numberAfter(model.dof_names[i], "w")) by_node.push_back({node, i});
   std::sort(by_node.begin(), by_node.end());
-  for (const auto& [node, dof] : by_node) deflections.push_back(dof);
-  if (deflections.empty()) {
-    for (int i = 0; i < dofs; ++i) choice.shown.push_back(i);
+  for (const auto& [node, dof] : by_node) candidates.push_back(dof);
+  if (candidates.empty()) {
     choice.peak = std::max(dofs - 1, 0);
-    return choice;
+    for (int i = 0; i < dofs; ++i) candidates.push_back(i);
+    if (dofs <= kEveryDofShownUpTo) {
+      choice.shown = candidates;
+      return choice;
+    }
   }
-  // Nodes at a quarter, half, three quarters and the end (fewer on a short structure).
-  const int n = static_cast<int>(deflections.size());
+  // A quarter, half, three quarters along and the end (fewer on a short structure).
+  const int n = static_cast<int>(candidates.size());
   for (int quarter = 1; quarter <= 4; ++quarter) {
     const int at = (quarter * n + 3) / 4 - 1;
-    if (choice.shown.empty() || choice.shown.back() != deflections[at]) choice.shown.push_back(deflections[at]);
+    if (choice.shown.empty() || choice.shown.back() != candidates[at]) choice.shown.push_back(candidates[at]);
   }
-  choice.peak = deflections.back();
+  choice.peak = candidates.back();
   return choice;
+}
+
+std::vector<std::string> shownLabels(const HbModel& model, const DofChoice& choice) {
+  std::vector<std::string> labels;
+  for (int dof : choice.shown) labels.push_back(dofLabel(model, dof));
+  return labels;
+}
+
+std::string shownDofsNote(const HbModel& model, const DofChoice& choice) {
+  const int dofs = model.structure.dofs();
+  bool every = static_cast<int>(choice.shown.size()) == dofs;
+  for (int i = 0; every && i < dofs; ++i) every = choice.shown[i] == i;
+  if (every) return "";
+  std::string note;
+  for (const std::string& label : shownLabels(model, choice)) note += (note.empty() ? "" : ", ") + label;
+  return note + " of " + std::to_string(dofs) + " DOFs shown; others by --show or [output] dofs, by number or name" +
+         (model.dof_names.empty() ? "" : " (\"" + dofLabel(model, 0) + "\")");
 }
 
 int resolveDof(const HbModel& model, const std::string& token, const std::string& field) {

@@ -5,8 +5,10 @@
 // nodes deflect (beams, frames: DOFs named "w<node>") shows the deflection
 // of four nodes spread along it up to the last, whose deflection defines the
 // peak: a beam's rotations are slopes, not amplitudes to read a resonance
-// from, and 120 curves hide the 4 that matter. Any other structure shows
-// every DOF and its last DOF defines the peak.
+// from, and 120 curves hide the 4 that matter. Any other structure of up to
+// kEveryDofShownUpTo DOFs shows every DOF; a larger one (a Matrix Market
+// model) four DOFs spread along its numbering up to the last, for the same
+// reason. Its last DOF defines the peak.
 #pragma once
 
 #include <string>
@@ -36,7 +38,16 @@ std::vector<std::string> nodeDofNames(int dofs, int nodes, const std::vector<std
   return names;
 }
 
+constexpr int kEveryDofShownUpTo = 8;
+
 DofChoice defaultDofChoice(const HbModel& model);
+
+// The names of the shown DOFs, in order (dofLabel, hb_solution.h).
+std::vector<std::string> shownLabels(const HbModel& model, const DofChoice& choice);
+// "" when `choice` shows every DOF in order; else which DOFs are shown, of
+// how many, and how to pick others ("w15, w30, w45, w60 of 120 DOFs shown;
+// others by --show or [output] dofs, by number or name").
+std::string shownDofsNote(const HbModel& model, const DofChoice& choice);
 
 // A DOF by its number from 1 ("7") or its name: the model's ("w7",
 // "theta7") or "x7" on any structure. Throws InputError naming `field` for

@@ -414,7 +414,10 @@ void readFrame(TableReader& s, const std::string& source, const ModelSizes& sett
 }
 
 // Two beams over a lap joint (structures/lap_joint.h): its nodes are the
-// facing surfaces' points, [u_s, w] each.
+// facing surfaces' points, [u_s, w] each. Its DOFs are named as a frame's by
+// the beams' nodes, the upper beam's 1..n and the lower's n + 1..2n from
+// its clamp (u, w, theta), the overlap nodes' axial DOF "us" (the surface's
+// slide u ± (h/2) θ, not the axis's u).
 void readLapJoint(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
   LapJointParameters p;
   p.pairs = s.integer("pairs");
@@ -433,6 +436,11 @@ void readLapJoint(TableReader& s, const std::string& source, const ModelSizes& s
   readDampingModel(s, joint.matrices);
   read->structure = toLinearStructure(joint.matrices);
   read->node_table = joint.surfaces;
+  read->dof_names = nodeDofNames(read->structure.dofs(), 2 * joint.beam_nodes, {"u", "w", "theta"}, frameDof);
+  for (const auto& surface : joint.surfaces) {
+    const int slide = surface[0];
+    read->dof_names[slide] = "us" + std::to_string(slide / 3 + 1);
+  }
 }
 
 struct StructureType {

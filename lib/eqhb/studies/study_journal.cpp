@@ -1,5 +1,6 @@
 #include "eqhb/studies/study_journal.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -119,23 +120,38 @@ const char* const kJournalIdentity = "# eqhb study journal, plan fingerprint ";
 
 }  // namespace
 
-std::string studyCsvHeader(const StudySettings& settings) {
+namespace {
+std::vector<int> everyDof(int dofs) {
+  std::vector<int> all(std::max(dofs, 0));
+  for (int i = 0; i < dofs; ++i) all[i] = i;
+  return all;
+}
+}  // namespace
+
+std::string studyCsvHeader(const StudySettings& settings) { return studyCsvHeader(settings, everyDof(settings.dofs)); }
+
+std::string studyCsvHeader(const StudySettings& settings, const std::vector<int>& dofs) {
+  auto label = [&](int i) {
+    return static_cast<size_t>(i) < settings.dof_labels.size() ? settings.dof_labels[i] : "x" + std::to_string(i + 1);
+  };
   std::string h = "sample";
   for (const auto& p : settings.plan.parameters) h += "," + field(p.path);
   h += ",status,start,peak_omega";
-  for (int i = 1; i <= settings.dofs; ++i) h += ",first_harmonic_x" + std::to_string(i);
-  for (int i = 1; i <= settings.dofs; ++i) h += ",max_abs_x" + std::to_string(i);
+  for (int i : dofs) h += ",first_harmonic_" + label(i);
+  for (int i : dofs) h += ",max_abs_" + label(i);
   return h + ",peaks,solves,iterations,seconds,worker,curve,reason";
 }
 
-std::string studyCsvRow(const SampleResult& r, int dofs) {
+std::string studyCsvRow(const SampleResult& r, int dofs) { return studyCsvRow(r, everyDof(dofs)); }
+
+std::string studyCsvRow(const SampleResult& r, const std::vector<int>& dofs) {
   std::string row = std::to_string(r.id);
   for (double v : r.parameters) row += "," + number(v);
   row += r.ok ? ",ok," : ",failed,";
   row += field(r.start) + "," + number(r.ok ? r.omega : NAN);
-  for (int i = 0; i < dofs; ++i)
+  for (int i : dofs)
     row += "," + number(r.ok && i < static_cast<int>(r.first_harmonic.size()) ? r.first_harmonic[i] : NAN);
-  for (int i = 0; i < dofs; ++i)
+  for (int i : dofs)
     row += "," + number(r.ok && i < static_cast<int>(r.max_abs.size()) ? r.max_abs[i] : NAN);
   row += "," + std::to_string(r.peaks) + "," + std::to_string(r.solves) + "," + std::to_string(r.iterations) + "," + number(r.seconds) + "," +
          std::to_string(r.worker) + "," + field(r.curve) + "," + field(r.reason);
@@ -376,8 +392,9 @@ void StudyJournal::appendRow(const std::string& row) {
 
 void StudyJournal::writeMerged() {
   journal_->sync();
-  std::string text = studyCsvHeader(settings_) + "\n";
-  for (const auto& [id, r] : done_) text += studyCsvRow(r, settings_.dofs) + "\n";
+  const std::vector<int> dofs = settings_.csv_dofs.empty() ? everyDof(settings_.dofs) : settings_.csv_dofs;
+  std::string text = studyCsvHeader(settings_, dofs) + "\n";
+  for (const auto& [id, r] : done_) text += studyCsvRow(r, dofs) + "\n";
   writeFileChecked(dir_ + "/study.csv", text);
 }
 

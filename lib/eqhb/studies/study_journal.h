@@ -4,7 +4,8 @@
 //   DIR/journal.csv  the plan's fingerprint (first line), the CSV header,
 //                    then one row per finished sample (ok or failed),
 //                    written as each finishes, in completion order
-//   DIR/study.csv    the merged result: every sample's row, in sample order
+//   DIR/study.csv    the merged result: every sample's row, in sample order,
+//                    with the columns of the DOFs the study shows
 // Rows are CSV with doubles printed to round-trip ("%.17g"); the free-text
 // reason is the last column, quoted. A row cut short by a kill (no final
 // newline) is ignored on reading; every other row is checked against the
@@ -24,8 +25,13 @@
 
 namespace eqhb {
 
+// The journal's header and rows have every DOF's columns; `dofs` picks
+// some (0-based, in order) for study.csv. Columns are named by
+// settings.dof_labels ("first_harmonic_w3"), else "x3".
 std::string studyCsvHeader(const StudySettings& settings);
+std::string studyCsvHeader(const StudySettings& settings, const std::vector<int>& dofs);
 std::string studyCsvRow(const SampleResult& result, int dofs);
+std::string studyCsvRow(const SampleResult& result, const std::vector<int>& dofs);
 // Parses a row written by studyCsvRow; false if it is malformed, with the
 // column and why in `why` when given. Integers must fit an int exactly.
 bool parseStudyCsvRow(const std::string& line, int parameters, int dofs, SampleResult* result,

@@ -25,6 +25,12 @@ struct StudySettings {
   double sweep_step = 0.01;  // kSweep: grid step in ω
   std::string out_dir;       // the study folder (kSweep: one curve CSV per sample in curves/)
   int dofs = 0;              // of the scene; every sample must keep it
+  // Each DOF's name in the CSV columns ("w3" on a beam, HbModel::dof_names);
+  // empty: "x1".."xn".
+  std::vector<std::string> dof_labels;
+  // The DOFs (0-based) whose columns study.csv has, in order; empty: every
+  // DOF (the journal always has every DOF, which study.json reports).
+  std::vector<int> csv_dofs;
   SolverOptions solver_options;
   std::function<std::unique_ptr<Solver>()> make_solver;
   // Per worker, the fallback chain of its sweeps, owning its backends; empty
