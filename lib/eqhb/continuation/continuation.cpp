@@ -191,10 +191,26 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
       point.converged = walkInOmega(*system, solver, solver_options, options.min_step, last_converged_omega, z,
                                     target, std::abs(target - last_converged_omega) / 2.0, &r, &point, &why);
     }
+    const bool started_cold = std::isnan(last_converged_omega) && !options.start_full.size();
+    // A start from rest that failed: by continuation in H, as the arclength's
+    // first point, before the fallbacks (beam-joint-large's first point: the
+    // zero start and the full system fail, the backup backend took 153
+    // iterations; from H = 1 up it takes a few per rung).
+    if (!point.converged && !singular && started_cold) {
+      m.omega = target;
+      Eigen::VectorXd full;
+      const SolverResult by_harmonics =
+          solveByHarmonicContinuation(m, solver, solver_options, 1, options.condensed, &full);
+      addSolverCounts(by_harmonics, &point);
+      if (by_harmonics.converged()) {
+        r = by_harmonics;
+        r.solution = system->fromFullCoefficients(full);
+        point.fallback = "by continuation in H";
+      }
+    }
     // The halved steps leave the system at their last ω: the fallbacks solve at the grid point.
     if (!point.converged && !singular && trySetOmega(*system, target, &why)) {
       FallbackReport tried;
-      const bool started_cold = std::isnan(last_converged_omega) && !options.start_full.size();
       const SolverResult rescued =
           solveWithFallbacks(*system, solver, solver_options, r, started_cold, options.fallbacks, &tried);
       for (const FallbackAttempt& attempt : tried.attempts) addSolverCounts(attempt.result, &point);
