@@ -388,30 +388,35 @@ void CondensedSystem::condenseAt(double omega, const Deadline& deadline) {
     // W A_k⁻¹ [f_k | Wᵀ_k s]: the compliance W A⁻¹ Wᵀ seen by the laws.
     // A_k (k > 0) commutes with the quarter-period shift J (a, b) -> (-b, a),
     // and a component's sine load is J of its cosine load: its response is
-    // J of the cosine response, so only the cosine loads are solved for.
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(w * n, 1 + components_);
+    // J of the cosine response. The sparse factors are complex, where the
+    // two are one solve anyway, so only the cosine loads are solved for
+    // there; the dense path solves both (its results stay bit for bit).
+    const bool shift = w == 2 && factors_.sparse();
+    const int loads = shift ? 1 : w;  // load columns per component
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(w * n, 1 + components_ * loads);
     for (int i = 0; i < n; ++i)
       for (int r = 0; r < w; ++r) rhs(r * n + i, 0) = f[i * nb_ + o + r];
     for (int c = 0; c < components_; ++c)
-      for (const AttachmentTerm& term : component_row_[c]) rhs(term.dof, 1 + c) += component_sign_[c] * term.weight;
+      for (const AttachmentTerm& term : component_row_[c])
+        for (int r = 0; r < loads; ++r) rhs(r * n + term.dof, 1 + c * loads + r) += component_sign_[c] * term.weight;
     const Eigen::MatrixXd map = factors_.solve(static_cast<int>(h), rhs);
-    // Row r of the response to load column `column` (j = 1: its J image).
-    auto response = [&](int r, int dof, int column, int j) {
-      if (j == 0) return map(r * n + dof, column);
-      return r == 0 ? -map(n + dof, column) : map(dof, column);
+    // Row r of the response to component c's load j (the shifted cosine one for a shifted sine load).
+    auto response = [&](int r, int dof, int c, int j) {
+      if (!shift || j == 0) return map(r * n + dof, 1 + c * loads + j);
+      return r == 0 ? -map(n + dof, 1 + c) : map(dof, 1 + c);
     };
     for (int q = 0; q < components_; ++q) {
       const std::vector<AttachmentTerm>& terms = component_row_[q];
       for (int r = 0; r < w; ++r) {
         // u_q = Σ_j W_qj x_j, the first term assigned (a unit row copies x_j exactly).
-        auto read = [&](int column, int j) {
-          double u = terms.front().weight * response(r, terms.front().dof, column, j);
-          for (size_t k = 1; k < terms.size(); ++k) u += terms[k].weight * response(r, terms[k].dof, column, j);
+        auto read = [&](auto&& column) {
+          double u = terms.front().weight * column(terms.front().dof);
+          for (size_t k = 1; k < terms.size(); ++k) u += terms[k].weight * column(terms[k].dof);
           return u;
         };
-        offset_[q][o + r] = read(0, 0);
+        offset_[q][o + r] = read([&](int dof) { return map(r * n + dof, 0); });
         for (int c = 0; c < components_; ++c)
-          for (int j = 0; j < w; ++j) coupling_[q][c](o + r, j) = read(1 + c, j);
+          for (int j = 0; j < w; ++j) coupling_[q][c](o + r, j) = read([&](int dof) { return response(r, dof, c, j); });
       }
     }
   }
