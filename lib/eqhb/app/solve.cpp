@@ -87,7 +87,9 @@ HbRun solveHarmonicBalance(const SceneSettings& scene, const SolveOptions& o) {
   };
 
   auto solver = makeSolver(o.solver);
-  const OwnedFallbackChain fallbacks(o.fallback, o.solver, "fallback");
+  const OwnedFallbackChain owned_fallbacks(o.fallback, o.solver, "fallback");
+  FallbackChain fallbacks = owned_fallbacks.chain();
+  if (run.scene.at_rest) fallbacks.at_rest = std::make_shared<const StaticContactState>(*run.scene.at_rest);
 
   Eigen::VectorXd z0 = Eigen::VectorXd::Zero(system.size());
   run.start = "zero";
@@ -130,7 +132,7 @@ HbRun solveHarmonicBalance(const SceneSettings& scene, const SolveOptions& o) {
   // The default path: a failed solve gets the fallback steps (once, after the repeats).
   if (!run.result.converged()) {
     run.result = solveWithFallbacks(system, *solver, withinLimit("the solve, before its fallbacks"), run.result,
-                                    started_cold, fallbacks.chain(), &run.fallback);
+                                    started_cold, fallbacks, &run.fallback);
     for (double& t : run.times) t += run.fallback.seconds;
   }
   std::sort(run.times.begin(), run.times.end());

@@ -105,6 +105,7 @@ SweepResult sweep(const SweepPlan& plan, const SweepCallbacks& callbacks) {
   const OwnedFallbackChain fallbacks(o.fallback, o.solver, "fallback");
   ContinuationOptions continuation = plan.continuation;
   continuation.fallbacks = fallbacks.chain();
+  if (plan.scene.at_rest) continuation.fallbacks.at_rest = std::make_shared<const StaticContactState>(*plan.scene.at_rest);
   SweepResult result;
   result.plan = plan;
   if (o.accuracy) {

@@ -31,12 +31,13 @@ CoarseStart::CoarseStart(const HbModel& fine, bool condensed, LinearAlgebra line
 }
 
 SolverResult CoarseStart::solve(Solver& solver, HbSystem& fine_system, const SolverOptions& options,
-                                ColdStartReport* report) {
+                                ColdStartReport* report, const Eigen::VectorXd& rest_full) {
   ColdStartReport local;
   ColdStartReport& r = report ? *report : local;
   r = ColdStartReport();
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(fine_system.size());
-  if (!system_) return solver.solve(fine_system, zero, options);
+  const Eigen::VectorXd rest =
+      rest_full.size() ? fine_system.fromFullCoefficients(rest_full) : Eigen::VectorXd::Zero(fine_system.size());
+  if (!system_) return solver.solve(fine_system, rest, options);
   r.used = true;
   r.harmonics = coarse_.basis.count();
   r.samples = coarse_.samples;
@@ -52,16 +53,20 @@ SolverResult CoarseStart::solve(Solver& solver, HbSystem& fine_system, const Sol
     r.seconds = elapsed();
     return result;
   };
-  r.coarse = solver.solve(*system_, zero_coarse_, options);
+  r.coarse = solver.solve(*system_,
+                          rest_full.size() ? system_->fromFullCoefficients(
+                                                 transferCoefficients(fine_system.model(), coarse_, rest_full))
+                                           : zero_coarse_,
+                          options);
   // A coarse solve that did not converge is no better a start than zero.
-  if (!r.coarse.converged()) return finish(solver.solve(fine_system, zero, remaining()));
+  if (!r.coarse.converged()) return finish(solver.solve(fine_system, rest, remaining()));
   const Eigen::VectorXd fine_start = fine_system.fromFullCoefficients(
       transferCoefficients(coarse_, fine_system.model(), system_->fullCoefficients(r.coarse.solution)));
   SolverResult fine = solver.solve(fine_system, fine_start, remaining());
   if (fine.converged() || fine.termination == Termination::kInvalidOptions) return finish(fine);
   r.retried_from_zero = true;
   r.first_attempt = fine;
-  return finish(solver.solve(fine_system, zero, remaining()));
+  return finish(solver.solve(fine_system, rest, remaining()));
 }
 
 }  // namespace eqhb

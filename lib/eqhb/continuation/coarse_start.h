@@ -54,9 +54,12 @@ class CoarseStart {
   // Solves `fine_system` (built on the fine model of the constructor) from
   // the coarse start, falling back to zero as described above (from zero
   // alone when !available()). Returns the fine result; `report` says what
-  // happened.
+  // happened. `rest_full`, when not empty, replaces zero: the full
+  // coefficients on the fine model a cold solve begins at (a preload's
+  // linearised response, operating_point.h); the coarse solve then starts
+  // at its harmonics.
   SolverResult solve(Solver& solver, HbSystem& fine_system, const SolverOptions& options,
-                     ColdStartReport* report);
+                     ColdStartReport* report, const Eigen::VectorXd& rest_full = Eigen::VectorXd());
 
  private:
   HbModel coarse_;

@@ -7,6 +7,7 @@
 
 #include "eqhb/continuation/coarse_start.h"
 #include "eqhb/error.h"
+#include "eqhb/preload/operating_point.h"
 
 namespace eqhb {
 
@@ -18,25 +19,28 @@ constexpr const char* kCondensed = "condensed";
 // What a step may be, for the messages that refuse one.
 constexpr const char* kStepKinds = "cold, full, condensed or a backend name";
 
-// The solve's own cold start on `system`: coarse start, then zero.
-SolverResult solveCold(Solver& solver, HbSystem& system, const SolverOptions& options) {
+// The solve's own cold start on `system`: coarse start, then `rest_full`
+// (the full coefficients a cold solve begins at; empty: zero).
+SolverResult solveCold(Solver& solver, HbSystem& system, const SolverOptions& options,
+                       const Eigen::VectorXd& rest_full) {
   CoarseStart start(system.model(), system.condensed(), options.linear_algebra);
-  return start.solve(solver, system, options, nullptr);
+  return start.solve(solver, system, options, nullptr, rest_full);
 }
 
 // `model` on the full system from its cold start; `full` gets the answer's [x; λ].
 SolverResult solveFullSystemAt(const HbModel& model, Solver& solver, const SolverOptions& options,
-                               Eigen::VectorXd* full) {
+                               const Eigen::VectorXd& rest_full, Eigen::VectorXd* full) {
   auto system = makeHbSystem(model, false, options.linear_algebra);
-  SolverResult result = solveCold(solver, *system, options);
+  SolverResult result = solveCold(solver, *system, options, rest_full);
   *full = system->fullCoefficients(result.solution);
   return result;
 }
 
 // The same ω on the full system, its answer mapped back to `condensed`'s unknowns.
-SolverResult solveOnFullSystem(Solver& solver, HbSystem& condensed, const SolverOptions& options) {
+SolverResult solveOnFullSystem(Solver& solver, HbSystem& condensed, const SolverOptions& options,
+                               const Eigen::VectorXd& rest_full) {
   Eigen::VectorXd full;
-  SolverResult result = solveFullSystemAt(condensed.model(), solver, options, &full);
+  SolverResult result = solveFullSystemAt(condensed.model(), solver, options, rest_full, &full);
   result.solution = condensed.fromFullCoefficients(full);
   return result;
 }
@@ -46,9 +50,10 @@ SolverResult solveOnFullSystem(Solver& solver, HbSystem& condensed, const Solver
 // mapped point: the condensed residual converging does not make the full
 // residual, in its own scales, converge too, and the result must be one of
 // `full`'s solves. Iterations and evaluations are both solves' together.
-SolverResult solveOnCondensedSystem(Solver& solver, HbSystem& full, const SolverOptions& options) {
+SolverResult solveOnCondensedSystem(Solver& solver, HbSystem& full, const SolverOptions& options,
+                                    const Eigen::VectorXd& rest_full) {
   auto condensed = makeHbSystem(full.model(), true, options.linear_algebra);
-  const SolverResult reduced = solveCold(solver, *condensed, options);
+  const SolverResult reduced = solveCold(solver, *condensed, options, rest_full);
   if (!reduced.converged()) return reduced;
   SolverOptions polish = options;
   if (options.time_limit > 0.0) polish.time_limit = std::max(options.time_limit - reduced.seconds, 1e-3 * options.time_limit);
@@ -111,6 +116,9 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
     return o;
   };
   if (failed.termination == Termination::kInvalidOptions || failed.termination == Termination::kTimeLimit) return failed;
+  // Under a preload every cold start begins about the static state, at this ω.
+  const Eigen::VectorXd rest_full =
+      chain.at_rest ? linearisedStart(system.model(), *chain.at_rest, solver, remaining()) : Eigen::VectorXd();
   for (size_t i = 0; i < chain.steps.size(); ++i) {
     const std::string& step = chain.steps[i];
     if (step == kCold && started_cold) continue;        // the failed solve was this one
@@ -119,10 +127,10 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
     if (options.time_limit > 0.0 && elapsed() >= options.time_limit) break;
     FallbackAttempt attempt{step, SolverResult()};
     try {
-      if (step == kCold) attempt.result = solveCold(solver, system, remaining());
-      else if (step == kFull) attempt.result = solveOnFullSystem(solver, system, remaining());
-      else if (step == kCondensed) attempt.result = solveOnCondensedSystem(solver, system, remaining());
-      else attempt.result = solveCold(*chain.solvers[i], system, remaining());
+      if (step == kCold) attempt.result = solveCold(solver, system, remaining(), rest_full);
+      else if (step == kFull) attempt.result = solveOnFullSystem(solver, system, remaining(), rest_full);
+      else if (step == kCondensed) attempt.result = solveOnCondensedSystem(solver, system, remaining(), rest_full);
+      else attempt.result = solveCold(*chain.solvers[i], system, remaining(), rest_full);
     } catch (const std::exception& e) {  // a singular A_k, a system too large for memory
       attempt.result.solver = step;
       attempt.result.termination = Termination::kBackendError;
@@ -154,7 +162,9 @@ SolverResult solveWhereCondensationIsSingular(const HbModel& model, double omega
   try {
     HbModel at = model;
     at.omega = omega;
-    attempt.result = solveFullSystemAt(at, solver, options, full);
+    const Eigen::VectorXd rest_full =
+        chain.at_rest ? linearisedStart(at, *chain.at_rest, solver, options) : Eigen::VectorXd();
+    attempt.result = solveFullSystemAt(at, solver, options, rest_full, full);
   } catch (const std::exception& e) {
     attempt.result.solver = solver.name();
     attempt.result.termination = Termination::kBackendError;

@@ -22,10 +22,12 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/preload/static_contact.h"
 #include "eqhb/solvers/solver.h"
 
 namespace eqhb {
@@ -35,6 +37,12 @@ struct FallbackChain {
   // `solvers` by its Solver::name(). Empty: no fallback.
   std::vector<std::string> steps;
   std::vector<Solver*> solvers;  // the backends named in `steps`, owned by the caller
+  // A preloaded problem's static state (null: none). Every step's cold start
+  // then begins at the response linearised about it (operating_point.h)
+  // instead of at zero: from zero, a bolted joint near its resonance can
+  // converge to a harmonic balance whose contacts pull, an answer of the
+  // equations that is not the orbit about the static state.
+  std::shared_ptr<const StaticContactState> at_rest;
 
   // The default order, with `backup` (may be null: no backend step) last.
   static FallbackChain standard(Solver* backup);
