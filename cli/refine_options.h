@@ -7,11 +7,13 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "eqhb/app/solve_options.h"
+
 namespace eqhb::cli {
 
 struct RefineArguments {
   std::string method;        // --refine: "" (none) or "shoot"
-  double restitution = 0.0;  // --restitution of contact laws, in [0, 1]
+  double restitution = app::SolveOptions{}.restitution;  // --restitution of contact laws, in [0, 1]
   int harmonics = 0;         // --refine-harmonics: the truncation's H (0: the solve's)
 };
 

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "eqhb/accuracy/error_estimate.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
+#include "eqhb/continuation/coarse_start.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
@@ -57,6 +60,44 @@ TEST(OrbitRefinement, DenHartogPeakIsExactWherePlainHarmonicBalanceIsNot) {
       EXPECT_GT(l2Distance(model, refined.orbit, moved), refined_l2) << "coefficient " << c << ", " << delta;
     }
   }
+}
+
+// The Signorini equality form approaches the elastic-impact orbit as H grows
+// (orbits/default_restitution.h): the default refinement shoots to that
+// orbit, the harmonic balance's displacement coefficients come closer to it
+// at each H, while the plastic orbit (e = 0) stays away.
+TEST(OrbitRefinement, ContactHarmonicBalanceApproachesTheElasticImpactOrbit) {
+  const HbModel scene = loadScene(test::problem("contact.toml")).model;
+  auto distance = [&](const HbModel& model, const Eigen::VectorXd& hb, const Eigen::VectorXd& orbit) {
+    const Eigen::Index x = static_cast<Eigen::Index>(model.basis.size()) * model.structure.dofs();
+    return (hb.head(x) - orbit.head(x)).norm() / orbit.head(x).norm();
+  };
+  double previous = 1.0;
+  for (int h : {5, 10, 20}) {
+    const HbModel model = withHarmonics(scene, h);
+    auto system = makeHbSystem(model, true);
+    SolverOptions options;
+    options.residual_tolerance = 1e-10;
+    auto solver = makeSolver("dogleg");
+    const SolverResult r = CoarseStart(model, true, options.linear_algebra).solve(*solver, *system, options, nullptr);
+    ASSERT_TRUE(r.converged()) << "H = " << h;
+    const Eigen::VectorXd hb = system->fullCoefficients(r.solution);
+    const auto elastic = refineByShooting(model, hb, RefinementOptions());
+    ASSERT_TRUE(elastic.converged) << elastic.failure;
+    EXPECT_EQ(elastic.orbit.events.count("impact"), 1u);
+    const double d = distance(model, hb, elastic.full);
+    std::printf("contact H = %d: distance to the elastic-impact orbit %.4f\n", h, d);
+    EXPECT_LT(d, 0.8 * previous) << "H = " << h;
+    previous = d;
+    if (h == 20) {
+      RefinementOptions plastic;
+      plastic.restitution = 0.0;
+      const auto other = refineByShooting(model, hb, plastic);
+      ASSERT_TRUE(other.converged) << other.failure;
+      EXPECT_GT(distance(model, hb, other.full), 2.5 * d);
+    }
+  }
+  EXPECT_LT(previous, 0.095);
 }
 
 TEST(OrbitRefinement, CoarseStartProjectsOnMoreHarmonics) {

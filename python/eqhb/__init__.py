@@ -85,7 +85,7 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
           system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0,
           options=None, linear_algebra="auto", initial=None, cold_start="coarse", fallback="default",
           from_harmonics=None, repeat=1, stability=False, stability_method="hill", error_estimate=False,
-          accuracy=None, max_harmonics=320, refine=None, restitution=0.0, refine_harmonics=None, show=None):
+          accuracy=None, max_harmonics=320, refine=None, restitution=1.0, refine_harmonics=None, show=None):
     """One harmonic-balance solve, as `eqhb solve` runs it. Returns a dict
     with every key of `eqhb solve --json` (converged, termination, iterations,
     residual/jacobian evaluations, residual_norm, seconds, cold_start,
@@ -287,7 +287,7 @@ def compare(model, omega=None, *, harmonics=None, samples=None, form=None, rho=N
 
 def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, formulation=None, from_hb=None,
           solver="dogleg",
-          fallback="default", restitution=0.0, tolerance=1e-11, max_iterations=40, time_limit=0.0):
+          fallback="default", restitution=1.0, tolerance=1e-11, max_iterations=40, time_limit=0.0):
     """The exact periodic orbit by shooting, as `eqhb shoot` (Coulomb 1D,
     Jenkins on one DOF and Signorini laws in closed form, cubic, planar
     Coulomb with stick-slip and Stribeck by Gauss-Legendre phases with

@@ -12,6 +12,7 @@
 #include "eqhb/app/scene_settings.h"
 #include "eqhb/app/solution.h"
 #include "eqhb/app/solve_options.h"
+#include "eqhb/orbits/default_restitution.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
 #include "eqhb/orbits/shooting.h"
 
@@ -22,7 +23,9 @@ struct ShootOptions {
   // bounds the whole run: the start, then shooting with what is left.
   SolveOptions hb;
   std::optional<int> from_hb;  // H of the start (the scene's when unset), >= 1
-  double restitution = 0.0;    // Newton impact coefficient e of contact laws, in [0, 1]
+  // Newton impact coefficient e of contact laws, in [0, 1]; by default the
+  // one harmonic balance approaches (orbit_refinement.h)
+  double restitution = orbits::kHarmonicBalanceRestitution;
   double tolerance = orbits::ShootingOptions{}.tolerance;  // relative period residual, > 0
   int max_iterations = orbits::ShootingOptions{}.max_iterations;  // Newton steps, >= 1
   bool trajectory = false;     // sample one period of the orbit on the model's N instants

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
@@ -13,6 +14,7 @@
 #include "eqhb/preload/operating_point.h"
 #include "eqhb/solvers/deadline.h"
 #include "eqhb/stability/curve_stability.h"
+#include "eqhb/stability/multiplier_stability.h"
 
 namespace eqhb::app {
 
@@ -223,7 +225,12 @@ Solution solve(const SceneSettings& given_scene, const SolveOptions& given) {
   }
   s.summary = refined ? refinedSummary(s.reported, *s.refinement) : s.plain;
   s.linear_algebra = linearAlgebraOf(s.run);
-  if (o.stability && s.converged()) {
+  // The stability of the orbit reported: a refined answer's is the exact
+  // orbit's own (its multipliers from shooting), not the harmonic balance's
+  // it started from, which may be another orbit (another impact law).
+  if (o.stability && s.converged() && refined) {
+    s.stability = stabilityFromMultipliers(s.refinement->orbit.multipliers, 2.0 * M_PI / model.omega, 0.0, "shooting");
+  } else if (o.stability && s.converged()) {
     HillOptions stability;
     stability.method = o.stability_method;
     s.stability = analyseStability(model, hb_answer, stability);

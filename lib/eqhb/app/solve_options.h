@@ -9,6 +9,7 @@
 #include <string>
 
 #include "eqhb/app/solver_choice.h"
+#include "eqhb/orbits/default_restitution.h"
 
 namespace eqhb::app {
 
@@ -26,7 +27,9 @@ struct SolveOptions : SolverChoice, SolutionChecks {
   int repeat = 1;  // solves timed (the median reported), in [1, 100000]
 
   std::string refine;           // "" or "shoot": harmonic balance followed by shooting
-  double restitution = 0.0;     // with refine: Newton impact coefficient of contact laws, in [0, 1]
+  // with refine: Newton impact coefficient of contact laws, in [0, 1]; by
+  // default the one harmonic balance approaches (orbit_refinement.h)
+  double restitution = orbits::kHarmonicBalanceRestitution;
   int refine_harmonics = 0;     // with refine: H of the orbit's truncation (0: the solve's), >= 0
 
   // False with a message naming the field, its value and the rule.

@@ -22,13 +22,14 @@
 #include <string>
 
 #include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/orbits/default_restitution.h"
 #include "eqhb/orbits/shooting.h"
 
 namespace eqhb::orbits {
 
 struct RefinementOptions {
   ShootingOptions shooting;
-  double restitution = 0.0;  // Newton's impact coefficient of contact laws, in [0, 1]
+  double restitution = kHarmonicBalanceRestitution;  // Newton's impact coefficient of contact laws, in [0, 1]
   // Harmonics of the truncation, same kind as the model's: 0 for the model's H.
   // Shooting's cost hardly depends on the start's H, so a coarse HB start can
   // be projected on many harmonics (its error then is the truncation's at that H).

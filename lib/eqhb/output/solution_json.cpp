@@ -101,7 +101,7 @@ nlohmann::json stabilityJson(const HillResult& hill) {
                         {"seconds", hill.seconds}};
   if (hill.method != "hill") {  // Hill's outputs keep their keys
     out["method"] = hill.method;
-    out["eigensolver"] = "monodromy";
+    out["eigensolver"] = hill.method;  // the multipliers are a monodromy matrix's eigenvalues
   }
   if (!hill.failure.empty()) out["failure"] = hill.failure;
   return out;

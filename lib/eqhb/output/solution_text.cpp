@@ -1,5 +1,6 @@
 #include "eqhb/output/solution_text.h"
 
+#include "eqhb/error.h"
 #include "eqhb/output/invariant_meanings.h"
 #include "eqhb/output/solution_json.h"
 #include "eqhb/scenes/dof_choice.h"
@@ -36,8 +37,11 @@ void writeStability(std::ostream& out, const HillResult& hill) {
     return;
   }
   out << "stability: " << (hill.stable ? "stable" : "UNSTABLE") << ", spectral radius " << hill.spectral_radius
-      << " (" << (hill.method == "monodromy" ? std::string("monodromy") : "Hill, " + std::to_string(hill.pencil_size) + " unknowns")
-      << ", " << hill.seconds << " s); leading multipliers:";
+      << " (" << (hill.method == "hill" ? "Hill, " + std::to_string(hill.pencil_size) + " unknowns"
+                  : hill.method == "shooting" ? std::string("the exact orbit's multipliers, from shooting")
+                                              : hill.method)
+      << (hill.method == "shooting" ? std::string() : ", " + formatNumber(hill.seconds) + " s")
+      << "); leading multipliers:";
   for (size_t i = 0; i < hill.exponents.size() && i < 8; ++i) {
     const auto& e = hill.exponents[i];
     out << " " << e.multiplier.real() << (e.multiplier.imag() < 0 ? "" : "+") << e.multiplier.imag() << "i";
@@ -72,7 +76,8 @@ void writeSolutionText(std::ostream& out, const app::Solution& s) {
     out << "refined by shooting: " << (r->converged ? "exact periodic orbit" : "NOT converged: " + r->failure)
         << ", period residual " << r->orbit.period_residual << " after " << r->orbit.iterations << " Newton steps, "
         << r->seconds << " s (max|x| above: the orbit's; coefficients: its truncation on H = " << r->basis.count()
-        << ")\n";
+        << ")" << (r->orbit.events.count("impact") ? "; impacts with restitution e = " + formatNumber(s.restitution) : "")
+        << "\n";
   if (const auto& a = s.accuracy)
     out << "--accuracy " << a->tolerance << ": " << (a->choice.reached ? "reached" : "NOT reached") << " at H = "
         << model.basis.count() << ", N = " << model.samples

@@ -10,6 +10,7 @@
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/laws/signorini.h"
+#include "eqhb/stability/multiplier_stability.h"
 #include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/orbits/shooting.h"
 
@@ -301,26 +302,13 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
     }
   }
   HillResult result;
-  result.method = "monodromy";
-  result.state_dimension = result.candidates = result.pencil_size = 2 * n_;
   Eigen::EigenSolver<Eigen::MatrixXd> solver(phi, false);
   if (solver.info() != Eigen::Success) {
+    result.method = "monodromy";
+    result.state_dimension = result.candidates = result.pencil_size = 2 * n_;
     result.failure = "the eigenvalues of the monodromy matrix did not converge";
   } else {
-    for (Eigen::Index j = 0; j < solver.eigenvalues().size(); ++j) {
-      FloquetExponent e;
-      e.multiplier = solver.eigenvalues()[j];
-      // A multiplier 0 (a stuck DOF forgets its velocity) has no exponent:
-      // its logarithm is taken at the smallest positive double.
-      const double modulus = std::max(std::abs(e.multiplier), 1e-300);
-      e.exponent = std::complex<double>(std::log(modulus), std::arg(e.multiplier)) / period;
-      result.exponents.push_back(e);
-    }
-    std::stable_sort(result.exponents.begin(), result.exponents.end(), [](const auto& x, const auto& y) {
-      return std::abs(x.multiplier) > std::abs(y.multiplier);
-    });
-    result.spectral_radius = std::abs(result.exponents.front().multiplier);
-    result.stable = result.spectral_radius < 1.0 + unit_tolerance_;
+    result = stabilityFromMultipliers(solver.eigenvalues(), period, unit_tolerance_, "monodromy");
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
