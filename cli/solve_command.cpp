@@ -41,6 +41,10 @@ void addStabilityFlag(CLI::App* cmd, SolveArguments& a) {
                   "monodromy where it applies, else Hill")
       ->check(CLI::IsMember({"hill", "monodromy", "auto"}))
       ->capture_default_str();
+  cmd->add_option("--stability-time-limit", a.stability_time_limit,
+                  "Seconds for the stability of a whole curve (sweep), checked after each point; the points not "
+                  "reached get no verdict and the output says how many were analysed (0: none)")
+      ->capture_default_str();
 }
 
 void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
@@ -99,6 +103,7 @@ void readSolverChoice(const SolveArguments& a, app::SolverChoice* o) {
 void readSolutionChecks(const SolveArguments& a, app::SolutionChecks* o) {
   o->stability = a.stability;
   o->stability_method = a.stability_method;
+  o->stability_time_limit = a.stability_time_limit;
   o->error_estimate = a.accuracy.error_estimate;
   o->accuracy = a.accuracy.tolerance;
   o->max_harmonics = a.accuracy.max_harmonics;

@@ -35,6 +35,7 @@ struct SolveArguments {
   std::string fallback = app::SolverChoice{}.fallback;
   bool stability = false;
   std::string stability_method = "hill";
+  double stability_time_limit = app::SolutionChecks{}.stability_time_limit;  // seconds, 0: none
   AccuracyArguments accuracy;  // --error-estimate, --accuracy (solve only)
   RefineArguments refine;      // --refine shoot (solve only)
 };

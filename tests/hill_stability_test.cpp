@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <map>
 
@@ -14,6 +15,7 @@
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
+#include "eqhb/stability/curve_stability.h"
 #include "test_support.h"
 
 namespace eqhb {
@@ -199,6 +201,44 @@ TEST(HillStability, DuffingCurveAgreesWithShootingAndTheMiddleBranchIsUnstable) 
 // period: the pencil's infinite eigenvalues are defective there and come out
 // of rounding at |s| of 1e7–1e8 ω with positive real parts. They must not be
 // taken for Floquet exponents (they were: infinite multipliers, "unstable").
+// A curve's stability under a time limit: the points reached get their
+// verdicts, the rest none, and the result says how many were analysed; no
+// limit analyses every converged point. A limit below zero or not finite is
+// refused naming it.
+TEST(HillStability, ACurvesStabilityStopsAtItsTimeLimit) {
+  const Scene scene = loadScene(test::problem("cubic.toml"));
+  ContinuationOptions options;
+  options.from = 0.4;
+  options.to = 1.6;
+  options.step = 0.02;
+  auto solver = makeSolver("dogleg");
+  Curve curve = sweepSequential(scene.model, *solver, SolverOptions(), options);
+  int converged = 0;
+  for (const CurvePoint& p : curve.points) converged += p.converged;
+  ASSERT_GT(converged, 20);
+  const CurveStability all = analyseCurveStability(scene.model, curve);
+  EXPECT_FALSE(all.time_limited);
+  EXPECT_EQ(all.analysed, converged);
+  HillOptions limited;
+  limited.time_limit = 1e-9;  // out of time at the first check
+  const CurveStability some = analyseCurveStability(scene.model, curve, limited);
+  EXPECT_TRUE(some.time_limited);
+  EXPECT_LT(some.analysed, converged);
+  int verdicts = 0;
+  for (const CurvePoint& p : curve.points) verdicts += p.stable.has_value();
+  EXPECT_EQ(verdicts, some.analysed);
+  for (double bad : {-1.0, std::nan(""), HUGE_VAL}) {
+    HillOptions o;
+    o.time_limit = bad;
+    try {
+      o.validate();
+      ADD_FAILURE() << "accepted time_limit = " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("stability_time_limit"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(HillStability, DefectiveInfiniteEigenvaluesOfConstraintsAreNotExponents) {
   const Scene scene = loadScene(test::problem("damper.toml"), {"harmonic_balance.omega=0.86"});
   CondensedSystem system(scene.model);

@@ -84,7 +84,8 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
 def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, formulation=None, solver="dogleg",
           system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0,
           options=None, linear_algebra="auto", initial=None, cold_start="coarse", fallback="default",
-          from_harmonics=None, repeat=1, stability=False, stability_method="hill", error_estimate=False,
+          from_harmonics=None, repeat=1, stability=False, stability_method="hill", stability_time_limit=0.0,
+          error_estimate=False,
           accuracy=None, max_harmonics=320, refine=None, restitution=1.0, refine_harmonics=None, show=None):
     """One harmonic-balance solve, as `eqhb solve` runs it. Returns a dict
     with every key of `eqhb solve --json` (converged, termination, iterations,
@@ -126,6 +127,7 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     args.update(initial=_vector(initial, "initial"), from_harmonics=_integer(from_harmonics, "from_harmonics", True),
                 repeat=_integer(repeat, "repeat"), stability=_flag(stability, "stability"),
                 stability_method=_text(stability_method, "stability_method"),
+                stability_time_limit=_real(stability_time_limit, "stability_time_limit"),
                 error_estimate=_flag(error_estimate, "error_estimate"), accuracy=_real(accuracy, "accuracy", True),
                 max_harmonics=_integer(max_harmonics, "max_harmonics"),
                 refine=None if refine is None else _text(refine, "refine"), restitution=_real(restitution, "restitution"),
@@ -154,7 +156,8 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
 def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmonics=None, samples=None, form=None,
           rho=None, formulation=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
-          max_step=None, stability=False, stability_method="hill", error_estimate=False, accuracy=None,
+          max_step=None, stability=False, stability_method="hill", stability_time_limit=0.0, error_estimate=False,
+          accuracy=None,
           max_harmonics=320, peak_dof=None, show=None):
     """A frequency-response curve by continuation in omega, as `eqhb sweep`
     runs it ("sequential" on a grid of `step`, by default a hundredth of the
@@ -179,7 +182,9 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     jacobian_evaluations, residual_norm, seconds), never rows of NaN.
 
     On the points: stability (stability_method at every converged point,
-    "hill", "monodromy" or "auto" as for solve:
+    "hill", "monodromy" or "auto" as for solve; stability_time_limit seconds
+    for the whole curve, 0 none: the points not reached have None, and
+    "stability_time_limited" and "stability_points_analysed" say so:
     per point "stable", "spectral_radius", "multipliers" (the leading four,
     complex) and "bifurcation"; "bifurcations", a list of dicts omega, kind,
     point; the folds confirmed by the multipliers), error_estimate (one more
@@ -197,6 +202,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
                 method=_text(method, "method"), max_points=_integer(max_points, "max_points"),
                 min_step=_real(min_step, "min_step", True), max_step=_real(max_step, "max_step", True),
                 stability=_flag(stability, "stability"), stability_method=_text(stability_method, "stability_method"),
+                stability_time_limit=_real(stability_time_limit, "stability_time_limit"),
                 error_estimate=_flag(error_estimate, "error_estimate"),
                 accuracy=_real(accuracy, "accuracy", True), max_harmonics=_integer(max_harmonics, "max_harmonics"),
                 peak_dof=_dof(peak_dof, "peak_dof"), show=_dofs(show, "show"))

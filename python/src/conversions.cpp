@@ -203,7 +203,7 @@ const char* const kRunFields[] = {"scene",        "solver",       "method",     
                                   "to",           "step",         "system",       "harmonic_set",
                                   "samples",      "bifurcations", "stability_seconds", "solve_seconds",
                                   "rho",          "accuracy",     "dof_labels",   "peak_dof",
-                                  "shown"};
+                                  "shown",        "stability_time_limited", "stability_points_analysed"};
 
 py::object pointValue(const std::string& key, const nlohmann::json& value) {
   if (key != "multipliers") return fromJson(value);

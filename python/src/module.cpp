@@ -105,6 +105,7 @@ void readSolverChoice(const py::dict& a, app::SolverChoice* o) {
 void readSolutionChecks(const py::dict& a, app::SolutionChecks* o) {
   o->stability = a["stability"].cast<bool>();
   o->stability_method = a["stability_method"].cast<std::string>();
+  o->stability_time_limit = a["stability_time_limit"].cast<double>();
   o->error_estimate = a["error_estimate"].cast<bool>();
   o->accuracy = a["accuracy"].cast<std::optional<double>>();
   o->max_harmonics = a["max_harmonics"].cast<int>();

@@ -213,6 +213,17 @@ def test_sweep_with_stability_and_error_estimates_is_eqhb_sweep():
     same_curve(cli, py)
 
 
+def test_a_sweeps_stability_stops_at_its_time_limit():
+    full = eqhb.sweep(eqhb.load_scene(SCENE), 0.3, 0.4, step=0.02, harmonics=5, stability=True)
+    assert not full["stability_time_limited"] and full["stability_points_analysed"] == 6
+    cut = eqhb.sweep(eqhb.load_scene(SCENE), 0.3, 0.4, step=0.02, harmonics=5, stability=True,
+                     stability_time_limit=1e-9)
+    assert cut["stability_time_limited"] and cut["stability_points_analysed"] < 6
+    assert sum(s is not None for s in cut["stable"]) == cut["stability_points_analysed"]
+    with pytest.raises(eqhb.InputError, match="stability_time_limit"):
+        eqhb.sweep(eqhb.load_scene(SCENE), 0.3, 0.4, stability=True, stability_time_limit=-1.0)
+
+
 def test_arclength_sweep_with_stability_finds_the_folds_eqhb_sweep_finds():
     scene = PROBLEMS / "duffing.toml"
     cli = cli_json("sweep", scene, "--arclength", "--harmonics", 3, "--samples", 64, "--stability",

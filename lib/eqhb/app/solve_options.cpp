@@ -1,5 +1,7 @@
 #include "eqhb/app/solve_options.h"
 
+#include <cmath>
+
 #include "eqhb/error.h"
 
 namespace eqhb::app {
@@ -21,6 +23,8 @@ bool SolveOptions::isValid(std::string* why) const {
   if (repeat < 1 || repeat > 100000) return fail(why, "repeat", std::to_string(repeat), "must be in [1, 100000]");
   if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "auto")
     return fail(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
+  if (!(stability_time_limit >= 0.0) || !std::isfinite(stability_time_limit))
+    return fail(why, "stability_time_limit", formatNumber(stability_time_limit), "must be finite and >= 0 (0: none)");
   if (!refine.empty() && refine != "shoot") return fail(why, "refine", "\"" + refine + "\"", "must be \"shoot\" or empty");
   if (refine_harmonics < 0)
     return fail(why, "refine_harmonics", std::to_string(refine_harmonics), "must be >= 0");

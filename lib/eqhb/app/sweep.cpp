@@ -50,6 +50,8 @@ bool SweepOptions::isValid(std::string* why) const {
   if (max_step && !positive(*max_step)) return fail(why, "max_step", formatNumber(*max_step), "must be finite and > 0");
   if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "auto")
     return fail(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
+  if (!(stability_time_limit >= 0.0) || !std::isfinite(stability_time_limit))
+    return fail(why, "stability_time_limit", formatNumber(stability_time_limit), "must be finite and >= 0 (0: none)");
   if (accuracy && stability)
     return fail(why, "stability", "(set)", "not with accuracy: the points of such a curve differ in H");
   return solver_options.isValid(why);
@@ -126,6 +128,7 @@ SweepResult sweep(const SweepPlan& plan, const SweepCallbacks& callbacks) {
   if (o.stability) {
     HillOptions stability;
     stability.method = o.stability_method;
+    stability.time_limit = o.stability_time_limit;
     result.stability = analyseCurveStability(scene_model, result.curve, stability, callbacks.stability);
   }
   return result;

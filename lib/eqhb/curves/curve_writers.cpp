@@ -187,6 +187,9 @@ void writeCurveSummary(std::ostream& out, const Curve& curve, const CurveRun& s)
     const bool monodromy = !st.points.empty() && st.points.front().method == "monodromy";
     out << "  stability (" << (monodromy ? "monodromy" : "Hill") << "): " << stable << " of " << analysed << " points stable, " << st.seconds << " s ("
         << (st.solve_seconds > 0 ? 100.0 * st.seconds / st.solve_seconds : 0.0) << " % of the solve time)\n";
+    if (st.time_limited)
+      out << "  stability: the time limit (--stability-time-limit) ran out after " << st.analysed << " of "
+          << parts.converged.size() << " converged points; the rest have no verdict\n";
     for (const auto& b : st.bifurcations) out << "  " << b.kind << " at omega = " << b.omega << "\n";
   }
 }

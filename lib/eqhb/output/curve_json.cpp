@@ -96,6 +96,8 @@ nlohmann::json curveJson(const Curve& curve, const CurveRun& run) {
     out["bifurcations"] = bifurcations;
     out["stability_seconds"] = run.stability->seconds;
     out["solve_seconds"] = run.stability->solve_seconds;
+    out["stability_time_limited"] = run.stability->time_limited;
+    out["stability_points_analysed"] = run.stability->analysed;
   }
   return out;
 }

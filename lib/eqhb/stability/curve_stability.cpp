@@ -54,6 +54,10 @@ CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const H
   std::unique_ptr<MonodromyStability> monodromy;
   if (useMonodromy(model, options)) monodromy = std::make_unique<MonodromyStability>(model, options.unit_tolerance);
   else hill = std::make_unique<HillStability>(model, options);
+  auto outOfTime = [&]() {
+    return options.time_limit > 0.0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= options.time_limit;
+  };
   for (size_t i = 0; i < curve.points.size(); ++i) {
     CurvePoint& p = curve.points[i];
     out.solve_seconds += p.seconds;
@@ -61,6 +65,11 @@ CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const H
     p.stable.reset();
     p.bifurcation.clear();
     if (!p.converged || p.full.size() == 0) continue;
+    if (out.time_limited || outOfTime()) {
+      out.time_limited = true;
+      continue;
+    }
+    ++out.analysed;
     out.points[i] = monodromy ? monodromy->analyse(p.omega, p.full) : hill->analyse(p.omega, p.full);
     if (out.points[i].failure.empty()) p.stable = out.points[i].stable;
     if (progress) progress(static_cast<int>(i) + 1, static_cast<int>(curve.points.size()));

@@ -31,6 +31,10 @@ struct CurveStability {
   std::vector<Bifurcation> bifurcations;
   double seconds = 0.0;            // all Hill analyses
   double solve_seconds = 0.0;      // the curve's corrector time, for comparison
+  // The time limit ran out after `analysed` of the curve's converged points
+  // (in curve order); the rest have no verdict.
+  bool time_limited = false;
+  int analysed = 0;
 };
 
 // Analyses every converged point of `curve` (computed on `model` with ω

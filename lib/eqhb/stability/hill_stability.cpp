@@ -393,6 +393,8 @@ void HillOptions::validate() const {
     throwInputError("unit_tolerance", formatNumber(unit_tolerance), "must be finite and >= 0");
   if (method != "hill" && method != "monodromy" && method != "auto")
     throwInputError("stability_method", "\"" + method + "\"", "must be hill, monodromy or auto");
+  if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
+    throwInputError("stability_time_limit", formatNumber(time_limit), "must be finite and >= 0 (0: none)");
 }
 
 HillStability::HillStability(const HbModel& model, const HillOptions& options) : options_(options) {

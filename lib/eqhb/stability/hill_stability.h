@@ -60,6 +60,9 @@ struct HillOptions {
   // laws it supports) or "auto" (the monodromy where it applies on up to 20
   // DOFs, else Hill; curve_stability.h).
   std::string method = "hill";
+  // Seconds for the stability of a whole curve (analyseCurveStability), 0:
+  // none. Checked after each point: the points not reached keep no verdict.
+  double time_limit = 0.0;
   // Throws InputError naming the field.
   void validate() const;
 };
