@@ -137,6 +137,15 @@ TEST(HillStability, CubicMultipliersApproachTheShootingOnes) {
   EXPECT_EQ(r.stable, orbit.stable);
 }
 
+// The cubic chain's curve across both folds, for the curve tests below.
+ContinuationOptions cubicCurveRange() {
+  ContinuationOptions options;
+  options.from = 0.4;
+  options.to = 1.6;
+  options.step = 0.02;
+  return options;
+}
+
 TEST(HillStability, DuffingCurveAgreesWithShootingAndTheMiddleBranchIsUnstable) {
   // The hardening chain bends right and folds twice: the branch between the
   // two turning points is unstable and a real multiplier passes +1 at each
@@ -145,10 +154,7 @@ TEST(HillStability, DuffingCurveAgreesWithShootingAndTheMiddleBranchIsUnstable) 
   // shooting), so every sampled point is checked against the exact
   // multipliers of the shooting orbit.
   const Scene scene = loadScene(test::problem("cubic.toml"));
-  ContinuationOptions options;
-  options.from = 0.4;
-  options.to = 1.6;
-  options.step = 0.02;
+  const ContinuationOptions options = cubicCurveRange();
   auto solver = makeSolver("dogleg");
   const Curve curve = sweepArclength(scene.model, *solver, SolverOptions(), options);
   ASSERT_EQ(curve.fold_omegas.size(), 2u) << curve.stop_reason;
@@ -197,20 +203,13 @@ TEST(HillStability, DuffingCurveAgreesWithShootingAndTheMiddleBranchIsUnstable) 
   }
 }
 
-// The damper's two contact faces stick and stay closed over parts of the
-// period: the pencil's infinite eigenvalues are defective there and come out
-// of rounding at |s| of 1e7–1e8 ω with positive real parts. They must not be
-// taken for Floquet exponents (they were: infinite multipliers, "unstable").
 // A curve's stability under a time limit: the points reached get their
 // verdicts, the rest none, and the result says how many were analysed; no
 // limit analyses every converged point. A limit below zero or not finite is
 // refused naming it.
 TEST(HillStability, ACurvesStabilityStopsAtItsTimeLimit) {
   const Scene scene = loadScene(test::problem("cubic.toml"));
-  ContinuationOptions options;
-  options.from = 0.4;
-  options.to = 1.6;
-  options.step = 0.02;
+  const ContinuationOptions options = cubicCurveRange();
   auto solver = makeSolver("dogleg");
   Curve curve = sweepSequential(scene.model, *solver, SolverOptions(), options);
   int converged = 0;
@@ -239,6 +238,10 @@ TEST(HillStability, ACurvesStabilityStopsAtItsTimeLimit) {
   }
 }
 
+// The damper's two contact faces stick and stay closed over parts of the
+// period: the pencil's infinite eigenvalues are defective there and come out
+// of rounding at |s| of 1e7–1e8 ω with positive real parts. They must not be
+// taken for Floquet exponents (they were: infinite multipliers, "unstable").
 TEST(HillStability, DefectiveInfiniteEigenvaluesOfConstraintsAreNotExponents) {
   const Scene scene = loadScene(test::problem("damper.toml"), {"harmonic_balance.omega=0.86"});
   CondensedSystem system(scene.model);
