@@ -20,7 +20,7 @@ PACKAGES=(cmake g++ make pkg-config libeigen3-dev libspectra-dev libceres-dev li
   libopenmpi-dev openmpi-bin
   python3-sphinx python3-myst-parser python3-breathe doxygen
   python3-venv python3-pip python3-setuptools python3-wheel libhdf5-dev python3-h5py
-  clang libclang-rt-14-dev)
+  clang libclang-rt-14-dev ccache)
 
 install_packages() {
   local missing=()
@@ -35,6 +35,11 @@ install_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# The compiler cache keys paths relative to the sources, so that the library
+# compiled for the command (build/) serves the pip install of the Python module
+# (build-python/, setup.py, tested by ./run.sh test) instead of a third build.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
+
 build() {
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
@@ -44,7 +49,12 @@ build() {
 
 # Its own build directory: clang with ASan + UBSan and libFuzzer, only what
 # the tests need (no benchmark, no Python module, the optional backends off).
-sanitize_build() {
+sanitize_# The compiler cache keys paths relative to the sources, so that the library
+# compiled for the command (build/) serves the pip install of the Python module
+# (build-python/, setup.py, tested by ./run.sh test) instead of a third build.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
+
+build() {
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
