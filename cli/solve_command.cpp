@@ -68,8 +68,9 @@ void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
   cmd->add_option("--fallback", a.fallback,
                   "Steps tried, in order, when a solve (a sweep's point after its halved steps) fails: cold "
                   "(coarse start, then zero), full (the full system), condensed (the condensed system, then the full "
-                  "one from its answer), or a backend name; comma-separated, or none. "
-                  "default: cold,full,condensed and Ipopt's least squares (else ceres-lm)")
+                  "one from its answer), forcing (the dynamic loads raised from a quarter to the whole, each solve from the "
+                  "last), or a backend name; comma-separated, or none. "
+                  "default: cold,full,condensed, Ipopt's least squares (else ceres-lm), forcing")
       ->capture_default_str();
 }
 

@@ -64,12 +64,51 @@ TEST(FallbackChain, TheCondensedStepIsSkippedOnTheCondensedSystem) {
   EXPECT_TRUE(report.attempts.empty());
 }
 
+// contact at ω = 0.5 on H = 40: the own dogleg stalls from rest, from the
+// coarse start and on the full system at a local minimum of ‖g‖ (0.013), and
+// so does Ipopt's least squares; continuation in H from 1, 5 or 10 stalls
+// too. The forcing homotopy (a quarter of the load, then half, then all)
+// converges, and its answer is a solve of the condensed system itself.
+TEST(FallbackChain, AContactThatStallsEverywhereIsSolvedByTheForcingHomotopy) {
+  const Scene scene = loadScene(test::problem("contact.toml"), {"harmonic_balance.harmonics=40"});
+  auto condensed = makeHbSystem(scene.model, true);
+  condensed->setOmega(0.5);
+  auto solver = makeSolver("dogleg");
+  const SolverOptions options;
+  const SolverResult failed = solveFromRest(*condensed, *solver, options);
+  ASSERT_FALSE(failed.converged());
+  const FallbackChain without =
+      FallbackChain::parse("cold,full,condensed", "fallback", [](const std::string&) { return nullptr; });
+  EXPECT_FALSE(solveWithFallbacks(*condensed, *solver, options, failed, false, without, nullptr).converged());
+
+  FallbackReport report;
+  const SolverResult r =
+      solveWithFallbacks(*condensed, *solver, options, failed, true, FallbackChain::standard(nullptr), &report);
+  ASSERT_TRUE(r.converged()) << describeFallbacks(report);
+  EXPECT_EQ(report.taken, "forcing");
+  Eigen::VectorXd g(condensed->size()), scales(condensed->size());
+  ASSERT_TRUE(condensed->residual(r.solution, g));
+  condensed->residualScales(scales);
+  EXPECT_LE(g.cwiseQuotient(scales).norm(), options.residual_tolerance);
+  // The wall is touched: the answer is not the linear response of the scaled-down load.
+  EXPECT_GT(condensed->fullCoefficients(r.solution).tail(scene.model.basis.size()).norm(), 0.1);
+}
+
+TEST(FallbackChain, ParsesTheForcingStepAndPutsItLast) {
+  auto none = [](const std::string&) -> Solver* { return nullptr; };
+  EXPECT_EQ(FallbackChain::parse("forcing,cold", "fallback", none).steps,
+            (std::vector<std::string>{"forcing", "cold"}));
+  EXPECT_THROW(FallbackChain::parse("forcing,forcing", "fallback", none), InputError);
+  EXPECT_EQ(FallbackChain::standard(nullptr).steps.back(), "forcing");
+}
+
 TEST(FallbackChain, ParsesTheCondensedStepAndRefusesItTwice) {
   auto none = [](const std::string&) -> Solver* { return nullptr; };
   EXPECT_EQ(FallbackChain::parse("cold,condensed", "fallback", none).steps,
             (std::vector<std::string>{"cold", "condensed"}));
   EXPECT_THROW(FallbackChain::parse("condensed,condensed", "fallback", none), InputError);
-  EXPECT_EQ(FallbackChain::standard(nullptr).steps, (std::vector<std::string>{"cold", "full", "condensed"}));
+  EXPECT_EQ(FallbackChain::standard(nullptr).steps,
+            (std::vector<std::string>{"cold", "full", "condensed", "forcing"}));
 }
 
 }  // namespace

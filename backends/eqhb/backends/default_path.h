@@ -19,7 +19,7 @@ std::string defaultBackupSolver(const std::string& primary);
 
 class OwnedFallbackChain {
  public:
-  // "default": cold, full, condensed, defaultBackupSolver(primary); "none"; or steps
+  // "default": cold, full, condensed, defaultBackupSolver(primary), forcing; "none"; or steps
   // "cold,full,NAME,..." (FallbackChain::parse). Throws InputError naming
   // `field` for an unknown step or backend.
   OwnedFallbackChain(const std::string& text, const std::string& primary, const std::string& field);

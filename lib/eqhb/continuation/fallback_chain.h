@@ -11,6 +11,12 @@
 //             the stiff linear equations a stalled full solve fights.
 //   4. SOLVER another backend on the system, from the cold start (the caller
 //             names it: the core knows no backend by name).
+//   5. forcing  a homotopy in the dynamic loads (harmonic >= 1): a quarter of
+//             them solved cold, then raised to the whole, each solve from the
+//             last (the step doubled after a success, halved after a
+//             failure): where ‖g‖ has a local minimum that every backend
+//             stalls in from rest (contact at ω = 0.5, H = 40), the load
+//             raised in steps keeps each solve near its answer.
 //
 // Measured on the shipped scenes' sequential sweeps with the own dogleg: the
 // points that failed from the previous point (Duffing and the cubic chain
@@ -33,7 +39,7 @@
 namespace eqhb {
 
 struct FallbackChain {
-  // Steps in order: "cold", "full", "condensed", or a backend supplied in
+  // Steps in order: "cold", "full", "condensed", "forcing", or a backend supplied in
   // `solvers` by its Solver::name(). Empty: no fallback.
   std::vector<std::string> steps;
   std::vector<Solver*> solvers;  // the backends named in `steps`, owned by the caller
@@ -44,9 +50,10 @@ struct FallbackChain {
   // equations that is not the orbit about the static state.
   std::shared_ptr<const StaticContactState> at_rest;
 
-  // The default order, with `backup` (may be null: no backend step) last.
+  // The default order: cold, full, condensed, `backup` (may be null: no
+  // backend step), forcing.
   static FallbackChain standard(Solver* backup);
-  // Parses "cold,full,condensed,NAME" (or "none"); `solver_for` returns the backend for a
+  // Parses "cold,full,condensed,forcing,NAME" (or "none"); `solver_for` returns the backend for a
   // NAME that is neither cold nor full, or null for an unknown one. Throws
   // InputError naming `field` for an unknown, empty or repeated step.
   static FallbackChain parse(const std::string& text, const std::string& field,
