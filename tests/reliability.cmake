@@ -174,6 +174,11 @@ if(EQHB_WITH_IPOPT)
            COMMAND ${EXPECT_EXIT} 1 "did not converge"
                    ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/cubic.toml --omega 0.8 --fallback none)
 endif()
+# contact at omega = 0.5 on H = 40: every step before it stalls at a local
+# minimum of |g|; the chain's last step, the forcing homotopy, solves it.
+add_test(NAME cli.contact_h40_default_path_takes_the_forcing_homotopy
+         COMMAND ${EXPECT_EXIT} 0 "forcing \\(dogleg: converged\\); the result above is forcing's"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/contact.toml --omega 0.5 --harmonics 40)
 
 # Field suite (problems/field/, bench/field_suite.py): the sequential sweep of
 # each field scene on eqhb's defaults (own dogleg, 101 points over its range)
