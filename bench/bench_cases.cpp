@@ -94,8 +94,12 @@ Case runCase(const std::string& study, const std::filesystem::path& path, const 
   c.median_seconds = r.termination == Termination::kInvalidOptions ? NAN : median(times);
   if (c.converged && truth) {
     const Eigen::VectorXd full = system->fullCoefficients(r.solution);
-    if (truth->has_reference) c.error_reference = worstDisplacementError(compareWithReference(scene.model, full, truth->reference));
+    if (truth->exact) c.error_reference = worstRelativeL2(scene.model, full, *truth->exact);
+    else if (truth->has_reference)
+      c.error_reference = worstDisplacementError(compareWithReference(scene.model, full, truth->reference));
     if (truth->high.size()) c.error_high_h = highHarmonicError(scene.model, full, *truth);
+    if (truth->exact && scene.model.basis.count() == truth->truncation_harmonics)
+      c.truncation_error = truth->truncation_error;
   }
   return c;
 }

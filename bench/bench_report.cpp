@@ -51,6 +51,7 @@ nlohmann::json writeCaseData(const std::string& out, const std::vector<Case>& ca
                     {"residual_norm", num(c.residual_norm)}, {"median_seconds", num(c.median_seconds)},
                     {"repeats", c.repeats}, {"ratio_to_dogleg", num(c.ratio_to_dogleg)},
                     {"error_reference", num(c.error_reference)}, {"error_high_h", num(c.error_high_h)},
+                    {"truncation_error", num(c.truncation_error)},
                     {"verdict", verdictName(verdictOf(c))}});
     csv << csvField(c.study) << "," << csvField(c.scene) << "," << csvField(c.solver) << "," << csvField(c.system)
         << "," << csvField(c.form) << "," << c.harmonics

@@ -7,6 +7,7 @@
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/laws/law_registry.h"
 #include "eqhb/orbits/smooth_flow.h"
+#include "eqhb/references/time_integrator.h"
 
 namespace eqhb::bench {
 
@@ -54,6 +55,20 @@ SeriesError seriesError(const HbModel& model, const Eigen::VectorXd& full, const
   out.sup /= exact.orbit.max_abs.maxCoeff();
   out.max_abs = worstRelativeDifference(peakDisplacements(model, full), exact.orbit.max_abs);
   return out;
+}
+
+double worstRelativeL2(const HbModel& model, const Eigen::VectorXd& full, const ExactOrbit& exact) {
+  const int n = model.structure.dofs();
+  const Eigen::Index count = static_cast<Eigen::Index>(exact.times.size());
+  Eigen::MatrixXd hb(count, n);
+  for (Eigen::Index s = 0; s < count; ++s) hb.row(s) = orbits::harmonicState(model, full, exact.times[s]).head(n);
+  double largest = 0.0;
+  for (int i = 0; i < n; ++i) largest = std::max(largest, exact.displacement.col(i).norm());
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i)
+    worst = std::max(worst, (hb.col(i) - exact.displacement.col(i)).norm() /
+                                std::max({exact.displacement.col(i).norm(), kChannelFloor * largest, 1e-300}));
+  return worst;
 }
 
 }  // namespace eqhb::bench

@@ -38,4 +38,10 @@ struct SeriesError {
 // `full` on `model`'s basis against the exact orbit.
 SeriesError seriesError(const HbModel& model, const Eigen::VectorXd& full, const ExactOrbit& exact);
 
+// The benchmark's measure against the exact orbit: per DOF ‖x − x_exact‖₂ /
+// ‖x_exact‖₂ over the orbit's samples (the DOF's norm floored at
+// kChannelFloor times the largest DOF's, as against a time reference), the
+// worst DOF.
+double worstRelativeL2(const HbModel& model, const Eigen::VectorXd& full, const ExactOrbit& exact);
+
 }  // namespace eqhb::bench

@@ -32,6 +32,22 @@ TEST(CaseVerdict, AConvergedAnswerFarFromBothReferencesIsDisagreeing) {
   EXPECT_EQ(verdictOf(failed), Verdict::kFailed);
 }
 
+// contact at H = 20 against its exact orbit (e = 1): the reference harmonic
+// balance itself is 0.103 away (truncation), and the forms' answers 0.088 to
+// 0.103. Judged against max(0.1, 2 x 0.103) they are solved; a spurious
+// root is not, and without a known truncation error the tolerance stays 0.1.
+TEST(CaseVerdict, ATruncationErrorAboveTheToleranceWidensItToTwiceThatError) {
+  EXPECT_EQ(agreementTolerance(NAN), kAgreementTolerance);
+  EXPECT_EQ(agreementTolerance(0.03), kAgreementTolerance);
+  EXPECT_DOUBLE_EQ(agreementTolerance(0.103), 0.206);
+  Case c = converged("dogleg", "condensed", 0.1025, NAN);
+  EXPECT_EQ(verdictOf(c), Verdict::kDisagrees);
+  c.truncation_error = 0.103;
+  EXPECT_EQ(verdictOf(c), Verdict::kSolved);
+  c.error_reference = 0.25;  // the plastic-impact orbit's distance: another orbit
+  EXPECT_EQ(verdictOf(c), Verdict::kDisagrees);
+}
+
 TEST(CaseVerdict, TheDefaultSolvesMostAndDisagreeingDoesNotCount) {
   // fast: converges everywhere, but half its answers are wrong; slow: solves
   // every case; rescue: solves the one case slow misses... none here.
