@@ -15,9 +15,12 @@ struct AccuracyArguments {
   bool error_estimate = false;      // --error-estimate: one more solve at 2H
   std::optional<double> tolerance;  // --accuracy TOL
   int max_harmonics = app::SolutionChecks{}.max_harmonics;  // --max-harmonics
+  std::string test = app::SolutionChecks{}.accuracy_test;   // --accuracy-test
 };
 
 void addAccuracyOptions(CLI::App* command, AccuracyArguments& args);
+// --accuracy-test alone (sweep declares its own --accuracy).
+void addAccuracyTestOption(CLI::App* command, AccuracyArguments& args);
 
 using app::kRhoFactors;
 using app::RhoCandidates;

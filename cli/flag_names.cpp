@@ -12,7 +12,7 @@ const std::pair<const char*, const char*> kFlags[] = {
     {"from_harmonics", "--from-harmonics"}, {"max_harmonics", "--max-harmonics"},
     {"refine_harmonics", "--refine-harmonics"}, {"cold_start", "--cold-start"},
     {"linear_algebra", "--linear-algebra"}, {"backbone_time_limit", "--backbone-time-limit"},
-    {"accuracy", "--accuracy"}, {"fallback", "--fallback"},
+    {"accuracy_test", "--accuracy-test"}, {"accuracy", "--accuracy"}, {"fallback", "--fallback"},
     {"options", "--option"}, {"repeat", "--repeat"},
     {"form", "--form"}, {"formulation", "--formulation"}, {"rho", "--rho"},
     {"from_hb", "--from-hb"},

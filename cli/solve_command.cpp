@@ -108,6 +108,7 @@ void readSolutionChecks(const SolveArguments& a, app::SolutionChecks* o) {
   o->error_estimate = a.accuracy.error_estimate;
   o->accuracy = a.accuracy.tolerance;
   o->max_harmonics = a.accuracy.max_harmonics;
+  o->accuracy_test = a.accuracy.test;
 }
 
 app::SolveOptions solveOptions(const SolveArguments& a) {

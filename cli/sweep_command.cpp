@@ -46,10 +46,11 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
                 "Per converged point, the estimated relative error of max|x| by one more solve at 2H "
                 "(error_estimate column and JSON key)");
   cmd->add_option("--accuracy", s.accuracy.tolerance,
-                  "Every point with an estimated relative error of max|x| <= TOL: H chosen at the first point "
-                  "(doubling from --harmonics or 5), then raised on the points whose estimate exceeds TOL");
+                  "Every point with a relative error of max|x| <= TOL (--accuracy-test): H chosen at the first point "
+                  "(doubling from --harmonics or 5), then raised on the points whose test fails");
   cmd->add_option("--max-harmonics", s.accuracy.max_harmonics, "With --accuracy: the largest H solved")
       ->capture_default_str();
+  addAccuracyTestOption(cmd, s.accuracy);
   cmd->add_flag("--json", w.json,
                 "Print the curve as one JSON object: settings, stop reason, folds, and per point the counts, "
                 "amplitudes and Fourier coefficients of every DOF and law force");

@@ -86,7 +86,8 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
           options=None, linear_algebra="auto", initial=None, cold_start="coarse", fallback="default",
           from_harmonics=None, repeat=1, stability=False, stability_method="hill", stability_time_limit=0.0,
           error_estimate=False,
-          accuracy=None, max_harmonics=320, refine=None, restitution=1.0, refine_harmonics=None, show=None):
+          accuracy=None, max_harmonics=320, accuracy_test="auto", refine=None, restitution=1.0, refine_harmonics=None,
+          show=None):
     """One harmonic-balance solve, as `eqhb solve` runs it. Returns a dict
     with every key of `eqhb solve --json` (converged, termination, iterations,
     residual/jacobian evaluations, residual_norm, seconds, cold_start,
@@ -118,8 +119,12 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     the switching instants) or "auto"), error_estimate (one more solve at
     2H: "error_estimate"), accuracy (a relative error in (0, 1): the cheapest
     H, doubling from `harmonics` or 5 up to max_harmonics, and unless rho is
-    given the rho among each law's times 1, 0.1, 0.01, whose estimated error
-    of max|x| is <= accuracy: "accuracy" and "rho"), refine="shoot" (the exact
+    given the rho among each law's times 1, 0.1, 0.01, whose error of max|x|
+    is <= accuracy: "accuracy" and "rho"; accuracy_test "auto" tests each H
+    against the exact orbit shot from it where every law has an exact flow
+    and the structure has at most 12 DOFs, else, and with "estimate", by the
+    error estimate times its safety factor; "accuracy" names the test that
+    decided, "test", and its value, "error"), refine="shoot" (the exact
     periodic orbit replaces the answer, on refine_harmonics harmonics if
     given, restitution e of contact laws: "refinement")."""
     args = _scene_args(omega, harmonics, samples, form, rho, formulation)
@@ -131,6 +136,7 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
                 stability_time_limit=_real(stability_time_limit, "stability_time_limit"),
                 error_estimate=_flag(error_estimate, "error_estimate"), accuracy=_real(accuracy, "accuracy", True),
                 max_harmonics=_integer(max_harmonics, "max_harmonics"),
+                accuracy_test=_text(accuracy_test, "accuracy_test"),
                 refine=None if refine is None else _text(refine, "refine"), restitution=_real(restitution, "restitution"),
                 refine_harmonics=_integer(refine_harmonics, "refine_harmonics", True), show=_dofs(show, "show"))
     return _solve(_model(model), args)
@@ -159,7 +165,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
           max_step=None, stability=False, stability_method="hill", stability_time_limit=0.0, error_estimate=False,
           accuracy=None,
-          max_harmonics=320, peak_dof=None, show=None):
+          max_harmonics=320, accuracy_test="auto", peak_dof=None, show=None):
     """A frequency-response curve by continuation in omega, as `eqhb sweep`
     runs it ("sequential" on a grid of `step`, by default a hundredth of the
     range, or "arclength", which passes turning points, from a scaled step
@@ -191,10 +197,10 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     point; the folds confirmed by the multipliers), error_estimate (one more
     solve at 2H per point: "error_estimate"), accuracy (a relative error in
     (0, 1): H, and rho unless given, chosen at the first point as solve
-    does, raised per point up to max_harmonics where the estimate exceeds
-    it: per point "error_estimate", "point_harmonics", "point_samples",
-    "accuracy_met", "accuracy_seconds", "accuracy_failure", and "accuracy"
-    and "rho"). Per-point lists hold None where a point has no value.
+    does, raised per point up to max_harmonics where its test (accuracy_test,
+    as solve's) fails: per point "error_estimate", "point_harmonics",
+    "point_samples", "accuracy_met", "accuracy_seconds", "accuracy_failure",
+    "accuracy_test", "accuracy_error", and "accuracy" and "rho"). Per-point lists hold None where a point has no value.
     form and rho apply to every law that has them."""
     args = _scene_args(None, harmonics, samples, form, rho, formulation)
     args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
@@ -206,7 +212,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
                 stability_time_limit=_real(stability_time_limit, "stability_time_limit"),
                 error_estimate=_flag(error_estimate, "error_estimate"),
                 accuracy=_real(accuracy, "accuracy", True), max_harmonics=_integer(max_harmonics, "max_harmonics"),
-                peak_dof=_dof(peak_dof, "peak_dof"), show=_dofs(show, "show"))
+                accuracy_test=_text(accuracy_test, "accuracy_test"), peak_dof=_dof(peak_dof, "peak_dof"), show=_dofs(show, "show"))
     return _sweep(_model(model), args)
 
 

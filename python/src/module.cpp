@@ -109,6 +109,7 @@ void readSolutionChecks(const py::dict& a, app::SolutionChecks* o) {
   o->error_estimate = a["error_estimate"].cast<bool>();
   o->accuracy = a["accuracy"].cast<std::optional<double>>();
   o->max_harmonics = a["max_harmonics"].cast<int>();
+  o->accuracy_test = a["accuracy_test"].cast<std::string>();
 }
 
 // The harmonic-balance options every call that solves takes.

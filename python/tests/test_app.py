@@ -85,6 +85,21 @@ def test_accuracy_target_chooses_what_eqhb_solve_chooses():
         eqhb.solve(eqhb.load_scene(SCENE), 0.4, accuracy=0.01, max_harmonics=0)
 
 
+def test_accuracy_test_is_eqhb_solves():
+    # friction-1d at omega = 0.35: tested against the exact orbit (H = 80),
+    # or by the estimate times its safety factor.
+    for test in ("auto", "estimate"):
+        cli = cli_json("solve", SCENE, "--omega", 0.35, "--accuracy", 1e-3, "--rho", 1, "--accuracy-test", test)
+        py = eqhb.solve(eqhb.load_scene(SCENE), 0.35, accuracy=1e-3, rho=1, accuracy_test=test)
+        assert py["accuracy"]["test"] == ("exact-orbit" if test == "auto" else "estimate")
+        assert py["harmonics"] == cli["harmonics"] and (test != "auto" or py["harmonics"] == 80)
+        assert py["accuracy"]["error"] == pytest.approx(cli["accuracy"]["error"], rel=1e-9)
+        assert py["accuracy"]["error"] <= 1e-3
+        same_answer(cli, py)
+    with pytest.raises(eqhb.InputError, match="accuracy_test = \"exact\""):
+        eqhb.solve(eqhb.load_scene(SCENE), 0.35, accuracy=1e-3, accuracy_test="exact")
+
+
 def test_refine_by_shooting_is_eqhb_solve_refine():
     cli = cli_json("solve", SCENE, "--omega", 0.308, "--refine", "shoot", "--refine-harmonics", 15)
     py = eqhb.solve(eqhb.load_scene(SCENE), 0.308, refine="shoot", refine_harmonics=15)

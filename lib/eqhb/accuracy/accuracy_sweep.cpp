@@ -40,7 +40,8 @@ void takeChoice(const AccuracyChoice& c, double tolerance, CurvePoint* p) {
   const bool estimated = c.estimate.refined_harmonics > 0 && c.estimate.available;
   if (estimated) p->error_estimate = c.estimate.max_abs;
   else p->error_estimate.reset();
-  p->accuracy = PointAccuracy{c.reached && c.estimate.max_abs <= tolerance, c.failure, c.seconds};
+  p->accuracy = PointAccuracy{c.reached && c.error <= tolerance, c.failure, c.seconds,
+                              c.tested() ? accuracyTestName(c.test) : "", c.error};
 }
 
 }  // namespace
@@ -48,7 +49,7 @@ void takeChoice(const AccuracyChoice& c, double tolerance, CurvePoint* p) {
 AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics, int max_harmonics,
                               Solver& solver, const SolverOptions& solver_options,
                               const ContinuationOptions& options, bool arclength, const Progress& sweep_progress,
-                              const Progress& check_progress) {
+                              const Progress& check_progress, const AccuracyTestOptions& test) {
   const auto start = std::chrono::steady_clock::now();
   if (arclength) options.validate();
   else options.validateGrid();
@@ -57,7 +58,7 @@ AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tol
   std::vector<HbModel> at_first = candidates;
   for (HbModel& m : at_first) m.omega = options.from;
   out.first = chooseDiscretisation(at_first, tolerance, start_harmonics, max_harmonics, solver, solver_options,
-                                   options.condensed);
+                                   options.condensed, test);
   // Not reached at the first frequency: the curve runs on the last rung with
   // an estimate (or the first H if even that failed) and its points say so.
   out.model = out.first.model;
@@ -83,7 +84,7 @@ AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tol
       solved.termination = Termination::kConverged;
       solved.seconds = p.seconds;
       const AccuracyChoice c = refineToAccuracy(at, p.full, solved, tolerance, max_harmonics, solver,
-                                                solver_options, options.condensed);
+                                                solver_options, options.condensed, test);
       takeChoice(c, tolerance, &p);
     }
     if (!p.accuracy->met) out.not_met.push_back(p.omega);

@@ -1,9 +1,12 @@
 // A frequency-response curve whose every point meets an accuracy target:
-// the estimated relative error of max|x| (error_estimate.h) <= tolerance.
+// the relative error of max|x| <= tolerance by the ladder's test
+// (rung_test.h: the exact orbit shot from each point where the scene allows,
+// else the estimate times its safety factor).
 //
 // Why this design: the estimate of a solution at H needs its solve at 2H,
 // so a point that ends on rung H costs the solves of its ladder up to 2H,
-// dominated by the top ones. The curve's H is chosen once, at the first
+// dominated by the top ones; the exact test costs one shot per rung instead
+// of the solve at 2H (a point met at its first rung: no solve at all). The curve's H is chosen once, at the first
 // frequency (chooseDiscretisation, which also picks ρ among candidates), and the whole curve is swept at that H with
 // the usual warm starts (sequential or arclength, so step halving and turning
 // points work as without a target). Then every converged point is checked by
@@ -44,7 +47,8 @@ struct AccurateCurve {
 AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics, int max_harmonics,
                               Solver& solver, const SolverOptions& solver_options,
                               const ContinuationOptions& options, bool arclength,
-                              const Progress& sweep_progress = nullptr, const Progress& check_progress = nullptr);
+                              const Progress& sweep_progress = nullptr, const Progress& check_progress = nullptr,
+                              const AccuracyTestOptions& test = {});
 
 // Each converged point's error estimate (estimateError at the point's ω on
 // `model`); a point whose solve at 2H fails gets none.

@@ -11,7 +11,9 @@ namespace eqhb {
 
 namespace {
 
-void checkLadderArguments(double tolerance, int start_harmonics, int max_harmonics) {
+void checkLadderArguments(double tolerance, int start_harmonics, int max_harmonics, const AccuracyTestOptions& test) {
+  if (!std::isfinite(test.safety_factor) || test.safety_factor <= 0.0)
+    throwInputError("safety_factor", formatNumber(test.safety_factor), "must be finite and > 0");
   if (!std::isfinite(tolerance) || tolerance <= 0.0 || tolerance >= 1.0)
     throwInputError("accuracy", formatNumber(tolerance), "must be a relative error in (0, 1)");
   if (max_harmonics < 1 || max_harmonics > 100000)
@@ -21,137 +23,159 @@ void checkLadderArguments(double tolerance, int start_harmonics, int max_harmoni
                     "the first H tried must be in [1, max_harmonics = " + std::to_string(max_harmonics) + "]");
 }
 
-// From a converged candidate (out.model, out.full, out.result, the last rung
-// of out.ladder): estimate at 2H, and while the estimate is above the
-// tolerance make the 2H solution the candidate, up to max_harmonics.
-void climbLadder(double tolerance, int max_harmonics, Solver& solver, const SolverOptions& options, bool condensed,
-                 AccuracyChoice& out) {
-  const int first = out.model.basis.count();
-  if (2 * first > max_harmonics) {
-    out.failure = "the error estimate at H = " + std::to_string(first) +
-                  " needs a solve at 2H, above max_harmonics = " + std::to_string(max_harmonics);
-    return;
+// What every rung of one ladder shares.
+struct Ladder {
+  double tolerance;
+  int max_harmonics;
+  Solver& solver;
+  const SolverOptions& options;
+  bool condensed;
+  AccuracyTestOptions test;
+  double seconds = 0.0;  // every solve and shot of every candidate
+};
+
+// One candidate on its ladder: its state as returned, whether it is still
+// climbing, and why the exact test does not apply to it (empty: it does).
+struct Climber {
+  AccuracyChoice state;
+  bool live = true;
+  std::string exact_unavailable;
+};
+
+Climber startClimber(const HbModel& model, const AccuracyTestOptions& test) {
+  Climber c;
+  c.state.model = model;
+  c.state.safety_factor = test.safety_factor;
+  c.exact_unavailable =
+      test.choice == AccuracyTestChoice::kEstimate ? "accuracy_test = estimate" : exactOrbitUnavailable(model);
+  return c;
+}
+
+void drop(Climber& c, const std::string& why) {
+  c.live = false;
+  c.state.failure = why;
+}
+
+std::string atH(int harmonics) { return "H = " + std::to_string(harmonics); }
+
+// The candidate's solution at 2H, from its solution at H padded with zeros
+// (estimateError, which also compares the two): the estimate of the rung
+// and the start of the next. Drops the candidate when that solve fails.
+bool solveAbove(Ladder& in, Climber& c) {
+  AccuracyChoice& s = c.state;
+  if (s.estimate.refined_harmonics == 2 * s.model.basis.count()) return s.estimate.available;  // solved already
+  s.estimate = estimateError(s.model, s.full, in.solver, in.options, in.condensed);
+  in.seconds += s.estimate.refined.seconds;
+  AccuracyRung& rung = s.ladder.back();
+  rung.estimate = s.estimate.max_abs;
+  rung.estimated = true;
+  AccuracyRung above;
+  above.harmonics = s.estimate.refined_harmonics;
+  above.samples = s.estimate.refined_samples;
+  above.converged = s.estimate.available;
+  above.seconds = s.estimate.refined.seconds;
+  s.ladder.push_back(above);
+  if (!s.estimate.available)
+    drop(c, "the solve at " + atH(s.estimate.refined_harmonics) + " (started from the solution at " +
+                atH(s.model.basis.count()) + ") did not converge (" +
+                terminationName(s.estimate.refined.termination) + ")");
+  return s.estimate.available;
+}
+
+// Tests the candidate's solution at its H: the exact orbit where it applies
+// and the shot converges, else the estimate with its safety factor. Drops
+// the candidate when no test can be made.
+void testRung(Ladder& in, Climber& c) {
+  AccuracyChoice& s = c.state;
+  const int harmonics = s.model.basis.count();
+  const size_t tested = s.ladder.size() - 1;
+  s.estimate = ErrorEstimate();  // none yet at this rung
+  s.test_note = c.exact_unavailable;
+  if (c.exact_unavailable.empty()) {
+    const ExactOrbitError exact = exactOrbitError(s.model, s.full);
+    in.seconds += exact.seconds;
+    s.ladder[tested].test_seconds = exact.seconds;
+    if (exact.converged) {
+      s.test = AccuracyTest::kExactOrbit;
+      s.error = exact.error;
+    } else {
+      s.test_note = "the exact orbit at " + atH(harmonics) + ": " + exact.failure;
+    }
   }
+  if (!s.test_note.empty()) {
+    if (2 * harmonics > in.max_harmonics) {
+      drop(c, "the error estimate at " + atH(harmonics) + " needs a solve at 2H, above max_harmonics = " +
+                  std::to_string(in.max_harmonics));
+      return;
+    }
+    if (!solveAbove(in, c)) return;
+    s.test = AccuracyTest::kEstimate;
+    s.error = s.safety_factor * s.estimate.max_abs;
+  }
+  AccuracyRung& rung = s.ladder[tested];
+  rung.tested = true;
+  rung.test = s.test;
+  rung.error = s.error;
+}
+
+// The tested value as the failure message gives it.
+std::string testedValue(const AccuracyChoice& s) {
+  if (s.test == AccuracyTest::kExactOrbit) return "exact-orbit error " + formatNumber(s.error);
+  return "estimate " + formatNumber(s.estimate.max_abs) + " x safety factor " + formatNumber(s.safety_factor) +
+         " = " + formatNumber(s.error);
+}
+
+// The H the next rung needs solved to be tested as this one was: 2H for the
+// exact orbit, 4H for the estimate (its solve at twice the next H).
+int nextTestHarmonics(const AccuracyChoice& s) {
+  const int harmonics = s.model.basis.count();
+  return s.test == AccuracyTest::kExactOrbit ? 2 * harmonics : 4 * harmonics;
+}
+
+size_t firstLive(const std::vector<Climber>& climbers) {
+  for (size_t k = 0; k < climbers.size(); ++k)
+    if (climbers[k].live) return k;
+  return climbers.size();
+}
+
+// Every climber from its first rung (solved: converged or dropped) until one
+// meets the tolerance, all are dropped, or the next rung would be above
+// max_harmonics. Returns the index of the climber to report.
+size_t climb(Ladder& in, std::vector<Climber>& climbers) {
+  const size_t none = climbers.size();
   while (true) {
-    out.estimate = estimateError(out.model, out.full, solver, options, condensed);
-    out.seconds += out.estimate.refined.seconds;
-    AccuracyRung& rung = out.ladder.back();
-    rung.estimate = out.estimate.max_abs;
-    rung.estimated = true;
-    out.ladder.push_back({out.estimate.refined_harmonics, out.estimate.refined_samples, out.estimate.available, 0.0,
-                          false, out.estimate.refined.seconds});
-    const int h = out.model.basis.count();
-    if (!out.estimate.available) {
-      out.failure = "the solve at H = " + std::to_string(2 * h) + " (the error estimate at H = " + std::to_string(h) +
-                    ") did not converge (" + terminationName(out.estimate.refined.termination) + ")";
-      return;
+    if (firstLive(climbers) == none) return 0;
+    size_t best = none;
+    for (size_t k = 0; k < climbers.size(); ++k) {
+      if (!climbers[k].live) continue;
+      testRung(in, climbers[k]);
+      if (!climbers[k].live) continue;
+      if (best == none || climbers[k].state.error < climbers[best].state.error) best = k;
     }
-    if (out.estimate.max_abs <= tolerance) {
-      out.reached = true;
-      return;
+    if (best == none) return 0;
+    AccuracyChoice& winner = climbers[best].state;
+    const int harmonics = winner.model.basis.count();
+    if (winner.error <= in.tolerance) {
+      winner.reached = true;
+      return best;
     }
-    if (4 * h > max_harmonics) {
-      // The reported solution stays the last one with an estimate.
-      out.failure = "estimate " + formatNumber(out.estimate.max_abs) + " at H = " + std::to_string(h) +
-                    "; the next rung needs a solve at H = " + std::to_string(4 * h) + ", above max_harmonics = " +
-                    std::to_string(max_harmonics);
-      return;
+    if (nextTestHarmonics(winner) > in.max_harmonics) {
+      // The reported solution stays the last one tested.
+      winner.failure = testedValue(winner) + " at " + atH(harmonics) + "; the next rung needs a solve at " +
+                       atH(nextTestHarmonics(winner)) + ", above max_harmonics = " + std::to_string(in.max_harmonics);
+      return best;
     }
-    // The refined solution is the next candidate.
-    out.model = withHarmonics(out.model, out.estimate.refined_harmonics);
-    out.full = out.estimate.refined_full;
-    out.result = out.estimate.refined;
-  }
-}
-
-}  // namespace
-
-AccuracyChoice chooseHarmonics(const HbModel& scene_model, double tolerance, int start_harmonics, int max_harmonics,
-                               Solver& solver, const SolverOptions& options, bool condensed) {
-  return chooseDiscretisation({scene_model}, tolerance, start_harmonics, max_harmonics, solver, options, condensed);
-}
-
-AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics,
-                                    int max_harmonics, Solver& solver, const SolverOptions& options, bool condensed) {
-  checkLadderArguments(tolerance, start_harmonics, max_harmonics);
-  if (candidates.empty()) throw std::invalid_argument("chooseDiscretisation: no candidate model");
-  const size_t count = candidates.size();
-  std::vector<AccuracyChoice> state(count);
-  std::vector<bool> live(count, true);
-  double seconds = 0.0;
-  // What is returned: one candidate's state with the totals of all.
-  auto finish = [&](size_t k) {
-    AccuracyChoice out = state[k];
-    out.candidate = static_cast<int>(k);
-    out.seconds = seconds;
-    for (const auto& s : state) out.candidate_ladders.push_back(s.ladder);
-    if (count > 1 && !out.reached && out.failure.empty()) out.failure = "no candidate reached the tolerance";
-    return out;
-  };
-  auto liveCount = [&] { return std::count(live.begin(), live.end(), true); };
-  for (size_t k = 0; k < count; ++k) {
-    AccuracyChoice& s = state[k];
-    s.model = withHarmonics(candidates[k], start_harmonics);
-    auto system = makeHbSystem(s.model, condensed, options.linear_algebra);
-    s.result = solver.solve(*system, Eigen::VectorXd::Zero(system->size()), options);
-    s.full = system->fullCoefficients(s.result.solution);
-    seconds += s.result.seconds;
-    s.ladder.push_back({s.model.basis.count(), s.model.samples, s.result.converged(), 0.0, false, s.result.seconds});
-    if (!s.result.converged()) {
-      s.failure = "the solve at H = " + std::to_string(start_harmonics) + " did not converge (" +
-                  terminationName(s.result.termination) + ")";
-      live[k] = false;
-    }
-  }
-  for (int h = start_harmonics;; h *= 2) {
-    if (liveCount() == 0) return finish(0);
-    if (2 * h > max_harmonics) {
-      for (size_t k = 0; k < count; ++k)
-        if (live[k])
-          state[k].failure = "the error estimate at H = " + std::to_string(h) +
-                             " needs a solve at 2H, above max_harmonics = " + std::to_string(max_harmonics);
-      return finish(std::find(live.begin(), live.end(), true) - live.begin());
-    }
-    size_t best = count;
-    for (size_t k = 0; k < count; ++k) {
-      if (!live[k]) continue;
-      AccuracyChoice& s = state[k];
-      s.estimate = estimateError(s.model, s.full, solver, options, condensed);
-      seconds += s.estimate.refined.seconds;
-      s.ladder.back().estimate = s.estimate.max_abs;
-      s.ladder.back().estimated = true;
-      s.ladder.push_back({s.estimate.refined_harmonics, s.estimate.refined_samples, s.estimate.available, 0.0, false,
-                          s.estimate.refined.seconds});
-      if (!s.estimate.available) {
-        s.failure = "the solve at H = " + std::to_string(2 * h) + " (the error estimate at H = " + std::to_string(h) +
-                    ") did not converge (" + terminationName(s.estimate.refined.termination) + ")";
-        live[k] = false;
+    const double best_error = winner.error;
+    for (Climber& c : climbers) {
+      if (!c.live) continue;
+      AccuracyChoice& s = c.state;
+      if (harmonics >= kPruneFromHarmonics && s.error > kPruneFactor * best_error) {
+        drop(c, "dropped at " + atH(harmonics) + ": " + testedValue(s) + " > " + formatNumber(kPruneFactor) +
+                    " x the best");
         continue;
       }
-      if (best == count || s.estimate.max_abs < state[best].estimate.max_abs) best = k;
-    }
-    if (best == count) return finish(0);
-    if (state[best].estimate.max_abs <= tolerance) {
-      state[best].reached = true;
-      return finish(best);
-    }
-    if (4 * h > max_harmonics) {
-      // The reported solution stays the last one with an estimate.
-      state[best].failure = "estimate " + formatNumber(state[best].estimate.max_abs) + " at H = " +
-                            std::to_string(h) + "; the next rung needs a solve at H = " + std::to_string(4 * h) +
-                            ", above max_harmonics = " + std::to_string(max_harmonics);
-      return finish(best);
-    }
-    for (size_t k = 0; k < count; ++k) {
-      if (!live[k]) continue;
-      AccuracyChoice& s = state[k];
-      if (h >= kPruneFromHarmonics && s.estimate.max_abs > kPruneFactor * state[best].estimate.max_abs) {
-        live[k] = false;
-        s.failure = "dropped at H = " + std::to_string(h) + ": estimate " + formatNumber(s.estimate.max_abs) +
-                    " > " + formatNumber(kPruneFactor) + " x the best";
-        continue;
-      }
-      // The refined solution is the next candidate.
+      if (!solveAbove(in, c)) continue;
+      // The solution at 2H is the next candidate.
       s.model = withHarmonics(s.model, s.estimate.refined_harmonics);
       s.full = s.estimate.refined_full;
       s.result = s.estimate.refined;
@@ -159,22 +183,74 @@ AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, doub
   }
 }
 
+// The chosen climber's state with the totals of all.
+AccuracyChoice finish(const Ladder& in, const std::vector<Climber>& climbers, size_t chosen) {
+  AccuracyChoice out = climbers[chosen].state;
+  out.candidate = static_cast<int>(chosen);
+  out.seconds = in.seconds;
+  for (const auto& c : climbers) out.candidate_ladders.push_back(c.state.ladder);
+  if (climbers.size() > 1 && !out.reached && out.failure.empty()) out.failure = "no candidate reached the tolerance";
+  return out;
+}
+
+AccuracyRung firstRung(const HbModel& model, const SolverResult& result) {
+  AccuracyRung rung;
+  rung.harmonics = model.basis.count();
+  rung.samples = model.samples;
+  rung.converged = result.converged();
+  rung.seconds = result.seconds;
+  return rung;
+}
+
+}  // namespace
+
+AccuracyChoice chooseHarmonics(const HbModel& scene_model, double tolerance, int start_harmonics, int max_harmonics,
+                               Solver& solver, const SolverOptions& options, bool condensed,
+                               const AccuracyTestOptions& test) {
+  return chooseDiscretisation({scene_model}, tolerance, start_harmonics, max_harmonics, solver, options, condensed,
+                              test);
+}
+
+AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics,
+                                    int max_harmonics, Solver& solver, const SolverOptions& options, bool condensed,
+                                    const AccuracyTestOptions& test) {
+  checkLadderArguments(tolerance, start_harmonics, max_harmonics, test);
+  if (candidates.empty()) throw std::invalid_argument("chooseDiscretisation: no candidate model");
+  Ladder in{tolerance, max_harmonics, solver, options, condensed, test};
+  std::vector<Climber> climbers;
+  for (const HbModel& candidate : candidates) {
+    Climber c = startClimber(withHarmonics(candidate, start_harmonics), test);
+    AccuracyChoice& s = c.state;
+    auto system = makeHbSystem(s.model, condensed, options.linear_algebra);
+    s.result = solver.solve(*system, Eigen::VectorXd::Zero(system->size()), options);
+    s.full = system->fullCoefficients(s.result.solution);
+    in.seconds += s.result.seconds;
+    s.ladder.push_back(firstRung(s.model, s.result));
+    if (!s.result.converged())
+      drop(c, "the solve at " + atH(start_harmonics) + " did not converge (" +
+                  terminationName(s.result.termination) + ")");
+    climbers.push_back(std::move(c));
+  }
+  return finish(in, climbers, climb(in, climbers));
+}
+
 AccuracyChoice refineToAccuracy(const HbModel& model, const Eigen::VectorXd& full, const SolverResult& result,
                                 double tolerance, int max_harmonics, Solver& solver, const SolverOptions& options,
-                                bool condensed) {
-  checkLadderArguments(tolerance, model.basis.count(), max_harmonics);
-  AccuracyChoice out;
-  out.model = model;
-  out.full = full;
-  out.result = result;
+                                bool condensed, const AccuracyTestOptions& test) {
+  checkLadderArguments(tolerance, model.basis.count(), max_harmonics, test);
+  Ladder in{tolerance, max_harmonics, solver, options, condensed, test};
+  std::vector<Climber> climbers{startClimber(model, test)};
+  AccuracyChoice& s = climbers[0].state;
+  s.full = full;
+  s.result = result;
   // The given solve is not counted in `seconds`: it belongs to the caller.
-  out.ladder.push_back({model.basis.count(), model.samples, result.converged(), 0.0, false, result.seconds});
-  if (!result.converged()) {
-    out.failure = "the solve at H = " + std::to_string(model.basis.count()) + " did not converge (" +
-                  terminationName(result.termination) + ")";
-    return out;
-  }
-  climbLadder(tolerance, max_harmonics, solver, options, condensed, out);
+  s.ladder.push_back(firstRung(model, result));
+  if (result.converged()) climb(in, climbers);
+  else
+    drop(climbers[0], "the solve at " + atH(model.basis.count()) + " did not converge (" +
+                          terminationName(result.termination) + ")");
+  AccuracyChoice out = climbers[0].state;
+  out.seconds = in.seconds;
   return out;
 }
 

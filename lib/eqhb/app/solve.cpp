@@ -153,7 +153,8 @@ AccuracyReport chooseDiscretisationFor(const SceneSettings& scene, const SolveOp
   const int start = scene.harmonics ? *scene.harmonics : std::min(5, report.candidates.models.front().basis.count());
   auto solver = makeSolver(o.solver);
   report.choice = chooseDiscretisation(report.candidates.models, *o.accuracy, start, o.max_harmonics, *solver,
-                                       o.solver_options, o.condensed);
+                                       o.solver_options, o.condensed,
+                                       AccuracyTestOptions{parseAccuracyTestChoice(o.accuracy_test)});
   return report;
 }
 

@@ -25,6 +25,8 @@ bool SolveOptions::isValid(std::string* why) const {
     return fail(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
   if (!(stability_time_limit >= 0.0) || !std::isfinite(stability_time_limit))
     return fail(why, "stability_time_limit", formatNumber(stability_time_limit), "must be finite and >= 0 (0: none)");
+  if (accuracy_test != "auto" && accuracy_test != "estimate")
+    return fail(why, "accuracy_test", "\"" + accuracy_test + "\"", "must be \"auto\" or \"estimate\"");
   if (!refine.empty() && refine != "shoot") return fail(why, "refine", "\"" + refine + "\"", "must be \"shoot\" or empty");
   if (refine_harmonics < 0)
     return fail(why, "refine_harmonics", std::to_string(refine_harmonics), "must be >= 0");

@@ -30,11 +30,16 @@ struct SolutionChecks {
   double stability_time_limit = 0.0;  // seconds for a curve's stability, 0: none (HillOptions::time_limit)
   bool error_estimate = false;  // per converged solution, the relative error of max|x| by one more solve at 2H
   // The cheapest H (and ρ unless the scene's settings fix one) whose
-  // estimated relative error of max|x| is <= accuracy, in (0, 1). On a
-  // curve: chosen at the first point, doubling from the settings' harmonics
-  // or min(5, H), then raised on the points whose estimate exceeds it.
+  // relative error of max|x| is <= accuracy, in (0, 1), by accuracy_test.
+  // On a curve: chosen at the first point, doubling from the settings'
+  // harmonics or min(5, H), then raised on the points whose test fails.
   std::optional<double> accuracy;
   int max_harmonics = 320;  // with accuracy: the largest H solved
+  // With accuracy, the test of each rung (accuracy/rung_test.h): "auto" (the
+  // true error against the exact orbit where every law has an exact flow and
+  // the structure is small, else the estimate times its safety factor) or
+  // "estimate" (always the latter).
+  std::string accuracy_test = "auto";
 };
 
 }  // namespace eqhb::app

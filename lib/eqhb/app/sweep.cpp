@@ -52,6 +52,8 @@ bool SweepOptions::isValid(std::string* why) const {
     return fail(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
   if (!(stability_time_limit >= 0.0) || !std::isfinite(stability_time_limit))
     return fail(why, "stability_time_limit", formatNumber(stability_time_limit), "must be finite and >= 0 (0: none)");
+  if (accuracy_test != "auto" && accuracy_test != "estimate")
+    return fail(why, "accuracy_test", "\"" + accuracy_test + "\"", "must be \"auto\" or \"estimate\"");
   if (accuracy && stability)
     return fail(why, "stability", "(set)", "not with accuracy: the points of such a curve differ in H");
   return solver_options.isValid(why);
@@ -114,7 +116,8 @@ SweepResult sweep(const SweepPlan& plan, const SweepCallbacks& callbacks) {
     const int start = plan.settings.harmonics ? *plan.settings.harmonics : std::min(5, scene_model.basis.count());
     result.rho = rhoCandidates(plan.settings);
     result.accurate = sweepToAccuracy(result.rho.models, *o.accuracy, start, o.max_harmonics, *solver,
-                                      o.solver_options, continuation, o.arclength, callbacks.point, callbacks.checked);
+                                      o.solver_options, continuation, o.arclength, callbacks.point, callbacks.checked,
+                                      AccuracyTestOptions{parseAccuracyTestChoice(o.accuracy_test)});
     result.curve = std::move(result.accurate->curve);
     result.accurate->curve = Curve{};
     result.model = result.accurate->model;

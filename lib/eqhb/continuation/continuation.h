@@ -46,6 +46,8 @@ struct PointAccuracy {
   bool met = false;
   std::string failure;
   double seconds = 0.0;
+  std::string test;    // the test that decided: "exact-orbit" or "estimate" (accuracy/rung_test.h)
+  double error = 0.0;  // its value: the true error, or the safety factor times the estimate
 };
 
 // One point of a continuation run. A point that did not converge keeps its

@@ -28,6 +28,10 @@ nlohmann::json pointJson(const CurvePoint& p, const CurveRun& run, const HillRes
     point["samples"] = p.samples;
     point["accuracy_met"] = p.accuracy->met;
     point["accuracy_seconds"] = p.accuracy->seconds;
+    if (!p.accuracy->test.empty()) {
+      point["accuracy_test"] = p.accuracy->test;
+      point["accuracy_error"] = p.accuracy->error;
+    }
     if (!p.accuracy->failure.empty()) point["accuracy_failure"] = p.accuracy->failure;
   }
   if (run.stability) {

@@ -135,6 +135,11 @@ nlohmann::json ladderJson(const std::vector<AccuracyRung>& rungs) {
     nlohmann::json rung = {{"harmonics", r.harmonics}, {"samples", r.samples}, {"converged", r.converged},
                            {"seconds", r.seconds}};
     rung["estimate"] = r.estimated ? nlohmann::json(r.estimate) : nlohmann::json(nullptr);
+    // The test of the rung (none for the top rung of an estimate, which is
+    // only the solve at 2H of the rung below).
+    rung["test"] = r.tested ? nlohmann::json(accuracyTestName(r.test)) : nlohmann::json(nullptr);
+    rung["error"] = r.tested ? nlohmann::json(r.error) : nlohmann::json(nullptr);
+    if (r.test_seconds > 0.0) rung["test_seconds"] = r.test_seconds;
     ladder.push_back(rung);
   }
   return ladder;
@@ -145,6 +150,13 @@ nlohmann::json accuracyJson(const AccuracyChoice& c, double tolerance, const std
   nlohmann::json out = {{"tolerance", tolerance}, {"reached", c.reached}, {"seconds", c.seconds},
                         {"ladder", ladderJson(c.ladder)}};
   if (!c.reached) out["failure"] = c.failure;
+  // Which test decided and its value: the true error against the exact
+  // orbit, or the estimate times its safety factor (rung_test.h).
+  const bool tested = c.tested();
+  out["test"] = tested ? nlohmann::json(accuracyTestName(c.test)) : nlohmann::json(nullptr);
+  out["error"] = tested ? nlohmann::json(c.error) : nlohmann::json(nullptr);
+  if (tested && c.test == AccuracyTest::kEstimate) out["safety_factor"] = c.safety_factor;
+  if (!c.test_note.empty()) out["test_note"] = c.test_note;
   if (static_cast<size_t>(c.candidate) < factors.size()) out["rho_factor"] = factors[c.candidate];
   if (c.candidate_ladders.size() > 1) {
     nlohmann::json candidates = nlohmann::json::array();

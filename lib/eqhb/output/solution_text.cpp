@@ -1,5 +1,7 @@
 #include "eqhb/output/solution_text.h"
 
+#include <sstream>
+
 #include "eqhb/error.h"
 #include "eqhb/output/invariant_meanings.h"
 #include "eqhb/output/solution_json.h"
@@ -29,6 +31,19 @@ void writeLinearAlgebra(std::ostream& out, const app::Solution& s) {
   out << "; set-up " << s.run.setup_seconds << " s, peak RSS " << la.peak_rss_mib << " MiB\n";
   if (s.run.times.size() > 1)
     out << "median time over " << s.run.times.size() << " solves: " << s.run.medianSeconds() << " s\n";
+}
+
+// Which test decided the accuracy target, with its value and, where the
+// estimate stood in for the exact orbit, why.
+std::string accuracyTestLine(const AccuracyChoice& c) {
+  if (!c.tested()) return "no rung was tested";
+  std::ostringstream line;
+  if (c.test == AccuracyTest::kExactOrbit)
+    line << "tested against the exact orbit (shooting): relative error of max|x| " << c.error;
+  else
+    line << "tested by the estimate: " << c.estimate.max_abs << " x safety factor " << c.safety_factor << " = "
+         << c.error << (c.test_note.empty() ? "" : " (no exact orbit: " + c.test_note + ")");
+  return line.str();
 }
 
 void writeStability(std::ostream& out, const HillResult& hill) {
@@ -82,7 +97,8 @@ void writeSolutionText(std::ostream& out, const app::Solution& s) {
     out << "--accuracy " << a->tolerance << ": " << (a->choice.reached ? "reached" : "NOT reached") << " at H = "
         << model.basis.count() << ", N = " << model.samples
         << ", rho = " << rhoJson(a->candidates.scene_rho, a->rhoFactor()).dump() << " in " << a->choice.seconds
-        << " s of solves\n";
+        << " s of solves\n"
+        << "  " << accuracyTestLine(a->choice) << "\n";
   for (const auto& report : s.invariants) {
     out << "  law " << report.law + 1 << " (" << report.type << ") worst violations:";
     for (const auto& [name, value] : report.violations) out << " " << name << " " << value;

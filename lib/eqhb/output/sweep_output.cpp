@@ -1,5 +1,6 @@
 #include "eqhb/output/sweep_output.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "eqhb/harmonic_balance/hb_solution.h"
@@ -14,15 +15,34 @@ namespace {
 
 double chosenRhoFactor(const app::SweepResult& r) { return r.rho.factors[r.accurate->first.candidate]; }
 
+// How the points of an accuracy target's curve were tested: the count per
+// test (rung_test.h) and the largest tested error.
+struct PointTests {
+  int exact = 0, estimate = 0;
+  double largest = 0.0;
+};
+PointTests pointTests(const Curve& curve) {
+  PointTests t;
+  for (const CurvePoint& p : curve.points) {
+    if (!p.accuracy || p.accuracy->test.empty()) continue;
+    (p.accuracy->test == accuracyTestName(AccuracyTest::kExactOrbit) ? t.exact : t.estimate) += 1;
+    t.largest = std::max(t.largest, p.accuracy->error);
+  }
+  return t;
+}
+
 // The summary's accuracy line: the choice at the first point, how far H was
-// raised, the largest estimate and where the target was not met.
+// raised, how the points were tested, and where the target was not met.
 std::string accuracyLine(const app::SweepResult& r, const std::string& option) {
   const AccurateCurve& a = *r.accurate;
+  const PointTests tests = pointTests(r.curve);
   std::ostringstream line;
   line << option << " " << a.tolerance << ": H = " << r.model.basis.count()
        << ", rho = " << rhoJson(r.rho.scene_rho, chosenRhoFactor(r)).dump() << " chosen at omega = "
-       << r.plan.continuation.from << ", raised up to H = " << a.highest_harmonics << "; largest estimate "
-       << r.largestEstimate() << "; not met at " << a.not_met.size() << " point(s); " << a.seconds << " s in all";
+       << r.plan.continuation.from << ", raised up to H = " << a.highest_harmonics << "; tested against the exact orbit at "
+       << tests.exact << " point(s), by the estimate x " << kEstimateSafetyFactor << " at " << tests.estimate
+       << "; largest tested error " << tests.largest << "; not met at " << a.not_met.size() << " point(s); "
+       << a.seconds << " s in all";
   return line.str();
 }
 
@@ -64,6 +84,9 @@ nlohmann::json sweepJson(const app::SweepResult& r) {
                      {"not_met", a.not_met},
                      {"highest_harmonics", a.highest_harmonics},
                      {"seconds", a.seconds},
+                     {"tested_exact_orbit", pointTests(r.curve).exact},
+                     {"tested_estimate", pointTests(r.curve).estimate},
+                     {"largest_error", pointTests(r.curve).largest},
                      {"first_point", accuracyJson(a.first, a.tolerance, r.rho.factors)}};
   return out;
 }
