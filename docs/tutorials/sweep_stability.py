@@ -61,7 +61,8 @@ for H in (5, 10, 20, 40):
     assert r["converged"]
 
 target = eqhb.solve(model, omega=0.4, accuracy=5e-3)
-print(f"\nsolve(accuracy=5e-3): H = {target['harmonics']}, estimate {target['error_estimate']['max_abs']:.2e}, "
+print(f"\nsolve(accuracy=5e-3): H = {target['harmonics']}, {target['accuracy']['test']} error "
+      f"{target['accuracy']['error']:.2e}, "
       f"true error {abs(max(d['max_abs'] for d in target['dofs']) - exact_peak) / exact_peak:.2e}")
 
 fig, ax = plt.subplots(figsize=(5.5, 3.6))
