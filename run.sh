@@ -49,12 +49,7 @@ build() {
 
 # Its own build directory: clang with ASan + UBSan and libFuzzer, only what
 # the tests need (no benchmark, no Python module, the optional backends off).
-sanitize_# The compiler cache keys paths relative to the sources, so that the library
-# compiled for the command (build/) serves the pip install of the Python module
-# (build-python/, setup.py, tested by ./run.sh test) instead of a third build.
-export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
-
-build() {
+sanitize_build() {
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
