@@ -298,8 +298,10 @@ std::vector<ScaleRow> runScaleStudy(bool quick, const std::vector<std::string>& 
     // 0..3 (the reference model's set) and 1D Coulomb contacts the mean of a
     // contact that sticks over the whole period is undetermined (any offset
     // within the friction limit is periodic; the reference model fixes it by
-    // a static preload, which a chain has not): the Jacobian is singular and
-    // the solve stops not_progressing. The same size on the odd harmonics
+    // a static preload): the Jacobian is singular where contacts stick all
+    // period. Under a preload (`eqhb generate --preload`, solved first by
+    // app::loadScene) it converges on defaults: tests/preloaded_chain_test.sh.
+    // The same size on the odd harmonics
     // 1, 3, 5, 7 is well posed: 976 condensed, 4,824 full unknowns.
     CaseSpec spec;
     spec.chain.dofs = 481;

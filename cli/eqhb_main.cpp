@@ -4,6 +4,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/io_error.h"
+#include "eqhb/preload/static_contact.h"
 #include "eqhb/solvers/deadline.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/version.h"
@@ -70,6 +71,10 @@ int main(int argc, char** argv) {
   } catch (const eqhb::IoError& e) {  // a file could not be written: not the input's fault
     std::cerr << "eqhb: I/O error: " << e.what() << "\n";
     return 3;
+  } catch (const eqhb::StaticSolveFailed& e) {
+    // Not bad input either: a static state exists and was not found.
+    std::cerr << "eqhb: did not converge: " << e.what() << "\n";
+    return 1;
   } catch (const eqhb::TimeLimitReached& e) {
     // Not bad input: stopped by --time-limit, like a solve that ran out of time.
     std::cerr << "eqhb: stopped: " << e.what() << "\n";

@@ -16,6 +16,9 @@ void addGenerateCommand(CLI::App& app, GenerateArguments& a) {
   cmd->add_option("--samples", a.spec.samples, "N (0: a power of two >= 4 k_max + 1)")->capture_default_str();
   cmd->add_option("--omega", a.spec.omega, "Frequency (0: 0.8 x the first eigenfrequency)")->capture_default_str();
   cmd->add_option("--mu-n", a.spec.mu_n, "Friction limit of every contact")->capture_default_str();
+  cmd->add_option("--k-t", a.spec.k_t, "Elastic dry friction: tangential stiffness before each slider (default: rigid Coulomb)");
+  cmd->add_option("--preload", a.spec.preload, "Static force at the last DOF, solved first (needs --set all)")
+      ->capture_default_str();
   cmd->add_option("--force", a.spec.force, "Amplitude of the cosine force at the last DOF")->capture_default_str();
   cmd->add_option("--m", a.spec.m, "Mass of each DOF")->capture_default_str();
   cmd->add_option("--k", a.spec.k, "Spring stiffness")->capture_default_str();

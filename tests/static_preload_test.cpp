@@ -12,6 +12,9 @@
 
 #include "eqhb/app/modes.h"
 #include "eqhb/app/solve.h"
+#include "eqhb/backends/default_path.h"
+#include "eqhb/backends/registry.h"
+#include "eqhb/preload/static_contact.h"
 #include "eqhb/error.h"
 #include "eqhb/output/solution_json.h"
 #include "test_support.h"
@@ -199,6 +202,41 @@ TEST(StaticPreload, BadInputNamesTheField) {
   const std::string held = refusal(free_mass);
   EXPECT_NE(held.find("preload"), std::string::npos) << held;
   EXPECT_NE(held.find("no contact holds"), std::string::npos) << held;
+}
+
+// A static solve that stops short is told apart by whether the structure
+// alone holds the load: a spring-held mass has a static state the solvers
+// did not find (StaticSolveFailed, a solve that did not converge), a free
+// mass pulled from its wall has none (InputError naming preload). One
+// iteration allowed: neither converges.
+TEST(StaticPreload, AStaticSolveThatStopsSaysWhetherAStateExists) {
+  SolverOptions one_step;
+  one_step.max_iterations = 1;
+  auto dogleg = makeSolver("dogleg");
+  const Scene held = app::loadScene(written(oscillator(kJenkins, forcing(2.0, 0))));
+  EXPECT_THROW(solveStaticContact(held.model, *dogleg, one_step), StaticSolveFailed);
+  std::string free_mass = oscillator(kWall, forcing(-1.0, 0));
+  free_mass.replace(free_mass.find("k = 1.0"), 7, "k = 0.0");
+  const Scene free = app::loadScene(written(free_mass));
+  try {
+    solveStaticContact(free.model, *dogleg, one_step);
+    ADD_FAILURE() << "a free mass has no static state";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no contact holds"), std::string::npos) << e.what();
+  }
+  // Both solvers named when the second fails too, and the first to converge kept.
+  auto backup = makeSolver(defaultBackupSolver("dogleg"));
+  try {
+    solveStaticContact(held.model, {dogleg.get(), backup.get()}, one_step);
+    ADD_FAILURE() << "one iteration cannot settle the slipping slider";
+  } catch (const StaticSolveFailed& e) {
+    EXPECT_NE(std::string(e.what()).find("dogleg: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(backup->name() + ": "), std::string::npos) << e.what();
+  }
+  const StaticContactState state = solveStaticContact(held.model, {dogleg.get(), backup.get()}, SolverOptions{});
+  EXPECT_EQ(state.solver, "dogleg");
+  EXPECT_TRUE(state.failed.empty());
+  EXPECT_NEAR(state.displacement[0], 1.0, 1e-12);  // slipped: k x = F − μN
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "eqhb/output/solution_text.h"
 
+#include <map>
 #include <sstream>
 
 #include "eqhb/error.h"
@@ -64,6 +65,18 @@ void writeStability(std::ostream& out, const HillResult& hill) {
   out << "\n";
 }
 
+// One line on the static state under the scene's preload: who found it and
+// how many elements each state holds.
+void writeStaticState(std::ostream& out, const StaticContactState& state) {
+  std::map<std::string, int> counts;
+  for (const auto& status : state.status)
+    if (status) ++counts[staticStateName(status->state)];
+  out << "static state under the preload: " << state.solver << " in " << state.result.iterations << " iterations";
+  for (const std::string& failed : state.failed) out << " (after " << failed << ")";
+  for (const auto& [name, count] : counts) out << ", " << count << " " << name;
+  out << "\n";
+}
+
 }  // namespace
 
 void writeSolutionText(std::ostream& out, const app::Solution& s) {
@@ -73,6 +86,7 @@ void writeSolutionText(std::ostream& out, const app::Solution& s) {
       << HarmonicSet::kindName(model.basis.kind()) << "), N = " << model.samples << ", "
       << (run.system->condensed() ? "condensed" : "full") << " system of " << run.system->size() << " unknowns\n"
       << run.result.summary() << "\n";
+  if (run.scene.at_rest) writeStaticState(out, *run.scene.at_rest);
   writeColdStart(out, run.cold_start);
   if (!run.fallback.attempts.empty())
     out << "fallback: " << describeFallbacks(run.fallback)

@@ -8,6 +8,8 @@ nlohmann::json staticStateJson(const HbModel& model, const StaticContactState& s
   nlohmann::json out;
   out["converged"] = state.result.converged();
   out["iterations"] = state.result.iterations;
+  out["solver"] = state.solver;
+  out["failed"] = state.failed;
   out["residual_norm"] = state.result.final_norm;
   out["displacement"] = std::vector<double>(state.displacement.data(), state.displacement.data() + state.displacement.size());
   nlohmann::json elements = nlohmann::json::array();

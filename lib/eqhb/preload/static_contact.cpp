@@ -1,5 +1,7 @@
 #include "eqhb/preload/static_contact.h"
 
+#include <Eigen/SparseCholesky>
+
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
 
@@ -109,13 +111,43 @@ std::vector<LawSamples> StaticContactSystem::restSamples(const Eigen::Ref<const 
   return samples_;
 }
 
-StaticContactState solveStaticContact(const HbModel& model, Solver& solver, const SolverOptions& options) {
+namespace {
+
+// True when K x = F₀ has a solution without any law: the structure holds
+// the load by its own stiffness, so friction (which can always stick or
+// slip) and open contacts leave a static state to find.
+bool stiffnessHoldsLoad(const HbModel& model, const Eigen::VectorXd& load) {
+  Eigen::SimplicialLDLT<SparseMatrix> factor(model.structure.stiffness);
+  if (factor.info() != Eigen::Success) return false;
+  const Eigen::VectorXd x = factor.solve(load);
+  if (factor.info() != Eigen::Success || !x.allFinite()) return false;
+  return (model.structure.stiffness * x - load).norm() <= 1e-8 * load.norm();
+}
+
+}  // namespace
+
+StaticContactState solveStaticContact(const HbModel& model, const std::vector<Solver*>& solvers,
+                                      const SolverOptions& options) {
   StaticContactSystem system(model);
   StaticContactState state;
-  state.result = solver.solve(system, Eigen::VectorXd::Zero(system.size()), options);
-  if (!state.result.converged())
-    throwInputError("preload", "(static solve: " + std::string(terminationName(state.result.termination)) + ")",
-                    "no contact holds this static load: the structure is free along it or the laws cannot meet it");
+  for (Solver* solver : solvers) {
+    state.result = solver->solve(system, Eigen::VectorXd::Zero(system.size()), options);
+    if (state.result.converged()) {
+      state.solver = solver->name();
+      break;
+    }
+    state.failed.push_back(solver->name() + ": " + terminationName(state.result.termination));
+  }
+  if (!state.result.converged()) {
+    std::string tried;
+    for (const std::string& f : state.failed) tried += (tried.empty() ? "" : ", ") + f;
+    if (!stiffnessHoldsLoad(model, system.load()))
+      throwInputError("preload", "(static solve: " + tried + ")",
+                      "no contact holds this static load: the structure is free along it or the laws cannot meet it");
+    throw StaticSolveFailed("preload: the static solve did not converge (" + tried +
+                            "); the structure's stiffness holds this load, so a static state exists: "
+                            "the solvers did not find it");
+  }
   const Eigen::VectorXd& z = state.result.solution;
   const int n = model.structure.dofs();
   state.displacement = z.head(n);
@@ -123,6 +155,10 @@ StaticContactState solveStaticContact(const HbModel& model, Solver& solver, cons
   state.rest = system.restSamples(z);
   for (size_t l = 0; l < model.laws.size(); ++l) state.status.push_back(model.laws[l].law->staticStatus(state.rest[l]));
   return state;
+}
+
+StaticContactState solveStaticContact(const HbModel& model, Solver& solver, const SolverOptions& options) {
+  return solveStaticContact(model, std::vector<Solver*>{&solver}, options);
 }
 
 }  // namespace eqhb

@@ -18,6 +18,8 @@
 #include <Eigen/Dense>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "eqhb/harmonic_balance/hb_model.h"
@@ -27,6 +29,8 @@ namespace eqhb {
 
 struct StaticContactState {
   SolverResult result;
+  std::string solver;            // the backend that converged
+  std::vector<std::string> failed;  // "NAME: termination" of those tried before it
   Eigen::VectorXd displacement;  // x (n)
   Eigen::VectorXd forces;        // λ of every law, in HbModel::componentIndex order
   // Per law: its state at rest (Law::staticStatus; nullopt for a law that
@@ -47,6 +51,7 @@ class StaticContactSystem : public SquareSystem {
                            Eigen::Ref<Eigen::MatrixXd> jacobian) override;
   // Structure rows in the force scale, law rows in each law's own.
   void residualScales(Eigen::Ref<Eigen::VectorXd> scales) const override;
+  const Eigen::VectorXd& load() const { return load_; }  // F₀
   // The laws' inputs at z on one sample each, as the static step reads them.
   std::vector<LawSamples> restSamples(const Eigen::Ref<const Eigen::VectorXd>& z);
 
@@ -62,9 +67,23 @@ class StaticContactSystem : public SquareSystem {
   int dofs_, size_;
 };
 
-// Solves the static problem from rest with `solver`. Throws InputError
-// naming "preload" when it does not converge: no contact holds the load
-// (the structure is free along it) or the laws cannot meet it.
+// A static state the solvers could not find although one exists (the
+// structure's own stiffness holds the load): not bad input but a solve that
+// did not converge (the command exits 1).
+class StaticSolveFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Solves the static problem from rest with each of `solvers` in turn until
+// one converges (the stick–slip kinks at rest stall some methods, as a
+// dynamic solve's fallback chain allows for). When none converges: throws
+// InputError naming "preload" if K alone cannot hold the load (a free
+// structure: no contact held it either), else StaticSolveFailed with each
+// solver's termination.
+StaticContactState solveStaticContact(const HbModel& model, const std::vector<Solver*>& solvers,
+                                      const SolverOptions& options);
+// With one solver.
 StaticContactState solveStaticContact(const HbModel& model, Solver& solver, const SolverOptions& options);
 
 }  // namespace eqhb

@@ -78,7 +78,9 @@ LawEntry contactFrictionEntry() {
       {"cf2_fb_max", 3, example("form = \"fischer-burmeister\"\nfriction_form = \"max\"")},
       {"cf2_compliant_projection_kt", 3,
        example("form = \"compliant\"\nk_n = 3.0\nfriction_form = \"projection\"\nk_t = 2.5")},
-      {"cf1_min_minmax_kt", 2, example("form = \"min\"\nfriction_form = \"minmax\"\nk_t = 1.5")}};
+      {"cf1_min_minmax_kt", 2, example("form = \"min\"\nfriction_form = \"minmax\"\nk_t = 1.5")},
+      // Elastic dry friction in 3D under an exact (Signorini) normal.
+      {"cf2_min_projection_kt", 3, example("form = \"min\"\nfriction_form = \"projection\"\nk_t = 1.5")}};
   return e;
 }
 
