@@ -100,6 +100,10 @@ TEST(FallbackChain, ParsesTheForcingStepAndPutsItLast) {
             (std::vector<std::string>{"forcing", "cold"}));
   EXPECT_THROW(FallbackChain::parse("forcing,forcing", "fallback", none), InputError);
   EXPECT_EQ(FallbackChain::standard(nullptr).steps.back(), "forcing");
+  // A sweep's warm points go without it.
+  const FallbackChain warm = FallbackChain::standard(nullptr).withoutForcing();
+  EXPECT_EQ(warm.steps, (std::vector<std::string>{"cold", "full", "condensed"}));
+  EXPECT_EQ(warm.solvers.size(), warm.steps.size());
 }
 
 TEST(FallbackChain, ParsesTheCondensedStepAndRefusesItTwice) {

@@ -166,6 +166,9 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   auto system = makeHbSystem(m, options.condensed, solver_options.linear_algebra);
   const double direction = options.to > options.from ? 1.0 : -1.0;
   const int grid = static_cast<int>(options.gridPoints()) - 1;
+  // After the first converged point a failed one has continuation in ω (and
+  // the next point, below) to fall back on: no forcing homotopy there.
+  const FallbackChain warm_fallbacks = options.fallbacks.withoutForcing();
   Eigen::VectorXd z = options.start_full.size() ? system->fromFullCoefficients(options.start_full)
                                                 : Eigen::VectorXd::Zero(system->size());
   double last_converged_omega = NAN;
@@ -211,8 +214,8 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
     // The halved steps leave the system at their last ω: the fallbacks solve at the grid point.
     if (!point.converged && !singular && trySetOmega(*system, target, &why)) {
       FallbackReport tried;
-      const SolverResult rescued =
-          solveWithFallbacks(*system, solver, solver_options, r, started_cold, options.fallbacks, &tried);
+      const SolverResult rescued = solveWithFallbacks(*system, solver, solver_options, r, started_cold,
+                                                      started_cold ? options.fallbacks : warm_fallbacks, &tried);
       for (const FallbackAttempt& attempt : tried.attempts) addSolverCounts(attempt.result, &point);
       if (rescued.converged()) {
         r = rescued;

@@ -175,6 +175,18 @@ FallbackChain FallbackChain::standard(Solver* backup) {
   return chain;
 }
 
+FallbackChain FallbackChain::withoutForcing() const {
+  FallbackChain chain = *this;
+  chain.steps.clear();
+  chain.solvers.clear();
+  for (size_t i = 0; i < steps.size(); ++i)
+    if (steps[i] != kForcing) {
+      chain.steps.push_back(steps[i]);
+      chain.solvers.push_back(solvers[i]);
+    }
+  return chain;
+}
+
 FallbackChain FallbackChain::parse(const std::string& text, const std::string& field,
                                    const std::function<Solver*(const std::string&)>& solver_for) {
   FallbackChain chain;
