@@ -7,17 +7,13 @@
 #include "eqhb/accuracy/rung_test.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
+#include "accuracy_solver_options.h"
 #include "test_support.h"
 
 namespace eqhb {
 namespace {
 
-SolverOptions tightOptions() {
-  SolverOptions options;
-  options.residual_tolerance = 1e-10;
-  options.max_iterations = 400;
-  return options;
-}
+using test::tightOptions;
 
 HbModel scene(const std::string& file, double omega, std::vector<std::string> overrides = {}) {
   overrides.push_back("harmonic_balance.omega=" + formatNumber(omega));
@@ -71,7 +67,9 @@ TEST(AccuracyExactTest, TheEstimateWithFactorTwoWouldMissTheSameCase) {
   const AccuracyChoice calibrated = chooseHarmonics(m, 1e-3, 5, 320, *solver, tightOptions(), true,
                                                     AccuracyTestOptions{AccuracyTestChoice::kEstimate});
   EXPECT_TRUE(!calibrated.reached || calibrated.model.basis.count() > 20);
-  if (calibrated.reached) EXPECT_LE(trueError(calibrated), 1.5e-3);
+  if (calibrated.reached) {
+    EXPECT_LE(trueError(calibrated), 1.5e-3);
+  }
 }
 
 TEST(AccuracyExactTest, LawsWithoutAnExactFlowAreTestedByTheEstimateWithItsSafetyFactor) {

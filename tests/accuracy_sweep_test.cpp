@@ -10,17 +10,13 @@
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
+#include "accuracy_solver_options.h"
 #include "test_support.h"
 
 namespace eqhb {
 namespace {
 
-SolverOptions tightOptions() {
-  SolverOptions options;
-  options.residual_tolerance = 1e-10;
-  options.max_iterations = 400;
-  return options;
-}
+using test::tightOptions;
 
 ContinuationOptions grid(double from, double to, double step) {
   ContinuationOptions c;

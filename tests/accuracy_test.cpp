@@ -13,6 +13,7 @@
 #include "eqhb/orbits/shooting.h"
 #include "eqhb/orbits/smooth_flow.h"
 #include "eqhb/scenes/scene.h"
+#include "accuracy_solver_options.h"
 #include "test_support.h"
 
 namespace eqhb {
@@ -44,12 +45,7 @@ double trueError(const Solved& hb, const Eigen::VectorXd& exact) {
   return worstRelativeDifference(peakDisplacements(hb.model, hb.full), exact);
 }
 
-SolverOptions tightOptions() {
-  SolverOptions options;
-  options.residual_tolerance = 1e-10;
-  options.max_iterations = 400;
-  return options;
-}
+using test::tightOptions;
 
 HbModel scene(const std::string& file, double omega) {
   return loadScene(test::problem(file), {"harmonic_balance.omega=" + formatNumber(omega)}).model;
