@@ -240,7 +240,7 @@ std::vector<Case> standardCases() {
 }
 
 namespace {
-Outcome runOne(Solver& solver, const Case& c) {
+Outcome runOne(Solver& solver, const Case& c, const std::map<std::string, std::string>& backend) {
   MghSystem system(c.problem, c.n);
   SolverOptions options;
   options.residual_tolerance = 0.0;  // MINPACK's own criteria only
@@ -248,6 +248,7 @@ Outcome runOne(Solver& solver, const Case& c) {
   options.max_iterations = 1000000;
   options.backend["xtol"] = "1.4901161193847656e-08";  // sqrt(eps), as hybrj1
   options.backend["factor"] = "100";
+  for (const auto& [key, value] : backend) options.backend[key] = value;
   const SolverResult r = solver.solve(system, startingPoint(c.problem, c.n, c.factor), options);
   Outcome o;
   o.final_norm = r.final_norm;
@@ -260,9 +261,11 @@ Outcome runOne(Solver& solver, const Case& c) {
 }
 }  // namespace
 
-std::vector<Row> compare(Solver& own, Solver& reference, const std::vector<Case>& cases) {
+std::vector<Row> compare(Solver& own, Solver& reference, const std::vector<Case>& cases,
+                         const std::map<std::string, std::string>& own_backend,
+                         const std::map<std::string, std::string>& reference_backend) {
   std::vector<Row> rows;
-  for (const Case& c : cases) rows.push_back({c, runOne(own, c), runOne(reference, c)});
+  for (const Case& c : cases) rows.push_back({c, runOne(own, c, own_backend), runOne(reference, c, reference_backend)});
   return rows;
 }
 

@@ -5,6 +5,8 @@
 // and the comparison of two solvers over every problem and start.
 #pragma once
 
+#include <map>
+
 #include <Eigen/Dense>
 #include <string>
 #include <vector>
@@ -61,7 +63,11 @@ struct Row {
 
 // Runs both solvers with MINPACK hybrj1's settings (xtol = sqrt(eps),
 // maxfev = 100(n+1), factor 100, column scaling, no residual stop).
-std::vector<Row> compare(Solver& own, Solver& reference, const std::vector<Case>& cases);
+// `own_backend` and `reference_backend` add backend options (e.g. the
+// dogleg's factorisation) to each solver's.
+std::vector<Row> compare(Solver& own, Solver& reference, const std::vector<Case>& cases,
+                         const std::map<std::string, std::string>& own_backend = {},
+                         const std::map<std::string, std::string>& reference_backend = {});
 // Markdown table of the rows plus a totals line.
 std::string markdownTable(const std::vector<Row>& rows);
 

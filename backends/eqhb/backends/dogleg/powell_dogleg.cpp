@@ -1,6 +1,7 @@
 #include "eqhb/backends/dogleg/powell_dogleg.h"
 
 #include "eqhb/backends/dogleg/dense_dogleg_strategy.h"
+#include "eqhb/backends/dogleg/dense_lu_strategy.h"
 #include "eqhb/backends/dogleg/sparse_newton_dogleg.h"
 #include "eqhb/backends/dogleg/trust_region_loop.h"
 
@@ -86,8 +87,16 @@ bool parseSettings(const SolverOptions& options, Settings* settings, std::string
         return false;
       }
       settings->scale_columns = text == "columns";
+    } else if (key == "factorisation") {
+      if (text == "auto") settings->factorisation = Settings::Factorisation::kAuto;
+      else if (text == "qr") settings->factorisation = Settings::Factorisation::kQr;
+      else if (text == "lu") settings->factorisation = Settings::Factorisation::kLu;
+      else {
+        *why = "factorisation = \"" + text + "\": must be \"auto\", \"qr\" or \"lu\"";
+        return false;
+      }
     } else {
-      *why = "unknown dogleg option \"" + key + "\" (known: factor, xtol, scaling)";
+      *why = "unknown dogleg option \"" + key + "\" (known: factor, xtol, scaling, factorisation)";
       return false;
     }
   }
@@ -213,6 +222,13 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     return runSparseNewtonDogleg(system, z0, options, settings, result);
   if (!denseBackendAccepts(name() + " (dense QR)", system.size(), kDenseMostUnknowns, options, result))
     return;
+  const bool lu = settings.factorisation == DoglegSettings::Factorisation::kLu ||
+                  (settings.factorisation == DoglegSettings::Factorisation::kAuto &&
+                   system.size() >= kDenseLuFromUnknowns);
+  if (lu) {
+    dogleg::DenseLuStrategy strategy(system, policy_);
+    return dogleg::runTrustRegionLoop(system, z0, options, settings, strategy, result);
+  }
   dogleg::DenseDoglegStrategy strategy(system, policy_);
   dogleg::runTrustRegionLoop(system, z0, options, settings, strategy, result);
 }

@@ -13,6 +13,11 @@
 //   factor   initial trust radius = factor · ‖D z0‖ (factor if z0 = 0); > 0, default 100
 //   xtol     stop when radius <= xtol · ‖D z‖ (step_tolerance); >= 0, default 1e-14
 //   scaling  "columns" (D from Jacobian column norms, MINPACK mode 1) or "none"
+//   factorisation  "qr", "lu" or "auto" (default): how the dense model is
+//            factorised. QR is hybrj's (its Q updated by Givens rotations);
+//            LU costs a quarter of a QR with its Q, and its Broyden updates
+//            are kept as vectors (dense_lu_strategy.h). The steps are the
+//            same in exact arithmetic; auto takes LU from kDenseLuFromUnknowns.
 #pragma once
 
 #include "eqhb/solvers/solver.h"
@@ -20,6 +25,11 @@
 namespace eqhb {
 
 enum class JacobianPolicy { kBroyden, kEveryIteration };
+
+// From this many unknowns the dense dogleg factorises by LU: there the
+// Jacobian's QR and Q (8⁄3 n³ flops) dominate a step, and on the lap joint
+// (630 unknowns) and beam-joint-large (700) the LU took a quarter of the time.
+constexpr int kDenseLuFromUnknowns = 256;
 
 class PowellDogleg : public Solver {
  public:

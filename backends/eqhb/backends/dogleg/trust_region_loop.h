@@ -17,6 +17,9 @@ struct DoglegSettings {
   double factor = 100.0;  // initial trust radius = factor · ‖D z0‖
   double xtol = 1e-14;    // stop when radius <= xtol · ‖D z‖
   bool scale_columns = true;
+  // The dense model's factorisation: QR (hybrj's Q R, updated by rotations)
+  // or LU (dense_lu_strategy.h); auto: LU from kDenseLuFromUnknowns.
+  enum class Factorisation { kAuto, kQr, kLu } factorisation = Factorisation::kAuto;
 };
 
 namespace dogleg {
