@@ -6,7 +6,7 @@
 namespace eqhb::dogleg {
 
 DenseLuStrategy::DenseLuStrategy(MonitoredSystem& system, JacobianPolicy policy)
-    : NewtonDoglegStrategy(system),
+    : LuDoglegStrategy(system),
       policy_(policy),
       jacobian_(system.size(), system.size()),
       lu_(system.size()),
@@ -35,7 +35,7 @@ bool DenseLuStrategy::prepareModel(const Eigen::VectorXd& g, const Eigen::Vector
                                    StopReason* stop) {
   updates_ = 0;
   g_ = g;
-  return NewtonDoglegStrategy::prepareModel(g, diag, iteration, stop);
+  return LuDoglegStrategy::prepareModel(g, diag, iteration, stop);
 }
 
 bool DenseLuStrategy::factorise(int iteration, StopReason* stop) {

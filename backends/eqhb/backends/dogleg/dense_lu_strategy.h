@@ -1,4 +1,4 @@
-// The dense variant of the LU step strategy (newton_dogleg_strategy.h): the
+// The dense variant of the LU step strategy (lu_dogleg_strategy.h): the
 // weak Jacobian J as a dense matrix and Eigen's partial-pivoting LU of it.
 // At n unknowns the LU costs ⅔ n³ flops against the 8⁄3 n³ of a Householder
 // QR with its Q formed (what updating Q R needs): at n = 700, 13 ms against
@@ -11,12 +11,12 @@
 
 #include <Eigen/Dense>
 
-#include "eqhb/backends/dogleg/newton_dogleg_strategy.h"
+#include "eqhb/backends/dogleg/lu_dogleg_strategy.h"
 #include "eqhb/backends/dogleg/powell_dogleg.h"
 
 namespace eqhb::dogleg {
 
-class DenseLuStrategy : public NewtonDoglegStrategy {
+class DenseLuStrategy : public LuDoglegStrategy {
  public:
   // Updates kept before a fresh Jacobian: each costs two vector products per
   // step, and a long run of them means the secant model has drifted.

@@ -2,8 +2,11 @@
 // what a model of the residual is made of and how a dogleg step is taken on
 // it. The loop owns the iterate, the scaling D, the radius and the stopping
 // tests; a strategy owns the Jacobian, its factorisation and the model's
-// directions. Two strategies: the dense QR (with Broyden updates or a fresh
-// Jacobian at every iterate) and the sparse LU (Newton at every iterate).
+// directions. The strategies: the dense QR (with Broyden updates or a fresh
+// Jacobian at every iterate; dense_dogleg_strategy.h), and on an LU of the
+// Jacobian (lu_dogleg_strategy.h) the dense one (dense_lu_strategy.h, from
+// kDenseLuFromUnknowns, the same two policies) and the sparse one (Newton at
+// every iterate; sparse_newton_dogleg.h).
 #pragma once
 
 #include <Eigen/Dense>

@@ -2,7 +2,7 @@
 
 #include <Eigen/UmfPackSupport>
 
-#include "eqhb/backends/dogleg/newton_dogleg_strategy.h"
+#include "eqhb/backends/dogleg/lu_dogleg_strategy.h"
 
 namespace eqhb {
 
@@ -13,10 +13,10 @@ using dogleg::TrialStep;
 
 // The sparse step strategy: the Jacobian on the system's pattern and
 // UMFPACK's LU of it (a singular J leaves only the gradient direction).
-class SparseNewtonStrategy : public dogleg::NewtonDoglegStrategy {
+class SparseNewtonStrategy : public dogleg::LuDoglegStrategy {
  public:
   explicit SparseNewtonStrategy(MonitoredSystem& system)
-      : NewtonDoglegStrategy(system), jacobian_(system.jacobianPattern()) {}
+      : LuDoglegStrategy(system), jacobian_(system.jacobianPattern()) {}
 
   bool evaluateJacobian(const Eigen::VectorXd& z, Eigen::VectorXd& g, int iteration, StopReason* stop) override {
     if (!system().residualAndSparseJacobian(z, g, jacobian_)) {

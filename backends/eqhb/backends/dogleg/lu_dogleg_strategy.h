@@ -16,9 +16,9 @@
 
 namespace eqhb::dogleg {
 
-class NewtonDoglegStrategy : public DoglegStrategy {
+class LuDoglegStrategy : public DoglegStrategy {
  public:
-  explicit NewtonDoglegStrategy(MonitoredSystem& system);
+  explicit LuDoglegStrategy(MonitoredSystem& system);
 
   // Factorises the Jacobian just evaluated, then the directions at g.
   bool prepareModel(const Eigen::VectorXd& g, const Eigen::VectorXd& diag, int iteration, StopReason* stop) override;

@@ -1,23 +1,23 @@
-#include "eqhb/backends/dogleg/newton_dogleg_strategy.h"
+#include "eqhb/backends/dogleg/lu_dogleg_strategy.h"
 
 #include <cmath>
 #include <limits>
 
 namespace eqhb::dogleg {
 
-NewtonDoglegStrategy::NewtonDoglegStrategy(MonitoredSystem& system) : system_(system) {
+LuDoglegStrategy::LuDoglegStrategy(MonitoredSystem& system) : system_(system) {
   const Eigen::Index n = system.size();
   for (Eigen::VectorXd* v : {&newton_, &scaled_newton_, &gradient_, &direction_, &unscaled_, &image_, &cauchy_,
                              &difference_, &model_residual_})
     v->resize(n);
 }
 
-bool NewtonDoglegStrategy::prepareModel(const Eigen::VectorXd& g, const Eigen::VectorXd& diag, int iteration,
+bool LuDoglegStrategy::prepareModel(const Eigen::VectorXd& g, const Eigen::VectorXd& diag, int iteration,
                                         StopReason* stop) {
   return factorise(iteration, stop) && computeDirections(g, diag, stop);
 }
 
-bool NewtonDoglegStrategy::computeDirections(const Eigen::VectorXd& g, const Eigen::VectorXd& diag,
+bool LuDoglegStrategy::computeDirections(const Eigen::VectorXd& g, const Eigen::VectorXd& diag,
                                              StopReason* stop) {
   have_newton_ = solveNewton(g, newton_);
   if (have_newton_) {
@@ -45,7 +45,7 @@ bool NewtonDoglegStrategy::computeDirections(const Eigen::VectorXd& g, const Eig
 }
 
 // Dogleg in scaled variables y = D p inside ‖y‖ <= radius.
-void NewtonDoglegStrategy::computeStep(const Eigen::VectorXd& diag, double radius, Eigen::VectorXd& step) {
+void LuDoglegStrategy::computeStep(const Eigen::VectorXd& diag, double radius, Eigen::VectorXd& step) {
   if (have_newton_ && newton_norm_ <= radius) {
     step = newton_;
   } else if (gradient_norm_ == 0.0) {
@@ -64,20 +64,20 @@ void NewtonDoglegStrategy::computeStep(const Eigen::VectorXd& diag, double radiu
   }
 }
 
-double NewtonDoglegStrategy::modelResidualNorm(const Eigen::VectorXd& g, const Eigen::VectorXd& step) {
+double LuDoglegStrategy::modelResidualNorm(const Eigen::VectorXd& g, const Eigen::VectorXd& step) {
   multiply(step, model_residual_);
   model_residual_ += g;
   return model_residual_.norm();
 }
 
-bool NewtonDoglegStrategy::withinTime(const char* stage, int iteration, StopReason* stop) {
+bool LuDoglegStrategy::withinTime(const char* stage, int iteration, StopReason* stop) {
   if (!system_.timeLimitReached()) return true;
   *stop = {Termination::kTimeLimit, 7,
            std::string("time limit reached after the ") + stage + " of iteration " + std::to_string(iteration)};
   return false;
 }
 
-std::string NewtonDoglegStrategy::stoppingNote() const {
+std::string LuDoglegStrategy::stoppingNote() const {
   return singular_ > 0 ? " (" + std::to_string(singular_) + " singular Jacobian(s): gradient steps)" : "";
 }
 
