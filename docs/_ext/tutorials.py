@@ -19,7 +19,7 @@ from sphinx.util import logging
 
 logger = logging.getLogger(__name__)
 
-TUTORIALS = ["own_structure", "two_node_contact", "sweep_stability", "backends", "damper_study"]
+TUTORIALS = ["own_structure", "two_node_contact", "sweep_stability", "backends", "damper_study", "lap_joint_levels"]
 
 
 def run_tutorials(app):
