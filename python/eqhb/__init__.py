@@ -34,7 +34,7 @@ def load_scene(path, overrides=None):
     return Model.from_scene(os.fspath(path), [f"{_text(k, 'overrides')}={_toml_value(v, k)}" for k, v in overrides.items()])
 
 
-def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, harmonic_set="odd",
+def model(mass, stiffness, damping=None, *, laws=(), forcing=(), preload=(), harmonics=10, harmonic_set="odd",
           samples=None, omega=1.0, sweep=None, name="model", node_table=None):
     """A model from arrays.
 
@@ -47,6 +47,10 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
     "normal" and "tangents" on nodes of several DOFs).
 
     forcing: dicts {"dof": 1, "harmonic": 1, "cos": 20.0, "sin": 0.0}.
+
+    preload: static loads, dicts {"dof": 1, "force": -500.0} (or "node"
+    with a node_table), as a scene's [[preload]] tables: the static state
+    under them is solved first and harmonic balance runs about it.
 
     harmonics, harmonic_set ("odd" or "all"), samples (default: a power of
     two >= 4 (2 k_max + 1), at least 64), omega: the harmonic-balance settings.
@@ -68,6 +72,8 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), harmonics=10, h
         lines.append(f"node_table = {_toml_value(node_table, 'node_table')}")
     for i, load in enumerate(_sequence(forcing, "forcing")):
         lines += ["", "[[forcing]]"] + _toml_table(load, f"forcing[{i}]")
+    for i, load in enumerate(_sequence(preload, "preload")):
+        lines += ["", "[[preload]]"] + _toml_table(load, f"preload[{i}]")
     for i, law in enumerate(_sequence(laws, "laws")):
         lines += ["", "[[law]]"] + _toml_table(law, f"law[{i}]")
     settings = {"harmonics": harmonics, "set": harmonic_set, "samples": samples, "omega": omega}

@@ -253,3 +253,24 @@ def test_an_element_between_two_nodes_acts_equally_and_oppositely():
     assert [(d["dof"], d["weight"]) for d in reads] == [(1, 0.6), (2, 0.8), (3, -0.6), (4, -0.8)]
     with pytest.raises(eqhb.InputError, match=r"law\[0\]\.normal = \[0, 0\]: must be a nonzero"):
         eqhb.model(np.eye(4), k, laws=[dict(law, normal=[0.0, 0.0])], node_table=[[1, 2], [3, 4]])
+
+
+def test_a_preload_is_solved_statically_first_and_reported():
+    # Two unit masses on springs K = [[2, -1], [-1, 2]], DOF 1 against a wall
+    # at gap 0. Pressed into it by 2 N the contact closes and carries all of
+    # it (x = 0, normal force 2); pulled away by 2 N it opens by K⁻¹₁₁ 2 = 4/3.
+    k = np.array([[2.0, -1.0], [-1.0, 2.0]])
+    wall = [{"type": "signorini", "dofs": [1], "gap": 0.0}]
+    states = {}
+    for force in (2.0, -2.0):
+        m = eqhb.model(np.eye(2), k, 0.05 * k, laws=wall, forcing=[{"dof": 2, "cos": 0.3}],
+                       preload=[{"dof": 1, "force": force}], harmonics=3, harmonic_set="all", omega=0.5)
+        r = eqhb.solve(m)
+        assert r["converged"] and r["preload"]["converged"]
+        states[force] = r["preload"]["elements"][0]
+    assert states[2.0]["state"] == "closed" and abs(states[2.0]["normal_force"] - 2.0) < 1e-9
+    assert states[-2.0]["state"] == "open" and abs(states[-2.0]["gap"] - 4.0 / 3.0) < 1e-9
+    with pytest.raises(eqhb.InputError, match=r"preload\[0\]\.force = nan: must be finite"):
+        eqhb.model(np.eye(2), k, preload=[{"dof": 1, "force": float("nan")}])
+    with pytest.raises(eqhb.InputError, match=r"preload\[0\]\.dof = 3: no such DOF"):
+        eqhb.solve(eqhb.model(np.eye(2), k, preload=[{"dof": 3, "force": 1.0}]))
