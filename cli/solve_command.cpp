@@ -37,8 +37,9 @@ void addStabilityFlag(CLI::App* cmd, SolveArguments& a) {
   cmd->add_option("--stability-method", a.stability_method,
                   "hill: Hill's method (any law); monodromy: the monodromy of the linearised dynamics over the "
                   "solution with saltation at the switching instants (grounded Coulomb 1D minmax/projection and "
-                  "Signorini laws; 20-60x cheaper, converges to the exact multipliers as H grows); auto: the "
-                  "monodromy where it applies, else Hill")
+                  "Signorini laws; converges to the exact multipliers as H grows; its matrices are 2n x 2n and "
+                  "dense: about 20x cheaper than Hill on friction-1d, 40x dearer on beam-damper's 120 DOFs); "
+                  "auto: the monodromy where it applies on structures of at most 20 DOFs, else Hill")
       ->check(CLI::IsMember({"hill", "monodromy", "auto"}))
       ->capture_default_str();
   cmd->add_option("--stability-time-limit", a.stability_time_limit,

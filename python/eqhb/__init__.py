@@ -122,7 +122,8 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     On the answer: stability (Floquet multipliers: the "stability" dict, as
     eqhb.stability; stability_method "hill", "monodromy" (grounded Coulomb
     1D and Signorini laws: the monodromy over the solution with saltation at
-    the switching instants) or "auto"), error_estimate (one more solve at
+    the switching instants; dense 2n x 2n, so for small structures) or "auto"
+    (the monodromy where it applies on at most 20 DOFs, else Hill)), error_estimate (one more solve at
     2H: "error_estimate"), accuracy (a relative error in (0, 1): the cheapest
     H, doubling from `harmonics` or 5 up to max_harmonics, and unless rho is
     given the rho among each law's times 1, 0.1, 0.01, whose error of max|x|
