@@ -1,6 +1,7 @@
 #include "eqhb/backends/registry.h"
 
 #include <functional>
+#include <initializer_list>
 
 #include "eqhb/backends/dogleg/powell_dogleg.h"
 #include "eqhb/error.h"
@@ -22,27 +23,27 @@ namespace eqhb {
 namespace {
 using Factory = std::function<std::unique_ptr<Solver>()>;
 
+// A factory per variant of Backend, in the order given.
+template <class Backend, class Variant>
+void addVariants(std::vector<Factory>& all, std::initializer_list<Variant> variants) {
+  for (Variant v : variants) all.push_back([v] { return std::make_unique<Backend>(v); });
+}
+
 std::vector<Factory> factories() {
-  std::vector<Factory> all = {
-      [] { return std::make_unique<PowellDogleg>(JacobianPolicy::kBroyden); },
-      [] { return std::make_unique<PowellDogleg>(JacobianPolicy::kEveryIteration); },
-  };
+  std::vector<Factory> all;
+  addVariants<PowellDogleg>(all, {JacobianPolicy::kBroyden, JacobianPolicy::kEveryIteration});
 #ifdef EQHB_WITH_MINPACK
   all.push_back([] { return std::make_unique<MinpackHybrj>(); });
 #endif
 #ifdef EQHB_WITH_CERES
-  all.push_back([] { return std::make_unique<CeresBackend>(CeresStrategy::kLevenbergMarquardt); });
-  all.push_back([] { return std::make_unique<CeresBackend>(CeresStrategy::kDogleg); });
-  all.push_back([] { return std::make_unique<CeresBackend>(CeresStrategy::kSubspaceDogleg); });
+  addVariants<CeresBackend>(all, {CeresStrategy::kLevenbergMarquardt, CeresStrategy::kDogleg,
+                                  CeresStrategy::kSubspaceDogleg});
 #endif
 #ifdef EQHB_WITH_IPOPT
-  all.push_back([] { return std::make_unique<IpoptBackend>(IpoptFormulation::kLeastSquares); });
-  all.push_back([] { return std::make_unique<IpoptBackend>(IpoptFormulation::kSquare); });
+  addVariants<IpoptBackend>(all, {IpoptFormulation::kLeastSquares, IpoptFormulation::kSquare});
 #endif
 #ifdef EQHB_WITH_NLOPT
-  all.push_back([] { return std::make_unique<NloptBackend>(NloptMethod::kLbfgs); });
-  all.push_back([] { return std::make_unique<NloptBackend>(NloptMethod::kSlsqp); });
-  all.push_back([] { return std::make_unique<NloptBackend>(NloptMethod::kNewuoa); });
+  addVariants<NloptBackend>(all, {NloptMethod::kLbfgs, NloptMethod::kSlsqp, NloptMethod::kNewuoa});
 #endif
   return all;
 }

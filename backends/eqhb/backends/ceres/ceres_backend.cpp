@@ -127,23 +127,17 @@ Termination ceresTermination(int termination_type) {
   return Termination::kBackendError;
 }
 
-std::string CeresBackend::name() const {
-  switch (strategy_) {
-    case CeresStrategy::kLevenbergMarquardt: return "ceres-lm";
-    case CeresStrategy::kDogleg: return "ceres-dogleg";
-    case CeresStrategy::kSubspaceDogleg: return "ceres-dogleg-subspace";
-  }
-  return "ceres";
-}
+namespace {
+// Name and description of each strategy, in CeresStrategy's order.
+const SolverVariant kStrategies[] = {
+    {"ceres-lm", "Ceres trust region, Levenberg-Marquardt, on min 1/2|g|^2"},
+    {"ceres-dogleg", "Ceres trust region, traditional dogleg, on min 1/2|g|^2"},
+    {"ceres-dogleg-subspace", "Ceres trust region, subspace dogleg, on min 1/2|g|^2"},
+};
+}  // namespace
 
-std::string CeresBackend::description() const {
-  switch (strategy_) {
-    case CeresStrategy::kLevenbergMarquardt: return "Ceres trust region, Levenberg-Marquardt, on min 1/2|g|^2";
-    case CeresStrategy::kDogleg: return "Ceres trust region, traditional dogleg, on min 1/2|g|^2";
-    case CeresStrategy::kSubspaceDogleg: return "Ceres trust region, subspace dogleg, on min 1/2|g|^2";
-  }
-  return "";
-}
+CeresBackend::CeresBackend(CeresStrategy strategy)
+    : NamedSolver(kStrategies[static_cast<int>(strategy)]), strategy_(strategy) {}
 
 void CeresBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
                        const SolverOptions& options, SolverResult& result) {

@@ -12,7 +12,7 @@
 // threads >= 1 (default 1).
 #pragma once
 
-#include "eqhb/solvers/solver.h"
+#include "eqhb/solvers/named_solver.h"
 
 namespace eqhb {
 
@@ -22,11 +22,9 @@ enum class CeresStrategy { kLevenbergMarquardt, kDogleg, kSubspaceDogleg };
 // termination.
 Termination ceresTermination(int termination_type);
 
-class CeresBackend : public Solver {
+class CeresBackend : public NamedSolver {
  public:
-  explicit CeresBackend(CeresStrategy strategy) : strategy_(strategy) {}
-  std::string name() const override;
-  std::string description() const override;
+  explicit CeresBackend(CeresStrategy strategy);
 
  protected:
   void run(MonitoredSystem& system, const Eigen::VectorXd& z0, const SolverOptions& options,

@@ -105,16 +105,6 @@ bool parseSettings(const SolverOptions& options, Settings* settings, std::string
 
 }  // namespace
 
-std::string PowellDogleg::name() const {
-  return policy_ == JacobianPolicy::kBroyden ? "dogleg" : "dogleg-newton";
-}
-
-std::string PowellDogleg::description() const {
-  return policy_ == JacobianPolicy::kBroyden
-             ? "own Powell hybrid dogleg (hybrj class): Broyden updates between weak Jacobians"
-             : "own Powell dogleg with the weak Jacobian at every iterate (Newton-dogleg)";
-}
-
 void doglegStep(const Eigen::MatrixXd& r, const Eigen::VectorXd& diag, const Eigen::VectorXd& qtf,
                 double radius, DoglegWorkspace& w, Eigen::VectorXd& step) {
   const Eigen::Index n = qtf.size();
@@ -206,6 +196,7 @@ void rankOneUpdate(Eigen::MatrixXd& q, Eigen::MatrixXd& r, Eigen::VectorXd& qtf,
     qtf[i + 1] = -s * a + c * b;
   }
 }
+
 
 void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
                        const SolverOptions& options, SolverResult& result) {

@@ -20,7 +20,7 @@
 //            same in exact arithmetic; auto takes LU from kDenseLuFromUnknowns.
 #pragma once
 
-#include "eqhb/solvers/solver.h"
+#include "eqhb/solvers/named_solver.h"
 
 namespace eqhb {
 
@@ -31,11 +31,15 @@ enum class JacobianPolicy { kBroyden, kEveryIteration };
 // (630 unknowns) and beam-joint-large (700) the LU took a quarter of the time.
 constexpr int kDenseLuFromUnknowns = 256;
 
-class PowellDogleg : public Solver {
+class PowellDogleg : public NamedSolver {
  public:
-  explicit PowellDogleg(JacobianPolicy policy) : policy_(policy) {}
-  std::string name() const override;
-  std::string description() const override;
+  explicit PowellDogleg(JacobianPolicy policy)
+      : NamedSolver(policy == JacobianPolicy::kBroyden
+                        ? SolverVariant{"dogleg",
+                                        "own Powell hybrid dogleg (hybrj class): Broyden updates between weak Jacobians"}
+                        : SolverVariant{"dogleg-newton",
+                                        "own Powell dogleg with the weak Jacobian at every iterate (Newton-dogleg)"}),
+        policy_(policy) {}
 
  protected:
   void run(MonitoredSystem& system, const Eigen::VectorXd& z0, const SolverOptions& options,

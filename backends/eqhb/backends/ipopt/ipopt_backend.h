@@ -9,7 +9,7 @@
 // from the intermediate callback. The banner is off.
 #pragma once
 
-#include "eqhb/solvers/solver.h"
+#include "eqhb/solvers/named_solver.h"
 
 namespace eqhb {
 
@@ -18,17 +18,14 @@ enum class IpoptFormulation { kLeastSquares, kSquare };
 // Ipopt's SolverReturn (as int) -> termination.
 Termination ipoptTermination(int solver_return);
 
-class IpoptBackend : public Solver {
+class IpoptBackend : public NamedSolver {
  public:
-  explicit IpoptBackend(IpoptFormulation formulation) : formulation_(formulation) {}
-  std::string name() const override {
-    return formulation_ == IpoptFormulation::kLeastSquares ? "ipopt-ls" : "ipopt-square";
-  }
-  std::string description() const override {
-    return formulation_ == IpoptFormulation::kLeastSquares
-               ? "Ipopt on min 1/2|g|^2 (Gauss-Newton or limited-memory Hessian)"
-               : "Ipopt on the feasibility problem g(z) = 0 (equality constraints, zero objective)";
-  }
+  explicit IpoptBackend(IpoptFormulation formulation)
+      : NamedSolver(formulation == IpoptFormulation::kLeastSquares
+                   ? SolverVariant{"ipopt-ls", "Ipopt on min 1/2|g|^2 (Gauss-Newton or limited-memory Hessian)"}
+                   : SolverVariant{"ipopt-square",
+                                   "Ipopt on the feasibility problem g(z) = 0 (equality constraints, zero objective)"}),
+        formulation_(formulation) {}
 
  protected:
   void run(MonitoredSystem& system, const Eigen::VectorXd& z0, const SolverOptions& options,

@@ -8,7 +8,7 @@
 // Dense only: refuses systems above kMinpackMostUnknowns and sparse requests.
 #pragma once
 
-#include "eqhb/solvers/solver.h"
+#include "eqhb/solvers/named_solver.h"
 
 namespace eqhb {
 
@@ -19,12 +19,11 @@ constexpr int kMinpackMostUnknowns = 3000;
 Termination minpackTermination(int info);
 const char* minpackMessage(int info);
 
-class MinpackHybrj : public Solver {
+class MinpackHybrj : public NamedSolver {
  public:
-  std::string name() const override { return "minpack"; }
-  std::string description() const override {
-    return "MINPACK hybrj (cminpack): Powell hybrid, the reference the own dogleg is measured against";
-  }
+  MinpackHybrj()
+      : NamedSolver({"minpack",
+                "MINPACK hybrj (cminpack): Powell hybrid, the reference the own dogleg is measured against"}) {}
 
  protected:
   void run(MonitoredSystem& system, const Eigen::VectorXd& z0, const SolverOptions& options,

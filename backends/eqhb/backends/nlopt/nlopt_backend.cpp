@@ -62,23 +62,16 @@ Termination nloptTermination(int code) {
   }
 }
 
-std::string NloptBackend::name() const {
-  switch (method_) {
-    case NloptMethod::kLbfgs: return "nlopt-lbfgs";
-    case NloptMethod::kSlsqp: return "nlopt-slsqp";
-    case NloptMethod::kNewuoa: return "nlopt-newuoa";
-  }
-  return "nlopt";
-}
+namespace {
+// Name and description of each method, in NloptMethod's order.
+const SolverVariant kMethods[] = {
+    {"nlopt-lbfgs", "NLopt LD_LBFGS on min 1/2|g|^2 with gradient J^T g"},
+    {"nlopt-slsqp", "NLopt LD_SLSQP on min 1/2|g|^2 with gradient J^T g"},
+    {"nlopt-newuoa", "NLopt LN_NEWUOA (derivative-free) on min 1/2|g|^2, dense, <= 200 unknowns"},
+};
+}  // namespace
 
-std::string NloptBackend::description() const {
-  switch (method_) {
-    case NloptMethod::kLbfgs: return "NLopt LD_LBFGS on min 1/2|g|^2 with gradient J^T g";
-    case NloptMethod::kSlsqp: return "NLopt LD_SLSQP on min 1/2|g|^2 with gradient J^T g";
-    case NloptMethod::kNewuoa: return "NLopt LN_NEWUOA (derivative-free) on min 1/2|g|^2, dense, <= 200 unknowns";
-  }
-  return "";
-}
+NloptBackend::NloptBackend(NloptMethod method) : NamedSolver(kMethods[static_cast<int>(method)]), method_(method) {}
 
 void NloptBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
                        const SolverOptions& options, SolverResult& result) {

@@ -8,7 +8,7 @@
 // and NEWUOA are dense and refuse systems above their limits below.
 #pragma once
 
-#include "eqhb/solvers/solver.h"
+#include "eqhb/solvers/named_solver.h"
 
 namespace eqhb {
 
@@ -20,11 +20,9 @@ constexpr int kSlsqpMostUnknowns = 2000;   // dense n x n BFGS matrix and QP
 // nlopt_result (as int) -> termination.
 Termination nloptTermination(int code);
 
-class NloptBackend : public Solver {
+class NloptBackend : public NamedSolver {
  public:
-  explicit NloptBackend(NloptMethod method) : method_(method) {}
-  std::string name() const override;
-  std::string description() const override;
+  explicit NloptBackend(NloptMethod method);
 
  protected:
   void run(MonitoredSystem& system, const Eigen::VectorXd& z0, const SolverOptions& options,
