@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "eqhb/app/solver_choice.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/problem_scales.h"
@@ -13,20 +14,17 @@
 namespace eqhb::app {
 
 bool ModesOptions::isValid(std::string* why) const {
-  auto fail = [why](const std::string& field, const std::string& value, const std::string& rule) {
-    *why = field + " = " + value + ": " + rule;
-    return false;
-  };
-  if (mode < 1) return fail("mode", std::to_string(mode), "must be >= 1");
+  if (mode < 1) return refuseOption(why, "mode", std::to_string(mode), "must be >= 1");
   if (from && (!(*from > 0.0) || !std::isfinite(*from)))
-    return fail("from", formatNumber(*from), "must be finite and > 0 (a modal amplitude)");
+    return refuseOption(why, "from", formatNumber(*from), "must be finite and > 0 (a modal amplitude)");
   if (to && (!(*to > 0.0) || !std::isfinite(*to)))
-    return fail("to", formatNumber(*to), "must be finite and > 0 (a modal amplitude)");
+    return refuseOption(why, "to", formatNumber(*to), "must be finite and > 0 (a modal amplitude)");
   if (from && to && !(*to > *from))
-    return fail("to", formatNumber(*to), "must be > from (" + formatNumber(*from) + ")");
-  if (points < 2) return fail("points", std::to_string(points), "must be >= 2");
+    return refuseOption(why, "to", formatNumber(*to), "must be > from (" + formatNumber(*from) + ")");
+  if (points < 2) return refuseOption(why, "points", std::to_string(points), "must be >= 2");
   if (!(backbone_time_limit >= 0.0) || !std::isfinite(backbone_time_limit))
-    return fail("backbone_time_limit", formatNumber(backbone_time_limit), "must be finite and >= 0 (seconds; 0 = none)");
+    return refuseOption(why, "backbone_time_limit", formatNumber(backbone_time_limit),
+                        "must be finite and >= 0 (seconds; 0 = none)");
   return solver_options.isValid(why);
 }
 

@@ -10,10 +10,7 @@
 namespace eqhb::app {
 
 bool ShootOptions::isValid(std::string* why) const {
-  if (from_hb && *from_hb < 1) {
-    if (why) *why = "from_hb = " + std::to_string(*from_hb) + ": must be >= 1";
-    return false;
-  }
+  if (from_hb && *from_hb < 1) return refuseOption(why, "from_hb", std::to_string(*from_hb), "must be >= 1");
   return hb.isValid(why);
 }
 

@@ -40,6 +40,14 @@ struct SolutionChecks {
   // the structure is small, else the estimate times its safety factor) or
   // "estimate" (always the latter).
   std::string accuracy_test = "auto";
+
+  // False with a message naming the first bad field, its value and the rule
+  // (stability_method, stability_time_limit, accuracy_test).
+  bool isValid(std::string* why) const;
 };
+
+// An options struct's isValid refusal: sets *why (when given) to
+// "FIELD = VALUE: RULE" and returns false.
+bool refuseOption(std::string* why, const std::string& field, const std::string& value, const std::string& rule);
 
 }  // namespace eqhb::app

@@ -12,11 +12,6 @@ namespace eqhb::app {
 
 namespace {
 
-bool fail(std::string* why, const std::string& field, const std::string& value, const std::string& rule) {
-  if (why) *why = field + " = " + value + ": " + rule;
-  return false;
-}
-
 bool positive(double value) { return value > 0.0 && std::isfinite(value); }
 
 // The range from the options, else from the scene's [sweep].
@@ -44,18 +39,15 @@ void resolveSteps(const SweepOptions& o, ContinuationOptions* c) {
 }  // namespace
 
 bool SweepOptions::isValid(std::string* why) const {
-  if (solver.empty()) return fail(why, "solver", "\"\"", "must name a backend (see solvers)");
-  if (step && !positive(*step)) return fail(why, "step", formatNumber(*step), "must be finite and > 0");
-  if (min_step && !positive(*min_step)) return fail(why, "min_step", formatNumber(*min_step), "must be finite and > 0");
-  if (max_step && !positive(*max_step)) return fail(why, "max_step", formatNumber(*max_step), "must be finite and > 0");
-  if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "auto")
-    return fail(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
-  if (!(stability_time_limit >= 0.0) || !std::isfinite(stability_time_limit))
-    return fail(why, "stability_time_limit", formatNumber(stability_time_limit), "must be finite and >= 0 (0: none)");
-  if (accuracy_test != "auto" && accuracy_test != "estimate")
-    return fail(why, "accuracy_test", "\"" + accuracy_test + "\"", "must be \"auto\" or \"estimate\"");
+  if (solver.empty()) return refuseOption(why, "solver", "\"\"", "must name a backend (see solvers)");
+  if (step && !positive(*step)) return refuseOption(why, "step", formatNumber(*step), "must be finite and > 0");
+  if (min_step && !positive(*min_step))
+    return refuseOption(why, "min_step", formatNumber(*min_step), "must be finite and > 0");
+  if (max_step && !positive(*max_step))
+    return refuseOption(why, "max_step", formatNumber(*max_step), "must be finite and > 0");
+  if (!SolutionChecks::isValid(why)) return false;
   if (accuracy && stability)
-    return fail(why, "stability", "(set)", "not with accuracy: the points of such a curve differ in H");
+    return refuseOption(why, "stability", "(set)", "not with accuracy: the points of such a curve differ in H");
   return solver_options.isValid(why);
 }
 

@@ -1,0 +1,25 @@
+#include "eqhb/app/solver_choice.h"
+
+#include <cmath>
+
+#include "eqhb/error.h"
+
+namespace eqhb::app {
+
+bool refuseOption(std::string* why, const std::string& field, const std::string& value, const std::string& rule) {
+  if (why) *why = field + " = " + value + ": " + rule;
+  return false;
+}
+
+bool SolutionChecks::isValid(std::string* why) const {
+  if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "auto")
+    return refuseOption(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
+  if (!(stability_time_limit >= 0.0) || !std::isfinite(stability_time_limit))
+    return refuseOption(why, "stability_time_limit", formatNumber(stability_time_limit),
+                        "must be finite and >= 0 (0: none)");
+  if (accuracy_test != "auto" && accuracy_test != "estimate")
+    return refuseOption(why, "accuracy_test", "\"" + accuracy_test + "\"", "must be \"auto\" or \"estimate\"");
+  return true;
+}
+
+}  // namespace eqhb::app
