@@ -21,16 +21,16 @@ void addModesCommand(CLI::App& app, ModesArguments& a) {
       "modes", "Nonlinear mode (extended periodic motion concept): frequency, damping ratio, dissipated energy and "
                "shape against modal amplitude");
   addSceneOptions(cmd, a.solve.scene);
-  cmd->add_option("--mode", a.mode, "K: the mode of the structure linearised about rest, by frequency, from 1")
+  cmd->add_option("--mode", a.modes.mode, "K: the mode of the structure linearised about rest, by frequency, from 1")
       ->capture_default_str();
-  cmd->add_option("--from", a.from, "Smallest modal amplitude phi^T M x1 (default: 1e-2 of the slip onset's amplitude, else of the scene's "
+  cmd->add_option("--from", a.modes.from, "Smallest modal amplitude phi^T M x1 (default: 1e-2 of the slip onset's amplitude, else of the scene's "
                   "length scale)")
       ->check(representableNumber());
-  cmd->add_option("--to", a.to, "Largest modal amplitude (default: 1e3 of the slip onset's amplitude, else of the scene's length scale; "
+  cmd->add_option("--to", a.modes.to, "Largest modal amplitude (default: 1e3 of the slip onset's amplitude, else of the scene's length scale; "
                   "about a preload, no further than where a pressed contact would open)")
       ->check(representableNumber());
-  cmd->add_option("--points", a.points, "Amplitudes, evenly spaced in log")->capture_default_str();
-  cmd->add_flag("--synthesis", a.synthesis,
+  cmd->add_option("--points", a.modes.points, "Amplitudes, evenly spaced in log")->capture_default_str();
+  cmd->add_flag("--synthesis", a.modes.synthesis,
                 "Also the forced response the mode predicts under the scene's forcing (single nonlinear mode "
                 "synthesis), beside a forced sweep across that resonance, with their differences");
   auto* json = cmd->add_flag("--json", a.solve.json, "Print one JSON object, with each point's Fourier coefficients");
@@ -45,7 +45,7 @@ void addModesCommand(CLI::App& app, ModesArguments& a) {
   cmd->add_option("--time-limit", a.solve.time_limit, "Seconds per solve; 0 = none")
       ->check(representableNumber())
       ->capture_default_str();
-  cmd->add_option("--backbone-time-limit", a.backbone_time_limit,
+  cmd->add_option("--backbone-time-limit", a.modes.backbone_time_limit,
                   "Seconds for the whole backbone; 0 = none (the amplitudes not reached are reported failed)")
       ->check(representableNumber())
       ->capture_default_str();
@@ -55,13 +55,7 @@ void addModesCommand(CLI::App& app, ModesArguments& a) {
 }
 
 int runModes(const ModesArguments& a) {
-  app::ModesOptions options;
-  options.mode = a.mode;
-  options.from = a.from;
-  options.to = a.to;
-  options.points = a.points;
-  options.backbone_time_limit = a.backbone_time_limit;
-  options.synthesis = a.synthesis;
+  app::ModesOptions options = a.modes;
   options.solver = a.solve.solver;
   options.solver_options = solverOptions(a.solve);
   // The progress line: amplitudes recorded (an amplitude between two folds
@@ -81,7 +75,7 @@ int runModes(const ModesArguments& a) {
   const app::ModesRun run = app::modes(a.solve.scene, options, progress);
   line.finish(std::to_string(recorded) + " points, " + std::to_string(failed) + " failed");
   std::optional<app::SynthesisComparison> synthesis;
-  if (a.synthesis) {
+  if (a.modes.synthesis) {
     ProgressLine forced_line(verbosity().progress, "modes: forced sweep");
     forced_line.update(-1.0, "synthesis");
     synthesis = app::compareWithForcedSweep(a.solve.scene, run, options, app::SweepOptions());

@@ -13,11 +13,9 @@ namespace eqhb::cli {
 
 struct ModesArguments {
   SolveArguments solve;  // scene, backend and its limits (the solve flags modes shares)
-  int mode = app::ModesOptions{}.mode;
-  std::optional<double> from, to;
-  int points = app::ModesOptions{}.points;
-  double backbone_time_limit = 0.0;
-  bool synthesis = false;
+  // Mode, amplitude range, points, time limit and synthesis (the backend and
+  // its options come from `solve`).
+  app::ModesOptions modes;
   bool csv = false;
   std::string hdf5;  // HDF5 file of the backbone
 };

@@ -27,50 +27,39 @@ void addStudyCommand(CLI::App& app, SolveArguments& s, StudyArguments& a) {
                                           "or a Latin hypercube of scene values");
   addSceneOptions(cmd, s.scene);
   addSolverOptions(cmd, s);
-  cmd->add_option("--vary", a.vary, "PATH=FROM:TO:COUNT, PATH as for --set or A,B,... set together (repeat "
-                                    "for a grid; with --lhs, PATH=FROM:TO)")
+  cmd->add_option("--vary", a.study.vary, "PATH=FROM:TO:COUNT, PATH as for --set or A,B,... set together (repeat "
+                                          "for a grid; with --lhs, PATH=FROM:TO)")
       ->required();
-  cmd->add_option("--lhs", a.lhs, "Latin hypercube of N samples instead of the grid");
-  cmd->add_option("--seed", a.seed, "Random seed of --lhs")->capture_default_str();
+  cmd->add_option("--lhs", a.study.lhs, "Latin hypercube of N samples instead of the grid");
+  cmd->add_option("--seed", a.study.seed, "Random seed of --lhs")->capture_default_str();
   auto* sweep = cmd->add_flag("--sweep", a.sweep, "Per sample: the frequency-response curve over [from, to]");
   auto* peak = cmd->add_flag("--peak", a.peak, "Per sample: the resonance peak, tracked from sample to sample");
   sweep->excludes(peak);
-  cmd->add_option("--from", a.from, "Lowest frequency (default: the scene's sweep.from)");
-  cmd->add_option("--to", a.to, "Highest frequency (default: the scene's sweep.to)");
-  cmd->add_option("--step", a.step, "Frequency step of --sweep")->capture_default_str();
-  cmd->add_option("--dof", a.dof,
+  cmd->add_option("--from", a.study.from, "Lowest frequency (default: the scene's sweep.from)");
+  cmd->add_option("--to", a.study.to, "Highest frequency (default: the scene's sweep.to)");
+  cmd->add_option("--step", a.study.step, "Frequency step of --sweep")->capture_default_str();
+  cmd->add_option("--dof", a.study.dof,
                   "DOF whose first-harmonic amplitude defines the peak, by number from 1 or name (\"w60\" on a beam)")
       ->capture_default_str();
-  cmd->add_option("--coarse-points", a.coarse_points, "Points of the coarse sweep that starts a peak cold")
+  cmd->add_option("--coarse-points", a.study.coarse_points, "Points of the coarse sweep that starts a peak cold")
       ->capture_default_str();
-  cmd->add_option("--max-peaks", a.max_peaks, "Resonances (local maxima in [from, to]) followed at once")
+  cmd->add_option("--max-peaks", a.study.max_peaks, "Resonances (local maxima in [from, to]) followed at once")
       ->capture_default_str();
   addHdf5Option(cmd, a.hdf5, "the samples (parameters, peaks, amplitudes)");
   cmd->add_option("--chart", a.chart,
                   "Write the design chart: the peak of --dof against the last varied value, one curve per value of "
                   "the others, the smallest starred (PREFIX.png and PREFIX.svg, matplotlib)");
-  cmd->add_option("--threads", a.threads, "Threads (default: every core; one per MPI rank under mpirun)");
-  cmd->add_option("--out", a.out, "Study folder: study.csv, study.json, journal.csv, plan.txt (resumable)")
+  cmd->add_option("--threads", a.study.threads, "Threads (default: every core; one per MPI rank under mpirun)");
+  cmd->add_option("--out", a.study.out, "Study folder: study.csv, study.json, journal.csv, plan.txt (resumable)")
       ->required();
 }
 
 namespace {
 
 app::StudyOptions studyOptions(const SolveArguments& s, const StudyArguments& a) {
-  app::StudyOptions o;
+  app::StudyOptions o = a.study;
   readSolverChoice(s, &o);
-  o.vary = a.vary;
-  o.lhs = a.lhs;
-  o.seed = a.seed;
   o.mode = a.sweep ? "sweep" : "peak";
-  o.from = a.from;
-  o.to = a.to;
-  o.step = a.step;
-  o.dof = a.dof;
-  o.coarse_points = a.coarse_points;
-  o.max_peaks = a.max_peaks;
-  o.threads = a.threads;
-  o.out = a.out;
   return o;
 }
 
@@ -180,7 +169,7 @@ int runStudy(const SolveArguments& s, const StudyArguments& a) {
   if (mpi && mpi->size() > 1) return runOnMpi(*mpi, setup, a);
 #endif
   const bool terminal = isatty(STDERR_FILENO);
-  const app::StudyRun run = app::runStudy(setup, a.threads, [terminal](int done, int todo) {
+  const app::StudyRun run = app::runStudy(setup, a.study.threads, [terminal](int done, int todo) {
     if (!terminal) return;
     std::fprintf(stderr, "\r  sample %d/%d done", done, todo);
     std::fflush(stderr);

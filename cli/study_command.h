@@ -8,22 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "eqhb/app/study.h"
 #include "solve_command.h"
 
 namespace eqhb::cli {
 
 struct StudyArguments {
-  std::vector<std::string> vary;  // PATH=FROM:TO:COUNT
-  std::optional<int> lhs;         // Latin hypercube of this many samples
-  unsigned long long seed = 1;
+  // The sample, range, peak and folder options but the mode (set from
+  // --sweep or --peak) and the solver's choice (from SolveArguments).
+  app::StudyOptions study;
   bool sweep = false, peak = false;
-  std::optional<double> from, to;  // default: the scene's [sweep]
-  double step = 0.01;              // --sweep grid step
-  std::string dof = "1";           // by number from 1 or name ("w60")
-  int coarse_points = 41;
-  int max_peaks = 4;
-  int threads = 0;                 // 0: every core
-  std::string out;
   std::string chart;               // PREFIX of the design chart (plot_study.py)
   std::string hdf5;                // HDF5 file of the samples
 };

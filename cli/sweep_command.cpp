@@ -24,19 +24,19 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
   auto* cmd = app.add_subcommand("sweep", "Frequency-response curve by continuation in omega");
   addSceneOptions(cmd, s.scene);
   addSolverOptions(cmd, s);
-  cmd->add_option("--from", w.from, "Start frequency (default: the scene's sweep.from)");
-  cmd->add_option("--to", w.to, "End frequency (default: the scene's sweep.to)");
-  cmd->add_option("--step", w.step,
+  cmd->add_option("--from", w.curve.from, "Start frequency (default: the scene's sweep.from)");
+  cmd->add_option("--to", w.curve.to, "End frequency (default: the scene's sweep.to)");
+  cmd->add_option("--step", w.curve.step,
                   "Grid step in omega (sequential; default a hundredth of the range, 101 points in any unit) or "
                   "initial scaled arclength step (default 0.01)");
-  cmd->add_flag("--arclength", w.arclength, "Pseudo-arclength continuation (passes turning points)");
-  cmd->add_option("--min-step", w.min_step,
+  cmd->add_flag("--arclength", w.curve.arclength, "Pseudo-arclength continuation (passes turning points)");
+  cmd->add_option("--min-step", w.curve.min_step,
                   "Smallest step: in omega for the sequential sweep's halvings (default min(1e-6, step)), in "
                   "scaled arclength for --arclength; a sweep that needs less stops and says where");
-  cmd->add_option("--max-step", w.max_step,
+  cmd->add_option("--max-step", w.curve.max_step,
                   "Largest scaled arclength step with --arclength (default max(0.1, step); 0.1 is a tenth of the "
                   "range in omega or a 10 % change of the response)");
-  cmd->add_option("--max-points", w.max_points, "Most points on the curve")->capture_default_str();
+  cmd->add_option("--max-points", w.curve.max_points, "Most points on the curve")->capture_default_str();
   cmd->add_option("--out", w.out, "Write the curve as CSV");
   cmd->add_option("--chart", w.chart, "Write a chart of the curve: PREFIX.png and PREFIX.svg (matplotlib)");
   addHdf5Option(cmd, w.hdf5, "the curve");
@@ -59,16 +59,9 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
 namespace {
 
 app::SweepOptions sweepOptions(const SolveArguments& s, const SweepArguments& w) {
-  app::SweepOptions o;
+  app::SweepOptions o = w.curve;
   readSolverChoice(s, &o);
   readSolutionChecks(s, &o);
-  o.from = w.from;
-  o.to = w.to;
-  o.arclength = w.arclength;
-  o.step = w.step;
-  o.min_step = w.min_step;
-  o.max_step = w.max_step;
-  o.max_points = w.max_points;
   return o;
 }
 

@@ -5,16 +5,15 @@
 #include <optional>
 #include <string>
 
+#include "eqhb/app/sweep.h"
 #include "solve_command.h"
 
 namespace eqhb::cli {
 
 struct SweepArguments {
-  std::optional<double> from, to;  // default: the scene's [sweep]
-  std::optional<double> step;  // default: ContinuationOptions::defaultStep
-  std::optional<double> min_step, max_step;  // default: min(1e-6, step), max(0.1, step)
-  bool arclength = false;
-  int max_points = 20000;
+  // The range, steps and point limit (the solver's choice and checks come
+  // from SolveArguments).
+  app::SweepOptions curve;
   std::string out;    // CSV file
   std::string chart;  // PNG/SVG prefix
   std::string hdf5;   // HDF5 file of the curve
