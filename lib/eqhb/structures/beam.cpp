@@ -6,6 +6,17 @@
 
 namespace eqhb {
 
+HermiteBlocks hermiteBeamBlocks(double l) {
+  return {{{12, 6 * l, -12, 6 * l},
+           {6 * l, 4 * l * l, -6 * l, 2 * l * l},
+           {-12, -6 * l, 12, -6 * l},
+           {6 * l, 2 * l * l, -6 * l, 4 * l * l}},
+          {{156, 22 * l, 54, -13 * l},
+           {22 * l, 4 * l * l, 13 * l, -3 * l * l},
+           {54, 13 * l, 156, -22 * l},
+           {-13 * l, -3 * l * l, -22 * l, 4 * l * l}}};
+}
+
 StructureMatrices cantileverBeam(const BeamParameters& beam) {
   if (beam.elements < 1) throwInputError("structure.elements", std::to_string(beam.elements), "must be >= 1");
   auto positive = [](const char* field, double x) {
@@ -19,14 +30,7 @@ StructureMatrices cantileverBeam(const BeamParameters& beam) {
   const double l = beam.length / beam.elements;
   const double ei = beam.youngs_modulus * beam.second_moment / (l * l * l);
   const double ra = beam.mass_per_length * l / 420.0;
-  const double ke[4][4] = {{12, 6 * l, -12, 6 * l},
-                           {6 * l, 4 * l * l, -6 * l, 2 * l * l},
-                           {-12, -6 * l, 12, -6 * l},
-                           {6 * l, 2 * l * l, -6 * l, 4 * l * l}};
-  const double me[4][4] = {{156, 22 * l, 54, -13 * l},
-                           {22 * l, 4 * l * l, 13 * l, -3 * l * l},
-                           {54, 13 * l, 156, -22 * l},
-                           {-13 * l, -3 * l * l, -22 * l, 4 * l * l}};
+  const HermiteBlocks blocks = hermiteBeamBlocks(l);
   std::vector<Eigen::Triplet<double>> k, m;
   k.reserve(16 * beam.elements);
   m.reserve(16 * beam.elements);
@@ -37,8 +41,8 @@ StructureMatrices cantileverBeam(const BeamParameters& beam) {
       for (int b = 0; b < 4; ++b) {
         const int i = first + a, j = first + b;
         if (i < 0 || j < 0) continue;  // clamped DOFs
-        k.emplace_back(i, j, ei * ke[a][b]);
-        m.emplace_back(i, j, ra * me[a][b]);
+        k.emplace_back(i, j, ei * blocks.stiffness[a][b]);
+        m.emplace_back(i, j, ra * blocks.mass[a][b]);
       }
   }
   return fromElementTriplets(n, m, k);

@@ -25,6 +25,14 @@ struct BeamParameters {
 // InputError naming the parameter if one is not positive and finite.
 StructureMatrices cantileverBeam(const BeamParameters& beam);
 
+// K_e and M_e above without their factors EI/ℓ³ and ρAℓ/420, on (w1, θ1,
+// w2, θ2); the frame element (frame.h) bends by the same blocks.
+struct HermiteBlocks {
+  double stiffness[4][4];
+  double mass[4][4];
+};
+HermiteBlocks hermiteBeamBlocks(double l);
+
 // DOF (0-based) of the transverse displacement of node `node` (1..n).
 inline int beamTransverseDof(int node) { return 2 * (node - 1); }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "eqhb/error.h"
+#include "eqhb/structures/beam.h"
 
 namespace eqhb {
 
@@ -19,14 +20,7 @@ void addFrameElement(const FrameSection& section, double length, const std::arra
   const double bar_mass = section.mass_per_length * l / 6.0;
   const double beam_mass = section.mass_per_length * l / 420.0;
   // Bending on (w1, θ1, w2, θ2): the Hermite blocks of beam.h.
-  const double kb[4][4] = {{12, 6 * l, -12, 6 * l},
-                           {6 * l, 4 * l * l, -6 * l, 2 * l * l},
-                           {-12, -6 * l, 12, -6 * l},
-                           {6 * l, 2 * l * l, -6 * l, 4 * l * l}};
-  const double mb[4][4] = {{156, 22 * l, 54, -13 * l},
-                           {22 * l, 4 * l * l, 13 * l, -3 * l * l},
-                           {54, 13 * l, 156, -22 * l},
-                           {-13 * l, -3 * l * l, -22 * l, 4 * l * l}};
+  const HermiteBlocks blocks = hermiteBeamBlocks(l);
   auto add = [&](int i, int j, double k, double m) {
     if (i < 0 || j < 0) return;  // clamped
     if (k != 0.0) stiffness->emplace_back(i, j, k);
@@ -37,7 +31,7 @@ void addFrameElement(const FrameSection& section, double length, const std::arra
     for (int b = 0; b < 2; ++b) add(axial[a], axial[b], ea * (a == b ? 1.0 : -1.0), bar_mass * (a == b ? 2.0 : 1.0));
   const int bending[4] = {dofs[1], dofs[2], dofs[4], dofs[5]};
   for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b) add(bending[a], bending[b], ei * kb[a][b], beam_mass * mb[a][b]);
+    for (int b = 0; b < 4; ++b) add(bending[a], bending[b], ei * blocks.stiffness[a][b], beam_mass * blocks.mass[a][b]);
 }
 
 StructureMatrices cantileverFrame(const FrameParameters& frame) {
