@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/scale_free_copy.h"
 #include "eqhb/laws/form_names.h"
 
 namespace eqhb {
@@ -97,10 +98,7 @@ std::optional<Law::RhoComparison> Signorini::compareRho(const LawScales& scales)
 }
 
 std::shared_ptr<Law> Signorini::withScaleFreeRho(const LawScales& scales) const {
-  if (!rho_setting_.scale_free) return nullptr;
-  auto copy = std::make_shared<Signorini>(*this);
-  copy->rho_ = rho_setting_.factor * compareRho(scales)->scale_free;
-  return copy;
+  return copyWithScaleFreeRho(*this, rho_setting_, &Signorini::rho_, scales);
 }
 
 double Signorini::residualScale(const PhysicalScales& s, int) const {

@@ -5,6 +5,7 @@
 
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/error.h"
+#include "eqhb/laws/scale_free_copy.h"
 #include "eqhb/laws/joints/friction_kernels.h"
 
 namespace eqhb {
@@ -82,10 +83,7 @@ std::optional<Law::RhoComparison> Stribeck::compareRho(const LawScales& scales) 
 }
 
 std::shared_ptr<Law> Stribeck::withScaleFreeRho(const LawScales& scales) const {
-  if (!rho_setting_.scale_free) return nullptr;
-  auto copy = std::make_shared<Stribeck>(*this);
-  copy->rho_ = rho_setting_.factor * compareRho(scales)->scale_free;
-  return copy;
+  return copyWithScaleFreeRho(*this, rho_setting_, &Stribeck::rho_, scales);
 }
 
 double Stribeck::residualScale(const PhysicalScales& s, int) const {

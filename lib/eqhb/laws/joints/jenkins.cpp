@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eqhb/error.h"
+#include "eqhb/laws/scale_free_copy.h"
 #include "eqhb/laws/dissipation_deficit.h"
 
 namespace eqhb {
@@ -87,10 +88,7 @@ std::optional<Law::RhoComparison> Jenkins::compareRho(const LawScales& scales) c
 }
 
 std::shared_ptr<Law> Jenkins::withScaleFreeRho(const LawScales& scales) const {
-  if (!rho_setting_.scale_free) return nullptr;
-  auto copy = std::make_shared<Jenkins>(*this);
-  copy->rho_ = rho_setting_.factor * compareRho(scales)->scale_free;
-  return copy;
+  return copyWithScaleFreeRho(*this, rho_setting_, &Jenkins::rho_, scales);
 }
 
 double Jenkins::residualScale(const PhysicalScales& s, int) const {

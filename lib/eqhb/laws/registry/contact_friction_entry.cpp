@@ -57,9 +57,8 @@ std::string example(const std::string& forms) {
 }  // namespace
 
 LawEntry contactFrictionEntry() {
-  LawEntry e;
-  e.type = "contact-friction";
-  e.summary = "unilateral contact on a normal DOF with Coulomb friction on 1 or 2 tangential DOFs";
+  LawEntry e = lawEntry("contact-friction",
+                        "unilateral contact on a normal DOF with Coulomb friction on 1 or 2 tangential DOFs");
   // And "compliant", which needs k_n: not a form --form can set alone.
   e.forms = {"min", "fischer-burmeister"};
   e.parameters = withRho({{"mu", "", ">= 0", "friction coefficient μ"},

@@ -5,9 +5,7 @@
 namespace eqhb {
 
 LawEntry coulomb1DEntry() {
-  LawEntry e;
-  e.type = "coulomb-1d";
-  e.summary = "Coulomb friction on one DOF";
+  LawEntry e = lawEntry("coulomb-1d", "Coulomb friction on one DOF");
   e.forms = {"minmax", "projection", "tanh", "piecewise"};
   e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
                           {"form", "minmax", "minmax|projection|tanh|piecewise", "tanh, piecewise: regularised"},

@@ -5,9 +5,7 @@
 namespace eqhb {
 
 LawEntry coulomb2DEntry() {
-  LawEntry e;
-  e.type = "coulomb-2d";
-  e.summary = "isotropic Coulomb friction on two DOFs (a plane)";
+  LawEntry e = lawEntry("coulomb-2d", "isotropic Coulomb friction on two DOFs (a plane)");
   e.forms = {"max", "projection", "smoothed", "tanh"};
   e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
                           {"form", "max", "max|projection|smoothed|tanh", "smoothed, tanh: regularised"},

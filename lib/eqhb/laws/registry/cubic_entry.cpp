@@ -5,9 +5,7 @@
 namespace eqhb {
 
 LawEntry cubicEntry() {
-  LawEntry e;
-  e.type = "cubic";
-  e.summary = "cubic spring, force −ε x³ (as the DAE f + ε x³ = 0)";
+  LawEntry e = lawEntry("cubic", "cubic spring, force −ε x³ (as the DAE f + ε x³ = 0)");
   e.parameters = {{"epsilon", "", "finite", "ε"}};
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
     return std::make_shared<CubicStiffness>(t.number("epsilon", std::nullopt));

@@ -35,10 +35,9 @@ std::shared_ptr<Law> parseElasticFriction(LawTable& t) {
 }  // namespace
 
 LawEntry elasticFrictionEntry() {
-  LawEntry e;
-  e.type = "elastic-friction";
-  e.summary = "penalty contact k_n max(0, u_n - g0) with elastic dry friction (k_t in series with a slider of "
-              "limit mu p(t)) on 1 or 2 tangents (alternating frequency-time form)";
+  LawEntry e = lawEntry("elastic-friction",
+                        "penalty contact k_n max(0, u_n - g0) with elastic dry friction (k_t in series with a slider of "
+                        "limit mu p(t)) on 1 or 2 tangents (alternating frequency-time form)");
   e.parameters = {{"mu", "", ">= 0", "friction coefficient μ: the slider's limit is μ p(t)"},
                   {"k_t", "", "> 0", "tangential stiffness in series with the slider"},
                   {"k_n", "", "> 0", "normal penalty stiffness: p = k_n max(0, u_n − g0)"},

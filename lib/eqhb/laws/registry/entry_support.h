@@ -3,12 +3,22 @@
 
 #include <functional>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "eqhb/error.h"
 #include "eqhb/laws/law_registry.h"
 
 namespace eqhb {
+
+// An entry of scene `type` with its one-line summary, the rest to fill.
+inline LawEntry lawEntry(std::string type, std::string summary) {
+  LawEntry e;
+  e.type = std::move(type);
+  e.summary = std::move(summary);
+  return e;
+}
 
 // The two keys LawTable::rho reads.
 inline std::vector<LawParameter> rhoParameters() {

@@ -8,10 +8,9 @@
 namespace eqhb {
 
 LawEntry iwanEntry() {
-  LawEntry e;
-  e.type = "iwan";
-  e.summary = "Iwan element: Jenkins sliders in parallel, Segalman's four-parameter slip-displacement density "
-              "(alternating frequency-time form) on 1 DOF";
+  LawEntry e = lawEntry("iwan",
+                        "Iwan element: Jenkins sliders in parallel, Segalman's four-parameter slip-displacement density "
+                        "(alternating frequency-time form) on 1 DOF");
   e.parameters = {{"muN", "", "> 0", "slip force F_S: the force when every slider slips"},
                   {"k_t", "", "> 0", "stiffness K_T when every slider sticks"},
                   {"chi", "0", "> -1 and <= 10", "χ: density R φ^χ of slip displacements φ (micro-slip D ∝ a^(χ+3))"},

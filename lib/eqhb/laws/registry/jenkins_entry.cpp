@@ -6,9 +6,8 @@
 namespace eqhb {
 
 LawEntry jenkinsEntry() {
-  LawEntry e;
-  e.type = "jenkins";
-  e.summary = "elastic dry friction (a spring k_t in series with a Coulomb slider) on 1 or 2 DOFs";
+  LawEntry e = lawEntry("jenkins",
+                        "elastic dry friction (a spring k_t in series with a Coulomb slider) on 1 or 2 DOFs");
   e.forms = {"minmax", "projection", "max"};
   e.parameters = withRho({{"muN", "", ">= 0", "friction limit μN"},
                           {"k_t", "", "> 0", "tangential stiffness"},

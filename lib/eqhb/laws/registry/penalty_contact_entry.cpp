@@ -5,9 +5,8 @@
 namespace eqhb {
 
 LawEntry penaltyContactEntry() {
-  LawEntry e;
-  e.type = "penalty-contact";
-  e.summary = "elastic wall at x = g0 approached from below: pressure k_n max(0, x − g0), force −p";
+  LawEntry e = lawEntry("penalty-contact",
+                        "elastic wall at x = g0 approached from below: pressure k_n max(0, x − g0), force −p");
   e.parameters = {{"stiffness", "", "> 0", "k_n, the wall's stiffness"},
                   {"gap", "", "finite", "g0, the wall's position"}};
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {

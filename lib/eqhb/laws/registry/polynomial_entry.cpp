@@ -7,9 +7,7 @@
 namespace eqhb {
 
 LawEntry polynomialEntry() {
-  LawEntry e;
-  e.type = "polynomial";
-  e.summary = "polynomial spring, force −Σ c_k x^p_k (as the DAE f + Σ c_k x^p_k = 0)";
+  LawEntry e = lawEntry("polynomial", "polynomial spring, force −Σ c_k x^p_k (as the DAE f + Σ c_k x^p_k = 0)");
   e.parameters = {{"coefficients", "", "finite", "c_k, one per exponent"},
                   {"exponents", "", "integers in [1, 25]", "p_k"}};
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {

@@ -7,9 +7,7 @@
 namespace eqhb {
 
 LawEntry quadraticDampingEntry() {
-  LawEntry e;
-  e.type = "quadratic-damping";
-  e.summary = "quadratic damper, force −c ẋ|ẋ| (as the DAE f + c ẋ|ẋ| = 0)";
+  LawEntry e = lawEntry("quadratic-damping", "quadratic damper, force −c ẋ|ẋ| (as the DAE f + c ẋ|ẋ| = 0)");
   e.parameters = {{"coefficient", "", ">= 0", "c"}};
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
     const double c = t.number("coefficient", std::nullopt);

@@ -5,9 +5,7 @@
 namespace eqhb {
 
 LawEntry signoriniEntry() {
-  LawEntry e;
-  e.type = "signorini";
-  e.summary = "rigid wall at x = g0 approached from below (pressure p >= 0, force −p)";
+  LawEntry e = lawEntry("signorini", "rigid wall at x = g0 approached from below (pressure p >= 0, force −p)");
   e.forms = {"min", "fischer-burmeister", "sign-square"};
   e.parameters = withRho({{"gap", "", "finite", "g0, the wall's position"},
                           {"form", "min", "min|fischer-burmeister|sign-square", "complementarity function"}});

@@ -5,9 +5,7 @@
 namespace eqhb {
 
 LawEntry stribeckEntry() {
-  LawEntry e;
-  e.type = "stribeck";
-  e.summary = "friction on one DOF with a limit falling from μ_s N to μ_d N with the speed";
+  LawEntry e = lawEntry("stribeck", "friction on one DOF with a limit falling from μ_s N to μ_d N with the speed");
   e.forms = {"minmax"};
   e.parameters = withRho({{"muN_dynamic", "", ">= 0", "sliding limit μ_d N"},
                           {"muN_static", "", ">= muN_dynamic", "limit at rest μ_s N"},
