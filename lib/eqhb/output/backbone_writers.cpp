@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "eqhb/round_trip.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/output/solution_json.h"
 
@@ -66,15 +67,10 @@ void writeBackboneCsv(std::ostream& out, const app::ModesRun& run) {
   for (int i = 0; i < n; ++i) out << ",max_abs_" << dofLabel(run.scene.model, i);
   out << ",converged,termination,iterations\n";
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  char buffer[64];
-  auto number = [&](double v) {
-    std::snprintf(buffer, sizeof buffer, "%.17g", v);
-    return std::string(buffer);
-  };
   for (const BackbonePoint& p : run.backbone.points) {
-    out << number(p.amplitude);
-    for (double v : {p.omega, p.damping_ratio, p.xi, p.dissipated_energy}) out << "," << number(p.converged ? v : nan);
-    for (int i = 0; i < n; ++i) out << "," << number(p.converged ? p.max_abs[i] : nan);
+    out << formatRoundTrip(p.amplitude);
+    for (double v : {p.omega, p.damping_ratio, p.xi, p.dissipated_energy}) out << "," << formatRoundTrip(p.converged ? v : nan);
+    for (int i = 0; i < n; ++i) out << "," << formatRoundTrip(p.converged ? p.max_abs[i] : nan);
     out << "," << (p.converged ? 1 : 0) << "," << p.termination << "," << p.iterations << "\n";
   }
 }

@@ -10,17 +10,12 @@
 #include <sstream>
 
 #include "eqhb/error.h"
+#include "eqhb/round_trip.h"
 #include "eqhb/io_error.h"
 
 namespace eqhb {
 
 namespace {
-
-std::string number(double value) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
 
 // Quoted when it holds a comma, quote or line break; quotes doubled.
 std::string field(const std::string& text) {
@@ -146,14 +141,14 @@ std::string studyCsvRow(const SampleResult& r, int dofs) { return studyCsvRow(r,
 
 std::string studyCsvRow(const SampleResult& r, const std::vector<int>& dofs) {
   std::string row = std::to_string(r.id);
-  for (double v : r.parameters) row += "," + number(v);
+  for (double v : r.parameters) row += "," + formatRoundTrip(v);
   row += r.ok ? ",ok," : ",failed,";
-  row += field(r.start) + "," + number(r.ok ? r.omega : NAN);
+  row += field(r.start) + "," + formatRoundTrip(r.ok ? r.omega : NAN);
   for (int i : dofs)
-    row += "," + number(r.ok && i < static_cast<int>(r.first_harmonic.size()) ? r.first_harmonic[i] : NAN);
+    row += "," + formatRoundTrip(r.ok && i < static_cast<int>(r.first_harmonic.size()) ? r.first_harmonic[i] : NAN);
   for (int i : dofs)
-    row += "," + number(r.ok && i < static_cast<int>(r.max_abs.size()) ? r.max_abs[i] : NAN);
-  row += "," + std::to_string(r.peaks) + "," + std::to_string(r.solves) + "," + std::to_string(r.iterations) + "," + number(r.seconds) + "," +
+    row += "," + formatRoundTrip(r.ok && i < static_cast<int>(r.max_abs.size()) ? r.max_abs[i] : NAN);
+  row += "," + std::to_string(r.peaks) + "," + std::to_string(r.solves) + "," + std::to_string(r.iterations) + "," + formatRoundTrip(r.seconds) + "," +
          std::to_string(r.worker) + "," + field(r.curve) + "," + field(r.reason);
   return row;
 }
@@ -213,14 +208,14 @@ std::string studyPlanText(const StudySettings& s, const std::string& solver_name
   out << "scene_fnv1a64 = " << hex64(fnv1a(readFile(s.scene_path))) << "\n";
   for (const auto& o : s.overrides) out << "set = " << o << "\n";
   out << "mode = " << (s.mode == StudyMode::kPeak ? "peak" : "sweep") << "\n"
-      << "range = " << number(s.peak.from) << " " << number(s.peak.to) << "\n"
+      << "range = " << formatRoundTrip(s.peak.from) << " " << formatRoundTrip(s.peak.to) << "\n"
       << "dof = " << s.peak.dof << "\n"
       << "system = " << (s.peak.condensed ? "condensed" : "full") << "\n";
   if (s.mode == StudyMode::kPeak)
     out << "coarse_points = " << s.peak.coarse_points << "\nmax_peaks = " << s.peak.max_peaks << "\n";
-  if (s.mode == StudyMode::kSweep) out << "step = " << number(s.sweep_step) << "\n";
+  if (s.mode == StudyMode::kSweep) out << "step = " << formatRoundTrip(s.sweep_step) << "\n";
   out << "solver = " << solver_name << "\n"
-      << "tolerance = " << number(s.solver_options.residual_tolerance) << "\n"
+      << "tolerance = " << formatRoundTrip(s.solver_options.residual_tolerance) << "\n"
       << "max_iterations = " << s.solver_options.max_iterations << "\n"
       << "max_evaluations = " << s.solver_options.max_evaluations << "\n";
   for (const auto& [k, v] : s.solver_options.backend) out << "option = " << k << "=" << v << "\n";
@@ -229,7 +224,7 @@ std::string studyPlanText(const StudySettings& s, const std::string& solver_name
   // The sample values themselves: a grid or a hypercube (and its seed) is
   // fully described by them.
   for (const auto& sample : s.plan.samples) {
-    for (std::size_t p = 0; p < sample.size(); ++p) out << (p ? " " : "") << number(sample[p]);
+    for (std::size_t p = 0; p < sample.size(); ++p) out << (p ? " " : "") << formatRoundTrip(sample[p]);
     out << "\n";
   }
   return out.str();
@@ -339,8 +334,8 @@ void StudyJournal::checkRow(const SampleResult& r, const std::string& where, con
     throwInputError(where + " sample", std::to_string(r.id), "is already on line " + std::to_string(lines.at(r.id)));
   for (std::size_t p = 0; p < r.parameters.size(); ++p)
     if (r.parameters[p] != settings_.plan.samples[r.id][p])
-      throwInputError(where + " " + settings_.plan.parameters[p].path, number(r.parameters[p]),
-                      "sample " + std::to_string(r.id) + " of this study has " + number(settings_.plan.samples[r.id][p]));
+      throwInputError(where + " " + settings_.plan.parameters[p].path, formatRoundTrip(r.parameters[p]),
+                      "sample " + std::to_string(r.id) + " of this study has " + formatRoundTrip(settings_.plan.samples[r.id][p]));
   if (r.ok && !(std::isfinite(r.omega) && finite(r.first_harmonic) && finite(r.max_abs)))
     throwInputError(where + " sample", std::to_string(r.id),
                     "is ok but has a non-finite peak_omega, first_harmonic or max_abs");
@@ -367,7 +362,7 @@ void StudyJournal::append(const SampleResult& result) {
   SampleResult r = result;
   if (r.ok && !(std::isfinite(r.omega) && finite(r.first_harmonic) && finite(r.max_abs))) {
     r.ok = false;
-    r.reason = "the result is not finite (peak_omega " + number(r.omega) + ")";
+    r.reason = "the result is not finite (peak_omega " + formatRoundTrip(r.omega) + ")";
   }
   const std::lock_guard<std::mutex> lock(mutex_);
   if (done_.count(r.id)) return;

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "eqhb/error.h"
+#include "eqhb/round_trip.h"
 
 namespace eqhb {
 
@@ -150,17 +151,14 @@ StudyPlan makeLatinHypercubePlan(const std::vector<VariedParameter>& parameters,
 std::vector<std::string> parameterPaths(const VariedParameter& parameter) { return split(parameter.path, ','); }
 
 std::vector<std::string> sampleOverrides(const StudyPlan& plan, int sample, int parameter) {
-  char value[40];
-  std::snprintf(value, sizeof value, "%.17g", plan.samples[sample][parameter]);
+  const std::string value = formatRoundTrip(plan.samples[sample][parameter]);
   std::vector<std::string> overrides;
   for (const auto& path : parameterPaths(plan.parameters[parameter])) overrides.push_back(path + "=" + value);
   return overrides;
 }
 
 std::string sampleOverride(const StudyPlan& plan, int sample, int parameter) {
-  char value[40];
-  std::snprintf(value, sizeof value, "%.17g", plan.samples[sample][parameter]);
-  return plan.parameters[parameter].path + "=" + value;
+  return plan.parameters[parameter].path + "=" + formatRoundTrip(plan.samples[sample][parameter]);
 }
 
 }  // namespace eqhb
