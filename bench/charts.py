@@ -27,6 +27,15 @@ import matplotlib.pyplot as plt  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
+def label(ax, xlabel, ylabel, title, legend_size=None):
+    """Axis labels, title, the grid of both tick kinds and the legend of one chart."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=legend_size)
+
+
 def save(fig, folder, name):
     fig.tight_layout()
     for ext in ("png", "svg"):
@@ -65,11 +74,8 @@ def work_precision(folder, rows):
         failed = sum(not solved(c) for c in cases)
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("median time per solve [s]")
-        ax.set_ylabel("L2 error of x vs time-domain reference")
-        ax.set_title(f"{scene}: work-precision ({failed} of {len(cases)} cases failed)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
+        label(ax, "median time per solve [s]", "L2 error of x vs time-domain reference",
+              f"{scene}: work-precision ({failed} of {len(cases)} cases failed)", 7)
         save(fig, folder, f"work_precision_{scene}")
 
 
@@ -174,11 +180,8 @@ def convergence_charts(folder):
         ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=f"L2 error of x2, w = {omega}")
         ax.loglog([p[0] for p in pts], [max(p[2], 1e-16) for p in pts], "s--", alpha=0.6,
                   label=f"error of max|x2|, w = {omega}")
-    ax.set_xlabel("harmonics H")
-    ax.set_ylabel("relative error vs time-domain reference")
-    ax.set_title("harmonic balance: error vs number of harmonics")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    label(ax, "harmonics H", "relative error vs time-domain reference",
+          "harmonic balance: error vs number of harmonics", 8)
     save(fig, folder, "convergence_harmonics")
     files = sorted(glob.glob(f"{folder}/reference_*.csv"))
     if files:
@@ -187,11 +190,7 @@ def convergence_charts(folder):
             rs = list(csv.DictReader(open(f)))
             ax.loglog([number(r["step"]) for r in rs], [number(r["l2_error_vs_finest"]) for r in rs], "o-",
                       label="w = " + os.path.basename(f)[len("reference_"):-4])
-        ax.set_xlabel("time step h")
-        ax.set_ylabel("relative L2 error vs finest step")
-        ax.set_title("time-domain reference: error vs step")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend()
+        label(ax, "time step h", "relative L2 error vs finest step", "time-domain reference: error vs step")
         save(fig, folder, "convergence_step")
 
 
@@ -201,38 +200,31 @@ def scale_chart(folder):
         return
     rows = [r for r in csv.DictReader(open(path)) if r["converged"] == "true"]
     studies = [("full", "full system (5 contacts)"), ("condensed", "condensed system (200 DOFs)")]
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
-    for ax, (study, title) in zip(axes[:2], studies):
-        by_solver = defaultdict(list)
+
+    def by_solver(study):
+        """The study's rows per solver, each by increasing unknowns."""
+        rows_of = defaultdict(list)
         for r in rows:
             if r["study"] == study:
-                by_solver[r["solver"]].append(r)
-        for solver, rs in sorted(by_solver.items()):
+                rows_of[r["solver"]].append(r)
+        for rs in rows_of.values():
             rs.sort(key=lambda r: int(r["unknowns"]))
+        return sorted(rows_of.items())
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    for ax, (study, title) in zip(axes[:2], studies):
+        for solver, rs in by_solver(study):
             x = [int(r["unknowns"]) for r in rs]
             line, = ax.loglog(x, [number(r["solve_seconds"]) for r in rs], "o-", label=f"{solver} solve")
             ax.loglog(x, [number(r["residual_jacobian_seconds"]) for r in rs], "s--", color=line.get_color(),
                       label=f"{solver} residual+Jacobian")
-        ax.set_xlabel("unknowns")
-        ax.set_ylabel("seconds")
-        ax.set_title(title)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=6)
+        label(ax, "unknowns", "seconds", title, 6)
     ax = axes[2]
-    for study, title in studies:
-        by_solver = defaultdict(list)
-        for r in rows:
-            if r["study"] == study:
-                by_solver[r["solver"]].append(r)
-        for solver, rs in sorted(by_solver.items()):
-            rs.sort(key=lambda r: int(r["unknowns"]))
+    for study, _ in studies:
+        for solver, rs in by_solver(study):
             ax.loglog([int(r["unknowns"]) for r in rs], [number(r["peak_mib"]) for r in rs], "o-",
                       label=f"{study} {solver}")
-    ax.set_xlabel("unknowns")
-    ax.set_ylabel("peak memory (MiB)")
-    ax.set_title("peak memory per case")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6)
+    label(ax, "unknowns", "peak memory (MiB)", "peak memory per case", 6)
     save(fig, folder, "scale")
 
 

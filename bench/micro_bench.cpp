@@ -51,9 +51,25 @@ int samplesFor(int harmonics) {  // the smallest power of two >= 8 (2H + 1)
   return n;
 }
 
+// The model of a (law, H) benchmark's arguments.
+HbModel lawModel(const benchmark::State& state) {
+  const int harmonics = static_cast<int>(state.range(1));
+  return model(static_cast<int>(state.range(0)), harmonics, samplesFor(harmonics));
+}
+
+// Times residualAndJacobian at a fixed z.
+void timeResidualAndJacobian(benchmark::State& state, CondensedSystem& system) {
+  const Eigen::VectorXd z = Eigen::VectorXd::Constant(system.size(), 0.3);
+  Eigen::VectorXd g(system.size());
+  Eigen::MatrixXd j(system.size(), system.size());
+  for (auto _ : state) {
+    system.residualAndJacobian(z, g, j);
+    benchmark::DoNotOptimize(j.data());
+  }
+}
+
 void Residual(benchmark::State& state) {
-  const HbModel m = model(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
-                          samplesFor(static_cast<int>(state.range(1))));
+  const HbModel m = lawModel(state);
   CondensedSystem system(m);
   const Eigen::VectorXd z = Eigen::VectorXd::Constant(system.size(), 0.3);
   Eigen::VectorXd g(system.size());
@@ -65,28 +81,15 @@ void Residual(benchmark::State& state) {
 }
 
 void ResidualAndJacobian(benchmark::State& state) {
-  const HbModel m = model(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
-                          samplesFor(static_cast<int>(state.range(1))));
+  const HbModel m = lawModel(state);
   CondensedSystem system(m);
-  const Eigen::VectorXd z = Eigen::VectorXd::Constant(system.size(), 0.3);
-  Eigen::VectorXd g(system.size());
-  Eigen::MatrixXd j(system.size(), system.size());
-  for (auto _ : state) {
-    system.residualAndJacobian(z, g, j);
-    benchmark::DoNotOptimize(j.data());
-  }
+  timeResidualAndJacobian(state, system);
   state.SetLabel(m.laws[0].law->type());
 }
 
 void ResidualVsSamples(benchmark::State& state) {
   CondensedSystem system(model(0, 10, static_cast<int>(state.range(0))));
-  const Eigen::VectorXd z = Eigen::VectorXd::Constant(system.size(), 0.3);
-  Eigen::VectorXd g(system.size());
-  Eigen::MatrixXd j(system.size(), system.size());
-  for (auto _ : state) {
-    system.residualAndJacobian(z, g, j);
-    benchmark::DoNotOptimize(j.data());
-  }
+  timeResidualAndJacobian(state, system);
   state.SetLabel("coulomb-1d, H = 10");
 }
 
