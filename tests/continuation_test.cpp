@@ -34,7 +34,15 @@ ContinuationOptions over(double from, double to, std::optional<double> step = st
 // The default options over a scene's own [sweep] range.
 ContinuationOptions overItsRange(const Scene& scene) { return over(*scene.sweep_from, *scene.sweep_to); }
 
-// A scene's arclength sweep over its own [sweep] range on the defaults.
+// A shipped problem's arclength sweep by the own dogleg on the default
+// options over [from, to].
+Curve arclengthOver(const std::string& problem, double from, double to) {
+  const Scene scene = loadScene(test::problem(problem));
+  auto solver = makeSolver("dogleg");
+  return sweepArclength(scene.model, *solver, {}, over(from, to));
+}
+
+// The same over the scene's own [sweep] range.
 Curve arclengthOverItsRange(const std::string& problem) {
   const Scene scene = loadScene(test::problem(problem));
   auto solver = makeSolver("dogleg");
@@ -77,10 +85,7 @@ TEST(Continuation, SweepsUpAndDownAgreeWhereTheResponseIsUnique) {
 }
 
 TEST(Continuation, ArclengthPassesTheFoldsOfTheCubicScene) {
-  const Scene scene = loadScene(test::problem("cubic.toml"));
-  auto solver = makeSolver("dogleg");
-  const ContinuationOptions options = over(0.4, 2.0);
-  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  const Curve curve = arclengthOver("cubic.toml", 0.4, 2.0);
   ASSERT_TRUE(curve.complete) << curve.stop_reason;
   // Hardening: the resonance bends right, turns back (fold), turns again
   // (fold) and the curve ends on the low-amplitude branch.
@@ -197,10 +202,7 @@ TEST(Continuation, ArclengthTracesTheDuffingCurveInFewPointsOnBothSystems) {
 // Downwards the curve used to reach the resonance, turn back at a spurious
 // fold and leave the range at its start, reported as complete.
 TEST(Continuation, ArclengthSweepsDownwardsAndEndsOnTheEndOfTheRange) {
-  const Scene scene = loadScene(test::problem("friction-1d.toml"));
-  auto solver = makeSolver("dogleg");
-  const ContinuationOptions options = over(0.8, 0.1);
-  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  const Curve curve = arclengthOver("friction-1d.toml", 0.8, 0.1);
   ASSERT_TRUE(curve.complete) << curve.stop_reason;
   EXPECT_EQ(curve.points.back().omega, 0.1);
   EXPECT_TRUE(curve.fold_omegas.empty());  // Coulomb friction on this chain: a single-valued curve
@@ -211,10 +213,7 @@ TEST(Continuation, ArclengthSweepsDownwardsAndEndsOnTheEndOfTheRange) {
 // The damper's curve used to turn back at omega = 0.98 on a tangent that
 // jumped (a spurious fold) and leave the range at 0.77, reported as complete.
 TEST(Continuation, ArclengthDoesNotTurnBackAtASpuriousFold) {
-  const Scene scene = loadScene(test::problem("damper.toml"));
-  auto solver = makeSolver("dogleg");
-  const ContinuationOptions options = over(0.8, 1.4);
-  const Curve curve = sweepArclength(scene.model, *solver, {}, options);
+  const Curve curve = arclengthOver("damper.toml", 0.8, 1.4);
   for (double fold : curve.fold_omegas) EXPECT_GT(std::abs(fold - 0.98), 0.01) << curve.stop_reason;
   if (curve.complete) {
     EXPECT_EQ(curve.points.back().omega, 1.4);

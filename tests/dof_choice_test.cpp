@@ -124,21 +124,14 @@ TEST(DofChoice, ALargerStructureWithoutNamesShowsFourDofsSpreadUpToTheLast) {
 TEST(DofChoice, LapJointDofsAreNamedByBeamNodeAndDirection) {
   const Scene scene = loadScene(test::problem("lap-joint.toml"));
   ASSERT_EQ(scene.model.structure.dofs(), 180);
-  // The upper beam's nodes 1..30 from its clamp, the lower beam's 31..60 from its own.
-  EXPECT_EQ(dofLabel(scene.model, 0), "u1");
-  EXPECT_EQ(dofLabel(scene.model, 1), "w1");
-  EXPECT_EQ(dofLabel(scene.model, 2), "theta1");
-  EXPECT_EQ(dofLabel(scene.model, 26), "theta9");
-  // Over the lap (upper nodes 10..30, lower 40..60: pair k is nodes 9 + k
-  // and 61 − k) the axial DOF is the facing surface's slide.
-  EXPECT_EQ(dofLabel(scene.model, 27), "us10");
-  EXPECT_EQ(dofLabel(scene.model, 87), "us30");
-  EXPECT_EQ(dofLabel(scene.model, 90), "u31");
-  EXPECT_EQ(dofLabel(scene.model, 114), "u39");
-  EXPECT_EQ(dofLabel(scene.model, 117), "us40");
-  EXPECT_EQ(dofLabel(scene.model, 177), "us60");
-  EXPECT_EQ(dofLabel(scene.model, 178), "w60");
-  EXPECT_EQ(dofLabel(scene.model, 179), "theta60");
+  // DOF (0-based) and its name. The upper beam's nodes 1..30 from its clamp,
+  // the lower beam's 31..60 from its own; over the lap (upper nodes 10..30,
+  // lower 40..60: pair k is nodes 9 + k and 61 − k) the axial DOF is the
+  // facing surface's slide.
+  const std::vector<std::pair<int, std::string>> names = {
+      {0, "u1"},    {1, "w1"},     {2, "theta1"},  {26, "theta9"}, {27, "us10"},  {87, "us30"},
+      {90, "u31"},  {114, "u39"},  {117, "us40"},  {177, "us60"},  {178, "w60"},  {179, "theta60"}};
+  for (const auto& [dof, name] : names) EXPECT_EQ(dofLabel(scene.model, dof), name) << "DOF " << dof;
   // The scene's forcing (DOF 59) is the upper beam's w20, which [output] makes the peak.
   EXPECT_EQ(resolveDof(scene.model, "59", "dof"), resolveDof(scene.model, "w20", "dof"));
   EXPECT_EQ(dofLabel(scene.model, scene.output.peak), "w20");

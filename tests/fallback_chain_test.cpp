@@ -23,49 +23,57 @@ SolverResult solveFromRest(HbSystem& system, Solver& solver, const SolverOptions
   return solver.solve(system, Eigen::VectorXd::Zero(system.size()), options);
 }
 
+// A shipped problem with `overrides`, its system (condensed or full) and the
+// own dogleg's solve of it from rest.
+struct SolvedFromRest {
+  SolvedFromRest(const std::string& problem, const std::vector<std::string>& overrides, bool condensed)
+      : scene(loadScene(test::problem(problem), overrides)),
+        system(makeHbSystem(scene.model, condensed)),
+        solver(makeSolver("dogleg")),
+        result(solveFromRest(*system, *solver, options)) {}
+  const Scene scene;
+  const std::unique_ptr<HbSystem> system;
+  const std::unique_ptr<Solver> solver;
+  const SolverOptions options;
+  const SolverResult result;
+};
+
 // friction-2d with the tanh friction form on the full system: the own dogleg
 // stalls from rest (not_progressing, |g| 0.019), and so do its coarse start and
 // Ipopt's least squares, while the condensed system converges cold. The
 // chain's "condensed" step solves it there and polishes the answer on the
 // full system, so the result is a converged solve of the full system itself.
 TEST(FallbackChain, AFullSystemThatStallsIsSolvedOnTheCondensedSystem) {
-  const Scene scene = loadScene(test::problem("friction-2d.toml"), {"law[0].form=\"tanh\""});
-  auto full = makeHbSystem(scene.model, false);
-  auto solver = makeSolver("dogleg");
-  const SolverOptions options;
-  const SolverResult failed = solveFromRest(*full, *solver, options);
-  ASSERT_FALSE(failed.converged());
+  const SolvedFromRest s("friction-2d.toml", {"law[0].form=\"tanh\""}, false);
+  HbSystem& full = *s.system;
+  ASSERT_FALSE(s.result.converged());
 
   const FallbackChain without = FallbackChain::parse("cold,full", "fallback", [](const std::string&) { return nullptr; });
-  EXPECT_FALSE(solveWithFallbacks(*full, *solver, options, failed, false, without, nullptr).converged());
+  EXPECT_FALSE(solveWithFallbacks(full, *s.solver, s.options, s.result, false, without, nullptr).converged());
 
   const FallbackChain chain = FallbackChain::standard(nullptr);
   FallbackReport report;
-  const SolverResult r = solveWithFallbacks(*full, *solver, options, failed, true, chain, &report);
+  const SolverResult r = solveWithFallbacks(full, *s.solver, s.options, s.result, true, chain, &report);
   ASSERT_TRUE(r.converged()) << describeFallbacks(report);
   EXPECT_EQ(report.taken, "condensed");
   // The answer is the full system's: its residual, in its own scales, within tolerance there.
-  EXPECT_LE(scaledResidualNorm(*full, r.solution), options.residual_tolerance);
+  EXPECT_LE(scaledResidualNorm(full, r.solution), s.options.residual_tolerance);
   // And it is the condensed system's solution.
-  auto condensed = makeHbSystem(scene.model, true);
-  const SolverResult direct = solveFromRest(*condensed, *solver, options);
+  auto condensed = makeHbSystem(s.scene.model, true);
+  const SolverResult direct = solveFromRest(*condensed, *s.solver, s.options);
   ASSERT_TRUE(direct.converged());
-  EXPECT_LT((full->fullCoefficients(r.solution) - condensed->fullCoefficients(direct.solution)).norm(),
+  EXPECT_LT((full.fullCoefficients(r.solution) - condensed->fullCoefficients(direct.solution)).norm(),
             1e-6 * condensed->fullCoefficients(direct.solution).norm());
 }
 
 // On the condensed system the step has nothing to add and is skipped.
 TEST(FallbackChain, TheCondensedStepIsSkippedOnTheCondensedSystem) {
-  const Scene scene = loadScene(test::problem("contact.toml"), {"law[0].form=\"sign-square\""});
-  auto condensed = makeHbSystem(scene.model, true);
-  auto solver = makeSolver("dogleg");
-  const SolverOptions options;
-  const SolverResult failed = solveFromRest(*condensed, *solver, options);
-  ASSERT_FALSE(failed.converged());
+  const SolvedFromRest s("contact.toml", {"law[0].form=\"sign-square\""}, true);
+  ASSERT_FALSE(s.result.converged());
   FallbackReport report;
   const FallbackChain chain =
       FallbackChain::parse("condensed", "fallback", [](const std::string&) { return nullptr; });
-  solveWithFallbacks(*condensed, *solver, options, failed, true, chain, &report);
+  solveWithFallbacks(*s.system, *s.solver, s.options, s.result, true, chain, &report);
   EXPECT_TRUE(report.attempts.empty());
 }
 

@@ -61,27 +61,41 @@ Eigen::VectorXd liftCoefficients(const HbModel& coulomb, const Eigen::VectorXd& 
   return out;
 }
 
-double reductionResidual(const HbModel& coulomb, double mu, FrictionForm form, double* solution_gap) {
-  const HbModel joint = withBlockedNormal(coulomb, mu, form);
+// The Coulomb model's solution (full system, own dogleg) lifted to the
+// joint model: the joint system's residual there, the Coulomb residual at
+// its solution and the joint system's largest equation scale (the solvers'
+// tolerance is in those scales).
+struct LiftedSolution {
+  Eigen::VectorXd z;
+  double residual = 0.0, reference = 0.0, scale = 0.0;
+};
+LiftedSolution liftSolution(const HbModel& coulomb, const HbModel& joint) {
   FullSystem reference(coulomb), lifted(joint);
   const SolverResult solved = makeSolver("dogleg")->solve(reference, Eigen::VectorXd::Zero(reference.size()), {});
   EXPECT_TRUE(solved.converged()) << solved.summary();
-  Eigen::VectorXd g_ref(reference.size()), g(lifted.size());
+  Eigen::VectorXd g_ref(reference.size()), g(lifted.size()), scales(lifted.size());
   reference.residual(solved.solution, g_ref);
-  const Eigen::VectorXd z = liftCoefficients(coulomb, solved.solution);
-  lifted.residual(z, g);
+  LiftedSolution out;
+  out.z = liftCoefficients(coulomb, solved.solution);
+  lifted.residual(out.z, g);
+  lifted.residualScales(scales);
+  out.residual = g.norm();
+  out.reference = g_ref.norm();
+  out.scale = scales.maxCoeff();
+  return out;
+}
+
+double reductionResidual(const HbModel& coulomb, double mu, FrictionForm form, double* solution_gap) {
+  const HbModel joint = withBlockedNormal(coulomb, mu, form);
+  const LiftedSolution l = liftSolution(coulomb, joint);
   // The same equations: every residual entry of the joint system is one of
   // the Coulomb system's or an exact zero (the blocked normal DOF).
-  const double residual = g.norm();
-  EXPECT_NEAR(residual, g_ref.norm(), 1e-12);
+  EXPECT_NEAR(l.residual, l.reference, 1e-12);
+  FullSystem lifted(joint);
   const SolverResult direct = makeSolver("dogleg")->solve(lifted, Eigen::VectorXd::Zero(lifted.size()), {});
   EXPECT_TRUE(direct.converged()) << direct.summary();
-  *solution_gap = (direct.solution - z).cwiseAbs().maxCoeff() / z.cwiseAbs().maxCoeff();
-  // Relative to the joint system's largest equation scale (the solvers'
-  // tolerance is in those scales).
-  Eigen::VectorXd scales(lifted.size());
-  lifted.residualScales(scales);
-  return residual / scales.maxCoeff();
+  *solution_gap = (direct.solution - l.z).cwiseAbs().maxCoeff() / l.z.cwiseAbs().maxCoeff();
+  return l.residual / l.scale;
 }
 
 TEST(ContactFriction, BlockedNormalReducesToCoulomb1D) {
@@ -107,19 +121,10 @@ TEST(ContactFriction, BlockedNormalReducesToCoulomb2D) {
     HbModel joint = withBlockedNormal(coulomb, 0.5, form);
     ContactFrictionParameters p = std::dynamic_pointer_cast<ContactFriction>(joint.laws[0].law)->parameters();
     p.preload = 8.0 / 0.5;
-    FullSystem reference(coulomb);
     joint.laws[0].law = std::make_shared<ContactFriction>(p);
-    FullSystem lifted(joint);
-    const SolverResult solved = makeSolver("dogleg")->solve(reference, Eigen::VectorXd::Zero(reference.size()), {});
-    ASSERT_TRUE(solved.converged()) << solved.summary();
-    Eigen::VectorXd g_ref(reference.size()), g(lifted.size());
-    reference.residual(solved.solution, g_ref);
-    const Eigen::VectorXd z = liftCoefficients(coulomb, solved.solution);
-    lifted.residual(z, g);
-    Eigen::VectorXd scales(lifted.size());
-    lifted.residualScales(scales);
-    EXPECT_LT(g.norm(), 1e-10 * scales.maxCoeff());  // the tolerance, in the problem's scales
-    EXPECT_NEAR(g.norm(), g_ref.norm(), 1e-12);
+    const LiftedSolution l = liftSolution(coulomb, joint);
+    EXPECT_LT(l.residual, 1e-10 * l.scale);  // the tolerance, in the problem's scales
+    EXPECT_NEAR(l.residual, l.reference, 1e-12);
   }
 }
 

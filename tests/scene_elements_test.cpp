@@ -9,24 +9,19 @@
 
 #include "eqhb/app/solve.h"
 #include "eqhb/error.h"
+#include "eqhb/round_trip.h"
 #include "eqhb/scenes/law_rho.h"
 #include "eqhb/scenes/scene.h"
-#include "test_support.h"
+#include "check_support.h"
 
 namespace eqhb {
 namespace {
-
-std::string number(double x) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
 
 std::string matrix(const Eigen::MatrixXd& m) {
   std::string out = "[";
   for (int i = 0; i < m.rows(); ++i) {
     out += i ? ", [" : "[";
-    for (int j = 0; j < m.cols(); ++j) out += (j ? ", " : "") + number(m(i, j));
+    for (int j = 0; j < m.cols(); ++j) out += (j ? ", " : "") + formatRoundTrip(m(i, j));
     out += "]";
   }
   return out + "]";
@@ -34,7 +29,7 @@ std::string matrix(const Eigen::MatrixXd& m) {
 
 std::string vector(const Eigen::VectorXd& v) {
   std::string out = "[";
-  for (int i = 0; i < v.size(); ++i) out += (i ? ", " : "") + number(v[i]);
+  for (int i = 0; i < v.size(); ++i) out += (i ? ", " : "") + formatRoundTrip(v[i]);
   return out + "]";
 }
 
@@ -56,7 +51,7 @@ std::string jointScene(const Eigen::Matrix3d& r, const std::string& extra_law_ke
                      "\nstiffness = " + matrix(kr) + "\ndamping = " + matrix(0.03 * kr) +
                      "\nnode_table = [[1, 2, 3], [4, 5, 6]]\n";
   for (int i = 0; i < 3; ++i)
-    text += "[[forcing]]\ndof = " + std::to_string(i + 1) + "\nharmonic = 1\ncos = " + number(load[i]) + "\n";
+    text += "[[forcing]]\ndof = " + std::to_string(i + 1) + "\nharmonic = 1\ncos = " + formatRoundTrip(load[i]) + "\n";
   text += "[[law]]\ntype = \"contact-friction\"\nbetween = [1, 2]\nnormal = " + vector(r * Eigen::Vector3d(0, 0, 1)) +
           "\ntangents = [" + vector(r * Eigen::Vector3d(1, 0, 0)) + ", " + vector(r * Eigen::Vector3d(0, 1, 0)) +
           "]\nmu = 0.4\npreload = 1.0\ngap = 0.5\n" + extra_law_keys;
@@ -108,15 +103,7 @@ TEST(SceneElements, TheJointRotatedInSpaceGivesTheSameResponse) {
                         b = solvedAsTheCommandSolves(jointScene(r), "turned.toml");
   const int nb = axes.model.basis.size();
   const double scale = a.cwiseAbs().maxCoeff();
-  for (int node = 0; node < 2; ++node)
-    for (int t = 0; t < nb; ++t) {
-      Eigen::Vector3d xa, xb;
-      for (int i = 0; i < 3; ++i) {
-        xa[i] = a[(3 * node + i) * nb + t];
-        xb[i] = b[(3 * node + i) * nb + t];
-      }
-      EXPECT_LT((r * xa - xb).norm(), 1e-10 * scale) << "node " << node + 1 << ", coefficient " << t;
-    }
+  EXPECT_LT(test::turnedMismatch(r, a, b, nb, 2), 1e-10 * scale);
   EXPECT_LT((a.tail(3 * nb) - b.tail(3 * nb)).cwiseAbs().maxCoeff(), 1e-10 * scale);
 }
 
@@ -170,19 +157,10 @@ TEST(SceneElements, NlvibTwoDofExampleWithTheRelativeSpringSolves) {
 }
 
 void expectError(const std::string& text, const std::string& needle) {
-  try {
-    parseScene(text, "bad.toml");
-    FAIL() << "accepted; expected " << needle;
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
+  test::expectSceneError(text, needle, {}, "bad.toml");
 }
 
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
+using test::replaced;
 
 TEST(SceneElements, BadElementsAreRefusedNamingTheField) {
   const std::string good = jointScene(Eigen::Matrix3d::Identity());

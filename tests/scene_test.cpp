@@ -6,8 +6,11 @@
 #include <cmath>
 
 #include "eqhb/laws/coulomb_1d.h"
+#include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
-#include "test_support.h"
+#include "eqhb/harmonic_balance/hb_systems.h"
+#include "eqhb/harmonic_balance/invariants.h"
+#include "check_support.h"
 
 namespace eqhb {
 namespace {
@@ -32,22 +35,12 @@ samples = 64
 omega = 0.4
 )";
 
-std::string replaced(const std::string& from, const std::string& to) {
-  std::string text = kValid;
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
+// The valid scene with its first `from` replaced by `to`.
+std::string replaced(const std::string& from, const std::string& to) { return test::replaced(kValid, from, to); }
 
-// Expects an InputError whose message contains `needle`.
 void expectError(const std::string& text, const std::string& needle,
                  const std::vector<std::string>& overrides = {}) {
-  try {
-    parseScene(text, "scene.toml", overrides);
-    FAIL() << "accepted; expected an error mentioning " << needle;
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
+  test::expectSceneError(text, needle, overrides);
 }
 
 TEST(Scene, TheShippedFriction1dSceneHasTheSpecParameters) {
@@ -330,6 +323,28 @@ TEST(Scene, LawRhosFollowTheFileAndItsOverrides) {
   EXPECT_EQ(scaled[0]->factor, 0.1);
   EXPECT_EQ(scaledRhoOverride(0, *scaled[0], 0.1), "law[0].rho_factor=0.01");
   EXPECT_THROW(lawRhos(test::problem("friction-1d.toml"), {"law[0].rho=-1"}), InputError);
+}
+
+TEST(Scene, TwoLawsOnOneStructure) {
+  // Friction on DOF 2 and a cubic spring on DOF 1 of the same chain.
+  const std::string text =
+      replaced("[harmonic_balance]", "[[law]]\ntype = \"cubic\"\ndofs = [1]\nepsilon = 0.002\n[harmonic_balance]");
+  const Scene scene = parseScene(text, "two-laws.toml", {"harmonic_balance.samples=512"});
+  ASSERT_EQ(scene.model.laws.size(), 2u);
+  for (bool condensed : {true, false}) {
+    std::unique_ptr<HbSystem> system;
+    if (condensed) system = std::make_unique<CondensedSystem>(scene.model);
+    else system = std::make_unique<FullSystem>(scene.model);
+    srand(2);
+    const Eigen::VectorXd z = Eigen::VectorXd::Random(system->size());
+    EXPECT_LT(test::jacobianError(*system, z), 1e-5);
+    const SolverResult r = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
+    ASSERT_TRUE(r.converged()) << (condensed ? "condensed " : "full ") << r.summary();
+    const auto reports = checkInvariants(scene.model, system->fullCoefficients(r.solution));
+    ASSERT_EQ(reports.size(), 2u);
+    EXPECT_EQ(reports[1].type, "cubic");
+    EXPECT_LT(reports[0].violations[0].second, 0.1);  // friction limit
+  }
 }
 
 }  // namespace

@@ -161,52 +161,5 @@ TEST(Scenes, CubicDaeEqualsTheExplicitSubstitution) {
   }
 }
 
-TEST(Scenes, TwoLawsOnOneStructure) {
-  // Friction on DOF 2 and a cubic spring on DOF 1 of the same chain.
-  const std::string text = R"(
-name = "two-laws"
-[structure]
-type = "chain"
-m = 1.0
-k = 1.0
-d = 0.02
-[[forcing]]
-dof = 1
-cos = 20.0
-[[law]]
-type = "coulomb-1d"
-dofs = [2]
-muN = 7.2
-[[law]]
-type = "cubic"
-dofs = [1]
-epsilon = 0.002
-[harmonic_balance]
-harmonics = 10
-samples = 512
-omega = 0.4
-)";
-  const Scene scene = parseScene(text, "two-laws.toml");
-  ASSERT_EQ(scene.model.laws.size(), 2u);
-  for (bool condensed : {true, false}) {
-    std::unique_ptr<HbSystem> system;
-    if (condensed) system = std::make_unique<CondensedSystem>(scene.model);
-    else system = std::make_unique<FullSystem>(scene.model);
-    srand(2);
-    const Eigen::VectorXd z = Eigen::VectorXd::Random(system->size());
-    Eigen::VectorXd g(system->size());
-    Eigen::MatrixXd j(system->size(), system->size());
-    ASSERT_TRUE(system->residualAndJacobian(z, g, j));
-    const Eigen::MatrixXd fd = test::finiteDifferenceJacobian(*system, z);
-    EXPECT_LT((j - fd).cwiseAbs().maxCoeff(), 1e-5 * (1 + fd.cwiseAbs().maxCoeff()));
-    const SolverResult r = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), {});
-    ASSERT_TRUE(r.converged()) << (condensed ? "condensed " : "full ") << r.summary();
-    const auto reports = checkInvariants(scene.model, system->fullCoefficients(r.solution));
-    ASSERT_EQ(reports.size(), 2u);
-    EXPECT_EQ(reports[1].type, "cubic");
-    EXPECT_LT(reports[0].violations[0].second, 0.1);  // friction limit
-  }
-}
-
 }  // namespace
 }  // namespace eqhb

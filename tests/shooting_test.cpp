@@ -50,15 +50,19 @@ HbModel linearChain(bool with_zero_friction) {
   return model;
 }
 
+// Den Hartog's oscillator's exact flow and a start far from its orbit.
+struct FarFromTheOrbit {
+  const HbModel model = test::denHartog(1.5, 0.3, 5, 64);
+  const PiecewiseLinearFlow flow{model, 0.0};
+  const Eigen::VectorXd start = Eigen::Vector2d(40.0, 3.0);
+};
+
 TEST(Shooting, AnUnconvergedOrbitHasNoMultipliers) {
   // One Newton step from far away: not an orbit, so Φ's eigenvalues mean nothing.
-  const HbModel model = test::denHartog(1.5, 0.3, 5, 64);
-  const PiecewiseLinearFlow flow(model, 0.0);
-  Eigen::VectorXd start(2);
-  start << 40.0, 3.0;
+  const FarFromTheOrbit far;
   ShootingOptions options;
   options.max_iterations = 1;
-  const auto orbit = shootPeriodicOrbit(flow, start, 0.0, options);
+  const auto orbit = shootPeriodicOrbit(far.flow, far.start, 0.0, options);
   ASSERT_FALSE(orbit.converged);
   EXPECT_EQ(orbit.multipliers.size(), 0);
   EXPECT_FALSE(orbit.stable);
@@ -66,10 +70,7 @@ TEST(Shooting, AnUnconvergedOrbitHasNoMultipliers) {
 }
 
 TEST(Shooting, ATimeLimitStopsNewtonAndSaysSo) {
-  const HbModel model = test::denHartog(1.5, 0.3, 5, 64);
-  const PiecewiseLinearFlow flow(model, 0.0);
-  Eigen::VectorXd start(2);
-  start << 40.0, 3.0;
+  const FarFromTheOrbit far;
   ShootingOptions options;
   options.time_limit = 1e-9;  // passed after the first period map
   int reports = 0;
@@ -78,7 +79,7 @@ TEST(Shooting, ATimeLimitStopsNewtonAndSaysSo) {
     EXPECT_EQ(iterations, 0);
     ++reports;
   };
-  const auto orbit = shootPeriodicOrbit(flow, start, 0.0, options);
+  const auto orbit = shootPeriodicOrbit(far.flow, far.start, 0.0, options);
   EXPECT_FALSE(orbit.converged);
   EXPECT_EQ(orbit.iterations, 0);
   EXPECT_EQ(orbit.flow_evaluations, 1);
@@ -87,7 +88,7 @@ TEST(Shooting, ATimeLimitStopsNewtonAndSaysSo) {
       << orbit.failure;
   EXPECT_EQ(orbit.multipliers.size(), 0);
   options.time_limit = -1.0;
-  EXPECT_THROW(shootPeriodicOrbit(flow, start, 0.0, options), InputError);
+  EXPECT_THROW(shootPeriodicOrbit(far.flow, far.start, 0.0, options), InputError);
 }
 
 TEST(Shooting, LinearOrbitIsTheExactResponseAndMultipliersAreExpLambdaT) {
@@ -135,6 +136,27 @@ TEST(Shooting, LinearOrbitIsTheExactResponseAndMultipliersAreExpLambdaT) {
   }
 }
 
+// Central differences of the flow map over [t0, t0 + duration] from y0, each
+// coordinate stepped by relative_step · max(1, |y0|); the event sequence
+// checked to be `events` on both sides.
+Eigen::MatrixXd finiteDifferenceFlowMap(const orbits::Flow& flow, const Eigen::VectorXd& y0, double t0,
+                                        double duration, double relative_step,
+                                        const std::map<std::string, int>& events) {
+  Eigen::MatrixXd fd(y0.size(), y0.size());
+  for (int c = 0; c < y0.size(); ++c) {
+    const double h = relative_step * std::max(1.0, std::abs(y0[c]));
+    Eigen::VectorXd plus = y0, minus = y0;
+    plus[c] += h;
+    minus[c] -= h;
+    const auto p = flow.integrate(plus, t0, duration, false), m = flow.integrate(minus, t0, duration, false);
+    EXPECT_TRUE(p.ok && m.ok);
+    EXPECT_EQ(p.events, events);
+    EXPECT_EQ(m.events, events);
+    fd.col(c) = (p.end - m.end) / (2 * h);
+  }
+  return fd;
+}
+
 TEST(Shooting, PeriodMapJacobianMatchesFiniteDifferences) {
   for (double omega : {0.4, 0.55, 0.308}) {
     HbModel model = loadScene(test::problem("friction-1d.toml")).model;
@@ -146,17 +168,8 @@ TEST(Shooting, PeriodMapJacobianMatchesFiniteDifferences) {
     const auto exact = flow.integrate(y0, t0, flow.period(), true);
     ASSERT_TRUE(exact.ok) << exact.failure;
     EXPECT_GT(exact.events.size(), 0u);
-    Eigen::MatrixXd fd(4, 4);
-    for (int c = 0; c < 4; ++c) {
-      const double h = 1e-6 * std::max(1.0, std::abs(y0[c]));
-      Eigen::VectorXd plus = y0, minus = y0;
-      plus[c] += h;
-      minus[c] -= h;
-      const auto p = flow.integrate(plus, t0, flow.period(), false), m = flow.integrate(minus, t0, flow.period(), false);
-      ASSERT_TRUE(p.ok && m.ok);
-      ASSERT_EQ(p.events, exact.events);  // same event sequence: away from a switch
-      fd.col(c) = (p.end - m.end) / (2 * h);
-    }
+    // The same event sequence on both sides: away from a switch.
+    const Eigen::MatrixXd fd = finiteDifferenceFlowMap(flow, y0, t0, flow.period(), 1e-6, exact.events);
     EXPECT_LT((fd - exact.jacobian).norm(), 1e-6 * std::max(1.0, exact.jacobian.norm())) << "omega " << omega;
   }
 }
@@ -180,23 +193,10 @@ TEST(Shooting, FrictionChainFromHarmonicBalanceConvergesNearIt) {
 }
 
 // Central differences of the period map from y0 at t0, with the event
-// sequence checked to be the same on both sides.
+// sequence checked to be `events` on both sides.
 Eigen::MatrixXd finiteDifferenceMonodromy(const orbits::Flow& flow, const Eigen::VectorXd& y0, double t0,
                                           const std::map<std::string, int>& events) {
-  const int size = flow.stateSize();
-  Eigen::MatrixXd fd(size, size);
-  for (int c = 0; c < size; ++c) {
-    const double h = 1e-6 * std::max(1.0, std::abs(y0[c]));
-    Eigen::VectorXd plus = y0, minus = y0;
-    plus[c] += h;
-    minus[c] -= h;
-    const auto p = flow.integrate(plus, t0, flow.period(), false), m = flow.integrate(minus, t0, flow.period(), false);
-    EXPECT_TRUE(p.ok && m.ok);
-    EXPECT_EQ(p.events, events);
-    EXPECT_EQ(m.events, events);
-    fd.col(c) = (p.end - m.end) / (2 * h);
-  }
-  return fd;
+  return finiteDifferenceFlowMap(flow, y0, t0, flow.period(), 1e-6, events);
 }
 
 TEST(Shooting, ContactOrbitsWithRestitutionZeroAndOne) {
@@ -261,15 +261,22 @@ orbits::ShootingResult shootSmooth(const HbModel& model, const orbits::Flow& flo
   return shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
 }
 
+// A smooth scene's exact flow, its harmonic balance and the orbit shot from it.
+struct SmoothShot {
+  explicit SmoothShot(const HbModel& model)
+      : flow(orbits::makeFlow(model, 0.0)), hb(test::harmonicBalance(model)), orbit(shootSmooth(model, *flow, hb)) {}
+  const std::unique_ptr<orbits::Flow> flow;
+  const Eigen::VectorXd hb;
+  const orbits::ShootingResult orbit;
+};
+
 TEST(Shooting, CubicOrbitAgreesWithConvergedHarmonicBalance) {
   // Smooth: harmonic balance converges spectrally, so at H = 15 odd harmonics
   // it is a second exact answer for the Gauss–Legendre shooting orbit.
   HbModel model = loadScene(test::problem("cubic.toml")).model;
   model.basis = HarmonicSet(HarmonicKind::kOdd, 15);
   model.samples = 256;
-  const auto flow = orbits::makeFlow(model, 0.0);
-  const Eigen::VectorXd hb = test::harmonicBalance(model);
-  const auto orbit = shootSmooth(model, *flow, hb);
+  const auto& [flow, hb, orbit] = SmoothShot(model);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   const Eigen::VectorXd y_hb = orbits::harmonicState(model, hb, orbit.start_time);
   EXPECT_LT((y_hb - orbit.state).cwiseAbs().maxCoeff(), 1e-9 * orbit.state.cwiseAbs().maxCoeff());
@@ -281,9 +288,7 @@ TEST(Shooting, CubicOrbitAgreesWithConvergedHarmonicBalance) {
 
 TEST(Shooting, PlanarSlidingOrbitAndItsMonodromy) {
   const HbModel model = loadScene(test::problem("friction-2d-sliding.toml")).model;
-  const auto flow = orbits::makeFlow(model, 0.0);
-  const Eigen::VectorXd hb = test::harmonicBalance(model);
-  const auto orbit = shootSmooth(model, *flow, hb);
+  const auto& [flow, hb, orbit] = SmoothShot(model);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   EXPECT_LE(orbit.period_residual, 1e-11);
   const auto run = flow->integrate(orbit.state, orbit.start_time, flow->period(), true);
@@ -308,26 +313,13 @@ TEST(Shooting, PlanarSlidingOrbitAndItsMonodromy) {
 double jacobianMismatch(const orbits::Flow& flow, const Eigen::VectorXd& y0, double t0, double duration) {
   const auto exact = flow.integrate(y0, t0, duration, true);
   EXPECT_TRUE(exact.ok) << exact.failure;
-  Eigen::MatrixXd fd(y0.size(), y0.size());
-  for (int c = 0; c < y0.size(); ++c) {
-    const double h = 1e-5 * std::max(1.0, std::abs(y0[c]));
-    Eigen::VectorXd plus = y0, minus = y0;
-    plus[c] += h;
-    minus[c] -= h;
-    const auto p = flow.integrate(plus, t0, duration, false), m = flow.integrate(minus, t0, duration, false);
-    EXPECT_TRUE(p.ok && m.ok);
-    EXPECT_EQ(p.events, exact.events);
-    EXPECT_EQ(m.events, exact.events);
-    fd.col(c) = (p.end - m.end) / (2 * h);
-  }
+  const Eigen::MatrixXd fd = finiteDifferenceFlowMap(flow, y0, t0, duration, 1e-5, exact.events);
   return (fd - exact.jacobian).cwiseAbs().maxCoeff() / exact.jacobian.cwiseAbs().maxCoeff();
 }
 
 TEST(Shooting, PlanarStickSlipOrbit) {
   const HbModel model = loadScene(test::problem("friction-2d.toml")).model;
-  const auto flow = orbits::makeFlow(model, 0.0);
-  const Eigen::VectorXd hb = test::harmonicBalance(model);
-  const auto orbit = shootSmooth(model, *flow, hb);
+  const auto& [flow, hb, orbit] = SmoothShot(model);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   EXPECT_LE(orbit.period_residual, 1e-11);
   EXPECT_GE(orbit.events.at("stick"), 2);
@@ -357,8 +349,7 @@ TEST(Shooting, PlanarStickSlipOrbit) {
 
 TEST(Shooting, PlanarStickSlipMonodromyMatchesFiniteDifferences) {
   const HbModel model = loadScene(test::problem("friction-2d.toml")).model;
-  const auto flow = orbits::makeFlow(model, 0.0);
-  const auto orbit = shootSmooth(model, *flow, test::harmonicBalance(model));
+  const auto& [flow, hb, orbit] = SmoothShot(model);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   // The monodromy (stop and release saltations) against central
   // differences, over parts of the period and the whole. The differences
@@ -372,9 +363,7 @@ TEST(Shooting, PlanarStickSlipMonodromyMatchesFiniteDifferences) {
 // Moreau–Jean (θ = ½) converges to the exact orbit at first order at least:
 // an independent check of it.
 void expectMoreauJeanConverges(const HbModel& model) {
-  const auto flow = orbits::makeFlow(model, 0.0);
-  const Eigen::VectorXd hb = test::harmonicBalance(model);
-  const auto orbit = shootSmooth(model, *flow, hb);
+  const auto& [flow, hb, orbit] = SmoothShot(model);
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   std::vector<double> errors;
   for (int steps : {250, 1000}) {
@@ -404,8 +393,7 @@ TEST(Shooting, StribeckOrbitsAndTheirMonodromy) {
   for (double omega : {0.2, 0.4}) {
     HbModel model = loadScene(test::problem("stribeck.toml")).model;
     model.omega = omega;
-    const auto flow = orbits::makeFlow(model, 0.0);
-    const auto orbit = shootSmooth(model, *flow, test::harmonicBalance(model));
+    const auto& [flow, hb, orbit] = SmoothShot(model);
     ASSERT_TRUE(orbit.converged) << orbit.failure;
     EXPECT_LE(orbit.period_residual, 1e-11);
     EXPECT_EQ(orbit.events.count("stick"), omega == 0.2 ? 1u : 0u);

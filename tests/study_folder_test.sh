@@ -10,20 +10,7 @@ rm -rf "$work" && mkdir -p "$work"
 args=(study "$scene" --harmonics 5 --samples 128 --vary law.muN=1:6:6 --peak --from 0.3 --to 1.2 --threads 1)
 other=(study "$scene" --harmonics 5 --samples 128 --vary law.muN=1:7:6 --peak --from 0.3 --to 1.2 --threads 1)
 
-# expect CODE REGEX COMMAND...: the exit code and a line of the output.
-expect() {
-  local code=$1 pattern=$2 output status
-  shift 2
-  set +e
-  output=$("$@" 2>&1)
-  status=$?
-  set -e
-  if [ "$status" -ne "$code" ] || ! grep -Eq -- "$pattern" <<<"$output"; then
-    printf '%s\n' "$output"
-    echo "FAILED: expected exit code $code and /$pattern/, got $status" >&2
-    exit 1
-  fi
-}
+source "$(dirname "$0")/expect.sh"
 # edit FOLDER LINE COLUMN VALUE: one field of one journal line (1-based).
 edit() {
   /usr/bin/python3 - "$1/journal.csv" "$2" "$3" "$4" <<'PY'

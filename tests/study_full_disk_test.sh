@@ -12,19 +12,7 @@ rm -rf "$work" && mkdir -p "$disk"
 mount -t tmpfs -o size=16k tmpfs "$disk" 2>/dev/null || { echo "cannot mount a tmpfs here: skipped"; exit 77; }
 trap 'umount "$disk" 2>/dev/null || true' EXIT
 
-expect() {  # CODE REGEX COMMAND...
-  local code=$1 pattern=$2 output status
-  shift 2
-  set +e
-  output=$("$@" 2>&1)
-  status=$?
-  set -e
-  printf '%s\n' "$output" | tail -n 3
-  if [ "$status" -ne "$code" ] || ! grep -Eq -- "$pattern" <<<"$output"; then
-    echo "FAILED: expected exit code $code and /$pattern/, got $status" >&2
-    exit 1
-  fi
-}
+source "$(dirname "$0")/expect.sh"
 
 # 300 rows of ~160 bytes do not fit in 16 KiB: the journal's write fails.
 total=300

@@ -90,6 +90,23 @@ TEST(StudyPlan, BadSpecificationsNameTheField) {
   }
 }
 
+// Peak options over [from, to], the rest the defaults.
+PeakOptions peakBetween(double from, double to) {
+  PeakOptions options;
+  options.from = from;
+  options.to = to;
+  return options;
+}
+
+// A grid sweep of `step` over [omega − half_width, omega + half_width].
+ContinuationOptions gridAround(double omega, double half_width, double step) {
+  ContinuationOptions options;
+  options.from = omega - half_width;
+  options.to = omega + half_width;
+  options.step = step;
+  return options;
+}
+
 // Without friction (μN = 0 makes r = 0) the chain is linear: the peak of
 // |X₁(ω)|, X = (K − ω²M + iωC)⁻¹ f, found here by golden section.
 TEST(PeakTracking, MatchesTheLinearFrequencyResponseWithoutFriction) {
@@ -108,9 +125,7 @@ TEST(PeakTracking, MatchesTheLinearFrequencyResponseWithoutFriction) {
     (amplitude(a) > amplitude(b) ? hi : lo) = amplitude(a) > amplitude(b) ? b : a;
   }
   auto solver = makeSolver("dogleg");
-  PeakOptions options;
-  options.from = 0.1;
-  options.to = 0.8;
+  PeakOptions options = peakBetween(0.1, 0.8);
   const PeakResult peak = trackPeak(scene.model, *solver, SolverOptions(), options);
   ASSERT_TRUE(peak.converged) << peak.reason;
   EXPECT_EQ(peak.start, "cold");
@@ -121,16 +136,10 @@ TEST(PeakTracking, MatchesTheLinearFrequencyResponseWithoutFriction) {
 TEST(PeakTracking, FindsTheTopOfADenseSweepAndWarmStartsCheaply) {
   const Scene scene = smallFriction(4.0);
   auto solver = makeSolver("dogleg");
-  PeakOptions options;
-  options.from = 0.1;
-  options.to = 1.2;
+  PeakOptions options = peakBetween(0.1, 1.2);
   const PeakResult cold = trackPeak(scene.model, *solver, SolverOptions(), options);
   ASSERT_TRUE(cold.converged) << cold.reason;
-  ContinuationOptions dense;
-  dense.from = cold.omega - 0.01;
-  dense.to = cold.omega + 0.01;
-  dense.step = 0.0005;
-  const Curve curve = sweepSequential(scene.model, *solver, SolverOptions(), dense);
+  const Curve curve = sweepSequential(scene.model, *solver, SolverOptions(), gridAround(cold.omega, 0.01, 0.0005));
   double top = 0.0;
   for (const auto& p : curve.points) {
     ASSERT_TRUE(p.converged);
@@ -166,9 +175,7 @@ TEST(PeakTracking, APeakOfANonsmoothBranchIsTheTopOfTheAmplitude) {
     return loadScene(test::problem("beam-damper-elastic.toml"), set);
   };
   auto solver = makeSolver("dogleg");
-  PeakOptions options;
-  options.from = 2.8;
-  options.to = 8.0;
+  PeakOptions options = peakBetween(2.8, 8.0);
   options.dof = 119;  // transverse motion of the tip
   options.coarse_points = 100;
   const PeakResult free_peak = trackPeak(scene_at(0.01).model, *solver, SolverOptions(), options);
@@ -176,11 +183,7 @@ TEST(PeakTracking, APeakOfANonsmoothBranchIsTheTopOfTheAmplitude) {
   const Scene damped = scene_at(0.1762);
   const PeakResult peak = trackPeak(damped.model, *solver, SolverOptions(), options, &free_peak.state);
   ASSERT_TRUE(peak.converged) << peak.reason;
-  ContinuationOptions around;
-  around.from = peak.omega - 0.05;
-  around.to = peak.omega + 0.05;
-  around.step = 0.005;
-  const Curve curve = sweepSequential(damped.model, *solver, SolverOptions(), around);
+  const Curve curve = sweepSequential(damped.model, *solver, SolverOptions(), gridAround(peak.omega, 0.05, 0.005));
   ASSERT_EQ(curve.points.size(), 21u);
   for (const auto& p : curve.points) {
     ASSERT_TRUE(p.converged) << p.omega;
@@ -201,9 +204,7 @@ TEST(PeakTracking, APeakOfANonsmoothBranchIsTheTopOfTheAmplitude) {
 TEST(PeakTracking, APeakOutsideTheRangeIsAFailureWithItsReason) {
   const Scene scene = smallFriction(0.0);
   auto solver = makeSolver("dogleg");
-  PeakOptions options;
-  options.from = 0.1;
-  options.to = 0.5;  // the first mode (0.618) is beyond
+  PeakOptions options = peakBetween(0.1, 0.5);  // the first mode (0.618) is beyond
   const PeakResult peak = trackPeak(scene.model, *solver, SolverOptions(), options);
   EXPECT_FALSE(peak.converged);
   EXPECT_NE(peak.reason.find("edge of [0.1, 0.5]"), std::string::npos) << peak.reason;
@@ -222,29 +223,47 @@ StudySettings smallStudy(const std::string& dir) {
   return s;
 }
 
+// A failed sample's result.
+SampleResult failedSample(int id, std::vector<double> parameters, std::string reason) {
+  SampleResult r;
+  r.id = id;
+  r.parameters = std::move(parameters);
+  r.reason = std::move(reason);
+  return r;
+}
+
+// The small study in the empty folder `name` under the tests' temporary
+// folder, and its plan.
+struct FreshStudy {
+  explicit FreshStudy(const std::string& name)
+      : dir(emptyFolder(name)), settings(smallStudy(dir)), plan(studyPlanText(settings, "dogleg")) {}
+  static std::string emptyFolder(const std::string& name) {
+    const std::string dir = ::testing::TempDir() + "/" + name;
+    std::filesystem::remove_all(dir);
+    return dir;
+  }
+  const std::string dir;
+  const StudySettings settings;
+  const std::string plan;
+};
+
 TEST(StudyJournal, RowsRoundTripAndAKilledRunResumesWithWhatIsMissing) {
-  const std::string dir = ::testing::TempDir() + "/eqhb_study_journal";
-  std::filesystem::remove_all(dir);
-  const StudySettings settings = smallStudy(dir);
-  const std::string plan = studyPlanText(settings, "dogleg");
-  SampleResult failed;
-  failed.id = 2;
-  failed.parameters = {5.0};
-  failed.reason = "did not converge, \"really\"";
+  const FreshStudy study("eqhb_study_journal");
+  SampleResult failed = failedSample(2, {5.0}, "did not converge, \"really\"");
   failed.start = "cold (warm: x, y)";
   std::vector<SampleResult> all;
   {
-    StudyJournal journal(dir, settings, plan);
+    StudyJournal journal(study.dir, study.settings, study.plan);
     EXPECT_EQ(journal.pending(), (std::vector<int>{0, 1, 2}));
-    SampleWorker worker(settings, 0);
+    SampleWorker worker(study.settings, 0);
     all.push_back(worker.run(0));
     ASSERT_TRUE(all[0].ok) << all[0].reason;
     journal.append(all[0]);
     journal.append(failed);
   }
   // A kill in the middle of writing the next row leaves part of a line.
-  { std::ofstream(dir + "/journal.csv", std::ios::app) << "1,3,ok,warm,0.6"; }
-  StudyJournal resumed(dir, settings, plan);
+  { std::ofstream(study.dir + "/journal.csv", std::ios::app) << "1,3,ok,warm,0.6"; }
+  StudyJournal resumed(study.dir, study.settings, study.plan);
   EXPECT_EQ(resumed.pending(), (std::vector<int>{1}));
   const SampleResult& back = resumed.done().at(0);
   EXPECT_EQ(back.omega, all[0].omega);  // printed to round-trip
@@ -253,60 +272,52 @@ TEST(StudyJournal, RowsRoundTripAndAKilledRunResumesWithWhatIsMissing) {
   EXPECT_EQ(resumed.done().at(2).start, failed.start);
   EXPECT_FALSE(resumed.done().at(2).ok);
 
-  StudySettings other = settings;
+  StudySettings other = study.settings;
   other.peak.to = 1.3;
-  EXPECT_THROW(StudyJournal(dir, other, studyPlanText(other, "dogleg")), InputError);
-  std::filesystem::remove_all(dir);
+  EXPECT_THROW(StudyJournal(study.dir, other, studyPlanText(other, "dogleg")), InputError);
+  std::filesystem::remove_all(study.dir);
 }
 
 // A journal carries its plan's fingerprint: without plan.txt, another
 // study still cannot take its rows for its own answers.
 TEST(StudyJournal, AJournalIsRefusedByAnotherStudyEvenWithoutPlanTxt) {
-  const std::string dir = ::testing::TempDir() + "/eqhb_study_identity";
-  std::filesystem::remove_all(dir);
-  const StudySettings settings = smallStudy(dir);
+  const FreshStudy study("eqhb_study_identity");
   {
-    StudyJournal journal(dir, settings, studyPlanText(settings, "dogleg"));
-    SampleResult failed;
-    failed.id = 1;
-    failed.parameters = {3.0};
-    failed.reason = "not computed";
-    journal.append(failed);
+    StudyJournal journal(study.dir, study.settings, study.plan);
+    journal.append(failedSample(1, {3.0}, "not computed"));
   }
-  std::filesystem::remove(dir + "/plan.txt");
-  StudySettings other = settings;
+  std::filesystem::remove(study.dir + "/plan.txt");
+  StudySettings other = study.settings;
   other.peak.to = 1.3;
   try {
-    StudyJournal journal(dir, other, studyPlanText(other, "dogleg"));
+    StudyJournal journal(study.dir, other, studyPlanText(other, "dogleg"));
     ADD_FAILURE() << "another study took the journal";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("out = " + dir + ": holds another study: journal.csv has plan fingerprint"),
+    EXPECT_NE(std::string(e.what())
+                  .find("out = " + study.dir + ": holds another study: journal.csv has plan fingerprint"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_FALSE(std::filesystem::exists(dir + "/plan.txt"));
+  EXPECT_FALSE(std::filesystem::exists(study.dir + "/plan.txt"));
   // The study itself resumes and writes plan.txt again.
-  StudyJournal resumed(dir, settings, studyPlanText(settings, "dogleg"));
+  StudyJournal resumed(study.dir, study.settings, study.plan);
   EXPECT_EQ(resumed.pending(), (std::vector<int>{0, 2}));
-  EXPECT_TRUE(std::filesystem::exists(dir + "/plan.txt"));
-  EXPECT_NE(studyFingerprint(studyPlanText(settings, "dogleg")), studyFingerprint(studyPlanText(other, "dogleg")));
+  EXPECT_TRUE(std::filesystem::exists(study.dir + "/plan.txt"));
+  EXPECT_NE(studyFingerprint(study.plan), studyFingerprint(studyPlanText(other, "dogleg")));
 }
 
 TEST(StudyJournal, OneStudyAtATimeInAFolder) {
-  const std::string dir = ::testing::TempDir() + "/eqhb_study_lock";
-  std::filesystem::remove_all(dir);
-  const StudySettings settings = smallStudy(dir);
-  const std::string plan = studyPlanText(settings, "dogleg");
+  const FreshStudy study("eqhb_study_lock");
   {
-    StudyJournal first(dir, settings, plan);
+    StudyJournal first(study.dir, study.settings, study.plan);
     try {
-      StudyJournal second(dir, settings, plan);
+      StudyJournal second(study.dir, study.settings, study.plan);
       ADD_FAILURE() << "two studies in one folder";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("is in use by another study (process"), std::string::npos) << e.what();
     }
   }
-  EXPECT_NO_THROW(StudyJournal(dir, settings, plan));  // released with the first
+  EXPECT_NO_THROW(StudyJournal(study.dir, study.settings, study.plan));  // released with the first
 }
 
 TEST(StudyJournal, RowsKeepTheirNumbersWhole) {
@@ -322,12 +333,9 @@ TEST(StudyJournal, RowsKeepTheirNumbersWhole) {
 }
 
 TEST(StudyJournal, AnOkResultThatIsNotFiniteIsWrittenAsFailed) {
-  const std::string dir = ::testing::TempDir() + "/eqhb_study_nan";
-  std::filesystem::remove_all(dir);
-  const StudySettings settings = smallStudy(dir);
-  const std::string plan = studyPlanText(settings, "dogleg");
+  const FreshStudy study("eqhb_study_nan");
   {
-    StudyJournal journal(dir, settings, plan);
+    StudyJournal journal(study.dir, study.settings, study.plan);
     SampleResult r;
     r.id = 0;
     r.parameters = {1.0};
@@ -338,7 +346,7 @@ TEST(StudyJournal, AnOkResultThatIsNotFiniteIsWrittenAsFailed) {
     journal.append(r);
     EXPECT_FALSE(journal.done().at(0).ok);
   }
-  StudyJournal resumed(dir, settings, plan);  // the journal reads back
+  StudyJournal resumed(study.dir, study.settings, study.plan);  // the journal reads back
   EXPECT_FALSE(resumed.done().at(0).ok);
   EXPECT_NE(resumed.done().at(0).reason.find("not finite"), std::string::npos);
 }

@@ -186,15 +186,22 @@ TEST(TimeIntegrator, RejectsBadOptions) {
   EXPECT_THROW(integrateToSteadyState(model, options), InputError);
 }
 
+// A run of the damped chain at h = 1e-2 until its periods agree to
+// `periodic_tolerance` or `max_seconds` have passed.
+TimeOptions wallClockRun(double periodic_tolerance, double max_seconds) {
+  TimeOptions options;
+  options.step = 1e-2;
+  options.periodic_tolerance = periodic_tolerance;
+  options.max_seconds = max_seconds;
+  return options;
+}
+
 TEST(TimeIntegrator, AWallClockLimitStopsARunThatDoesNotSettleAndSaysSo) {
   // A tolerance no run can meet, and periods enough for seconds to minutes: the limit
   // (0.3 s) ends it, after whole periods, each reported to the callback.
   const HbModel model = dampedLinearChain();
-  TimeOptions options;
-  options.step = 1e-2;
-  options.periodic_tolerance = 1e-300;
+  TimeOptions options = wallClockRun(1e-300, 0.3);
   options.max_periods = 20000;
-  options.max_seconds = 0.3;
   int calls = 0, last = 0;
   const TimeReference ref = integrateToSteadyState(model, options, Eigen::VectorXd(), [&](int periods, double change) {
     ++calls;
@@ -212,12 +219,7 @@ TEST(TimeIntegrator, AWallClockLimitStopsARunThatDoesNotSettleAndSaysSo) {
 }
 
 TEST(TimeIntegrator, ARunThatSettlesIsNotTimedOut) {
-  const HbModel model = dampedLinearChain();
-  TimeOptions options;
-  options.step = 1e-2;
-  options.periodic_tolerance = 1e-6;
-  options.max_seconds = 600.0;
-  const TimeReference ref = integrateToSteadyState(model, options);
+  const TimeReference ref = integrateToSteadyState(dampedLinearChain(), wallClockRun(1e-6, 600.0));
   EXPECT_TRUE(ref.periodic);
   EXPECT_FALSE(ref.timed_out);
 }
