@@ -66,6 +66,31 @@ TEST(FallbackChain, AFullSystemThatStallsIsSolvedOnTheCondensedSystem) {
             1e-6 * condensed->fullCoefficients(direct.solution).norm());
 }
 
+// Backend-specific options (`--option`) belong to the failed solve's backend:
+// the chain's other backend runs on its own defaults instead of refusing
+// them. friction-2d (tanh form) on the full system, which the own dogleg and
+// its coarse start stall on, with a dogleg option set: Ipopt's least squares
+// still gets its turn (it refused the option, invalid_options, before).
+TEST(FallbackChain, AnotherBackendRunsOnItsOwnDefaults) {
+  if (!test::registered("ipopt-ls")) GTEST_SKIP() << "built without the Ipopt backend";
+  const Scene scene = loadScene(test::problem("friction-2d.toml"), {"law[0].form=\"tanh\""});
+  auto full = makeHbSystem(scene.model, false);
+  auto solver = makeSolver("dogleg");
+  auto backup = makeSolver("ipopt-ls");
+  SolverOptions options;
+  options.backend["factorisation"] = "qr";
+  const SolverResult failed = solveFromRest(*full, *solver, options);
+  ASSERT_FALSE(failed.converged());
+  FallbackChain chain;
+  chain.steps = {"ipopt-ls"};
+  chain.solvers = {backup.get()};
+  FallbackReport report;
+  solveWithFallbacks(*full, *solver, options, failed, true, chain, &report);
+  ASSERT_EQ(report.attempts.size(), 1u);
+  EXPECT_NE(report.attempts[0].result.termination, Termination::kInvalidOptions) << describeFallbacks(report);
+  EXPECT_GT(report.attempts[0].result.iterations, 0) << describeFallbacks(report);
+}
+
 // On the condensed system the step has nothing to add and is skipped.
 TEST(FallbackChain, TheCondensedStepIsSkippedOnTheCondensedSystem) {
   const SolvedFromRest s("contact.toml", {"law[0].form=\"sign-square\""}, true);

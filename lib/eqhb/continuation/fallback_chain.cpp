@@ -26,6 +26,15 @@ constexpr const char* kStepKinds = "cold, full, condensed, forcing or a backend 
 constexpr double kForcingStart = 0.25, kForcingFirstStep = 0.25, kForcingSmallestStep = 1.0 / 256.0;
 constexpr int kForcingMostSolves = 40;
 
+// `options` for a chain step's `backend`: the backend-specific settings
+// (`--option NAME=VALUE`) are the failed solve's backend's; another backend
+// would refuse them (ipopt-ls: invalid_options, the step lost) and runs on
+// its own defaults.
+SolverOptions forBackend(const Solver& backend, const Solver& failed_with, SolverOptions options) {
+  if (backend.name() != failed_with.name()) options.backend.clear();
+  return options;
+}
+
 // The solve's own cold start on `system`: coarse start, then `rest_full`
 // (the full coefficients a cold solve begins at; empty: zero).
 SolverResult solveCold(Solver& solver, HbSystem& system, const SolverOptions& options,
@@ -240,7 +249,8 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
       else if (step == kFull) attempt.result = solveOnFullSystem(solver, system, remaining(), rest_full);
       else if (step == kCondensed) attempt.result = solveOnCondensedSystem(solver, system, remaining(), rest_full);
       else if (step == kForcing) attempt.result = solveByForcingHomotopy(solver, system, remaining(), rest_full);
-      else attempt.result = solveCold(*chain.solvers[i], system, remaining(), rest_full);
+      else attempt.result = solveCold(*chain.solvers[i], system, forBackend(*chain.solvers[i], solver, remaining()),
+                                      rest_full);
     } catch (const std::exception& e) {  // a singular A_k, a system too large for memory
       attempt.result.solver = step;
       attempt.result.termination = Termination::kBackendError;

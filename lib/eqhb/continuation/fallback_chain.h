@@ -10,7 +10,8 @@
 //             its answer polished on the full system: eliminating x removes
 //             the stiff linear equations a stalled full solve fights.
 //   4. SOLVER another backend on the system, from the cold start (the caller
-//             names it: the core knows no backend by name).
+//             names it: the core knows no backend by name), on its own
+//             defaults: the backend-specific options are the failed solve's.
 //   5. forcing  a homotopy in the dynamic loads (harmonic >= 1): a quarter of
 //             them solved cold, then raised to the whole, each solve from the
 //             last (the step doubled after a success, halved after a
