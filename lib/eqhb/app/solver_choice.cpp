@@ -6,11 +6,6 @@
 
 namespace eqhb::app {
 
-bool refuseOption(std::string* why, const std::string& field, const std::string& value, const std::string& rule) {
-  if (why) *why = field + " = " + value + ": " + rule;
-  return false;
-}
-
 bool SolutionChecks::isValid(std::string* why) const {
   if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "auto")
     return refuseOption(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "eqhb/option_refusal.h"
 #include "eqhb/solvers/solver.h"
 
 namespace eqhb::app {
@@ -45,9 +46,5 @@ struct SolutionChecks {
   // (stability_method, stability_time_limit, accuracy_test).
   bool isValid(std::string* why) const;
 };
-
-// An options struct's isValid refusal: sets *why (when given) to
-// "FIELD = VALUE: RULE" and returns false.
-bool refuseOption(std::string* why, const std::string& field, const std::string& value, const std::string& rule);
 
 }  // namespace eqhb::app

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "eqhb/error.h"
+#include "eqhb/option_refusal.h"
 
 namespace eqhb {
 
@@ -54,18 +55,14 @@ bool denseBackendAccepts(const std::string& backend, int unknowns, int most_unkn
 }
 
 bool SolverOptions::isValid(std::string* why) const {
-  auto fail = [why](const std::string& field, const std::string& value, const std::string& rule) {
-    if (why) *why = field + " = " + value + ": " + rule;
-    return false;
-  };
   if (!(residual_tolerance >= 0.0) || !std::isfinite(residual_tolerance))
-    return fail("residual_tolerance", formatNumber(residual_tolerance), "must be finite and >= 0");
+    return refuseOption(why, "residual_tolerance", formatNumber(residual_tolerance), "must be finite and >= 0");
   if (max_iterations < 1)
-    return fail("max_iterations", std::to_string(max_iterations), "must be >= 1");
+    return refuseOption(why, "max_iterations", std::to_string(max_iterations), "must be >= 1");
   if (max_evaluations < 1)
-    return fail("max_evaluations", std::to_string(max_evaluations), "must be >= 1");
+    return refuseOption(why, "max_evaluations", std::to_string(max_evaluations), "must be >= 1");
   if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
-    return fail("time_limit", formatNumber(time_limit), "must be finite and >= 0 (0: none)");
+    return refuseOption(why, "time_limit", formatNumber(time_limit), "must be finite and >= 0 (0: none)");
   return true;
 }
 
