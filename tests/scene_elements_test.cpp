@@ -7,12 +7,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "eqhb/app/solve.h"
 #include "eqhb/error.h"
 #include "eqhb/round_trip.h"
 #include "eqhb/scenes/law_rho.h"
 #include "eqhb/scenes/scene.h"
 #include "check_support.h"
+#include "command_solve_support.h"
 
 namespace eqhb {
 namespace {
@@ -59,20 +59,6 @@ std::string jointScene(const Eigen::Matrix3d& r, const std::string& extra_law_ke
   return text;
 }
 
-// [x; λ] of a scene text solved on the default path of `eqhb solve` (coarse
-// start, fallbacks): these preloaded contacts do not converge from rest with
-// the bare solver, which the default path is there for.
-Eigen::VectorXd solvedAsTheCommandSolves(const std::string& text, const std::string& source) {
-  app::SceneSettings settings;
-  settings.path = source;
-  settings.document = app::SceneSettings::Document{
-      [&](const std::vector<std::string>& o) { return parseScene(text, source, o); },
-      [&](const std::vector<std::string>& o) { return lawRhosOfText(text, source, o); }};
-  const app::HbRun run = app::solveHarmonicBalance(settings, app::SolveOptions());
-  EXPECT_TRUE(run.result.converged()) << source;
-  return run.full();
-}
-
 Eigen::Matrix3d someRotation() {
   return (Eigen::AngleAxisd(0.9, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.5, Eigen::Vector3d::UnitX()) *
           Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()))
@@ -99,8 +85,8 @@ TEST(SceneElements, BetweenReadsTheNodesAlongTheDirections) {
 TEST(SceneElements, TheJointRotatedInSpaceGivesTheSameResponse) {
   const Eigen::Matrix3d r = someRotation();
   const Scene axes = parseScene(jointScene(Eigen::Matrix3d::Identity()), "axes.toml");
-  const Eigen::VectorXd a = solvedAsTheCommandSolves(jointScene(Eigen::Matrix3d::Identity()), "axes.toml"),
-                        b = solvedAsTheCommandSolves(jointScene(r), "turned.toml");
+  const Eigen::VectorXd a = test::solvedAsTheCommandSolves(jointScene(Eigen::Matrix3d::Identity()), "axes.toml"),
+                        b = test::solvedAsTheCommandSolves(jointScene(r), "turned.toml");
   const int nb = axes.model.basis.size();
   const double scale = a.cwiseAbs().maxCoeff();
   EXPECT_LT(test::turnedMismatch(r, a, b, nb, 2), 1e-10 * scale);
@@ -126,8 +112,8 @@ TEST(SceneElements, AnElementOnAStifflyHeldNodeIsTheGroundedElement) {
       "damping = [[0.04, 0, 0, 0], [0, 0.02, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0]]\n"
       "node_table = [[1, 2], [3, 4]]\n" +
       law + "between = [1, 2]\nnormal = [0.0, 1.0]\ntangents = [[1.0, 0.0]]\n" + common;
-  const Eigen::VectorXd a = solvedAsTheCommandSolves(grounded, "grounded.toml"),
-                        b = solvedAsTheCommandSolves(relative, "relative.toml");
+  const Eigen::VectorXd a = test::solvedAsTheCommandSolves(grounded, "grounded.toml"),
+                        b = test::solvedAsTheCommandSolves(relative, "relative.toml");
   const int nb = parseScene(grounded, "grounded.toml").model.basis.size();
   ASSERT_EQ(b.size(), a.size() + 2 * nb);
   // The held node moves by the contact force over its spring, no more.

@@ -20,6 +20,7 @@
 #include "eqhb/structures/beam.h"
 #include "eqhb/structures/chain_pattern.h"
 #include "eqhb/structures/frame.h"
+#include "eqhb/structures/space_frame.h"
 #include "eqhb/structures/lap_joint.h"
 #include "eqhb/structures/market_structure_sizes.h"
 #include "eqhb/structures/matrix_market.h"
@@ -413,6 +414,35 @@ void readFrame(TableReader& s, const std::string& source, const ModelSizes& sett
   read->dof_names = nodeDofNames(read->structure.dofs(), frame.elements, {"u", "w", "theta"}, frameDof);
 }
 
+// A cantilever space frame (structures/space_frame.h): node i is the point
+// on its axis, so an element's directions are directions in space over its
+// translations [u, v, w]; the rotations are reached by DOF name or number.
+void readSpaceFrame(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
+  SpaceFrameParameters frame;
+  frame.elements = s.integer("elements");
+  // Six DOFs per node, 40 entries per element in M and K (and C).
+  const double e = std::max(frame.elements, 0);
+  boundAssembly(source, settings, "structure.elements", std::to_string(frame.elements),
+                "a space frame's sparse M, C and K", 6.0 * e, 40.0 * e);
+  SpaceFrameSection& section = frame.section;
+  section.youngs_modulus = s.number("E");
+  section.shear_modulus = s.number("G");
+  section.density = s.number("rho");
+  section.area = s.number("A");
+  section.second_moment_y = s.number("Iy");
+  section.second_moment_z = s.number("Iz");
+  section.torsion_constant = s.number("J");
+  frame.length = s.number("L");
+  StructureMatrices matrices;
+  bounded(source, [&] { matrices = cantileverSpaceFrame(frame); });
+  readDampingModel(s, matrices);
+  read->structure = toLinearStructure(matrices);
+  for (int node = 1; node <= frame.elements; ++node)
+    read->node_table.push_back({spaceFrameDof(node, 0), spaceFrameDof(node, 1), spaceFrameDof(node, 2)});
+  read->dof_names = nodeDofNames(read->structure.dofs(), frame.elements,
+                                 {"u", "v", "w", "thetax", "thetay", "thetaz"}, spaceFrameDof);
+}
+
 // Two beams over a lap joint (structures/lap_joint.h): its nodes are the
 // facing surfaces' points, [u_s, w] each. Its DOFs are named as a frame's by
 // the beams' nodes, the upper beam's 1..n and the lower's n + 1..2n from
@@ -453,6 +483,7 @@ constexpr StructureType kStructureTypes[] = {{"chain", readChain, true},
                                              {"matrix-market", readMarketStructure, true},
                                              {"beam", readBeam, false},
                                              {"frame", readFrame, false},
+                                             {"space-frame", readSpaceFrame, false},
                                              {"lap-joint", readLapJoint, false}};
 
 // "\"a\", \"b\" or \"c\"": the registered type names, for the message of an unknown one.
