@@ -287,8 +287,9 @@ TEST(Continuation, SequentialPointsLostPastAFoldAreFoundByTheFallbackChain) {
       ASSERT_TRUE(r.converged()) << b.omega;
       EXPECT_NEAR(describePoint(at, alone->fullCoefficients(r.solution)).max_abs[0], b.max_abs[0], 1e-9) << b.omega;
     }
-    if (a.converged && b.fallback.empty() && i > 0 && found.points[i - 1].fallback.empty())
+    if (a.converged && b.fallback.empty() && i > 0 && found.points[i - 1].fallback.empty()) {
       EXPECT_NEAR(a.max_abs[0], b.max_abs[0], 1e-9) << a.omega;
+    }
   }
   EXPECT_GE(cold, 1);
 }

@@ -117,7 +117,7 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
 // reverses at the run's zero of v instead. A stick that holds lasts while
 // |λ| <= μN (the series' force rings near the limit and flickers there),
 // then slips against λ until the samples slip the other way.
-double MonodromyStability::holdingForce(int l, int k, const Eigen::VectorXd& full) {
+double MonodromyStability::holdingForce(int l, int k) {
   const double t = k * 2.0 * M_PI / model_.omega / model_.samples;
   std::vector<State> states = states_[k];
   states[l] = State::kStick;
@@ -134,7 +134,7 @@ double MonodromyStability::holdingForce(int l, int k, const Eigen::VectorXd& ful
   return lambda[std::find(dofs.begin(), dofs.end(), dofs_[l]) - dofs.begin()];
 }
 
-void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
+void MonodromyStability::keepHeldRuns() {
   const int samples = model_.samples, laws = static_cast<int>(dofs_.size());
   auto opposite = [](State s) { return s == State::kSlipPositive ? State::kSlipNegative : State::kSlipPositive; };
   for (int l = 0; l < laws; ++l) {
@@ -153,7 +153,7 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
       while (states_[zero][l] == State::kStick && sign * v_(zero, l) > 0.0 && zero != origin) zero = (zero + 1) % samples;
       if (states_[zero][l] != State::kStick || zero == origin) zero = first;
       for (int k = first; k != zero; k = (k + 1) % samples) states_[k][l] = old_state;
-      const double force = holdingForce(l, zero, full);
+      const double force = holdingForce(l, zero);
       if (std::abs(force) > limit_[l]) {  // a reversal at v = 0
         for (int k = zero; states_[k][l] == State::kStick && k != origin; k = (k + 1) % samples)
           states_[k][l] = opposite(old_state);
@@ -163,7 +163,7 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
       const int start = zero;
       int k = (start + 1) % samples;
       for (; k != start; k = (k + 1) % samples) {
-        r_(k, l) = holdingForce(l, k, full);
+        r_(k, l) = holdingForce(l, k);
         if (std::abs(r_(k, l)) > limit_[l]) break;
         states_[k][l] = State::kStick;
       }
@@ -281,7 +281,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   model_.omega = omega;
   const double period = 2.0 * M_PI / omega;
   classify(full);
-  keepHeldRuns(full);
+  keepHeldRuns();
   findSwitches();
   Eigen::MatrixXd phi = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
   if (switches_.empty()) {

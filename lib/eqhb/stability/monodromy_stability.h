@@ -68,8 +68,8 @@ class MonodromyStability {
     State from = State::kStick, to = State::kStick;
   };
   void classify(const Eigen::VectorXd& full);
-  void keepHeldRuns(const Eigen::VectorXd& full);
-  double holdingForce(int law, int sample, const Eigen::VectorXd& full);
+  void keepHeldRuns();
+  double holdingForce(int law, int sample);
   void findSwitches();
   // b = f(t) − K x − C v + the slip forces: all but the holding forces.
   Eigen::VectorXd freeForce(const std::vector<State>& states, double t, const Eigen::VectorXd& y) const;

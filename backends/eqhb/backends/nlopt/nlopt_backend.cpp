@@ -108,12 +108,15 @@ void NloptBackend::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
     result.native_message = "nlopt_create failed";
     return;
   }
-  Context ctx{&system, &options, opt, Eigen::VectorXd(n),
-              sparse || method_ == NloptMethod::kNewuoa ? Eigen::MatrixXd() : Eigen::MatrixXd(n, n)};
-  if (sparse) {
-    ctx.sparse = true;
-    ctx.sparse_j = system.jacobianPattern();
-  }
+  Context ctx{&system,
+              &options,
+              opt,
+              Eigen::VectorXd(n),
+              sparse || method_ == NloptMethod::kNewuoa ? Eigen::MatrixXd() : Eigen::MatrixXd(n, n),
+              sparse ? system.jacobianPattern() : SparseMatrix(),
+              sparse,
+              Termination::kBackendError,
+              0};
   nlopt_set_min_objective(opt, objective, &ctx);
   nlopt_set_stopval(opt, 0.5 * options.residual_tolerance * options.residual_tolerance);
   nlopt_set_maxeval(opt, options.max_evaluations);
