@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "eqhb/harmonic_balance/fourier_transform.h"
 
@@ -21,6 +22,18 @@ ChannelSummary channel(FourierTransform& transform, double omega, std::string la
   transform.synthesize(rate_coefficients.data(), rate.data());
   c.max_abs_rate = rate.cwiseAbs().maxCoeff();
   return c;
+}
+
+// summarize runs on every recorded point of a curve and on every point a
+// writer prints: its transform is kept (one per thread, FourierTransform is
+// not thread-safe) and made again only when the basis or N changes, since
+// making an FFTW plan costs more than the summary itself (12 % of an
+// arclength sweep of friction-1d).
+FourierTransform& summaryTransform(const HarmonicSet& basis, int samples) {
+  thread_local std::unique_ptr<FourierTransform> kept;
+  if (!kept || kept->samples() != samples || kept->basis().harmonics() != basis.harmonics())
+    kept = std::make_unique<FourierTransform>(basis, samples);
+  return *kept;
 }
 }  // namespace
 
@@ -45,7 +58,7 @@ std::vector<std::string> lawComponentLabels(const HbModel& model) {
 }
 
 HbSolution summarize(const HbModel& model, const Eigen::VectorXd& full) {
-  FourierTransform transform(model.basis, model.samples);
+  FourierTransform& transform = summaryTransform(model.basis, model.samples);
   const int nb = model.basis.size();
   HbSolution solution;
   for (int i = 0; i < model.structure.dofs(); ++i)
