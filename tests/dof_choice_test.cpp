@@ -12,6 +12,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/scenes/scene.h"
+#include "check_support.h"
 #include "test_support.h"
 
 namespace eqhb {
@@ -144,6 +145,26 @@ TEST(DofChoice, TheSceneChoosesByNumberOrName) {
       parseScene(std::string(kBeam) + "[output]\ndofs = [\"w10\", 3, \"x6\", \"theta2\"]\npeak = \"theta10\"\n", "s.toml");
   EXPECT_EQ(scene.output.shown, (std::vector<int>{18, 2, 5, 3}));
   EXPECT_EQ(scene.output.peak, 19);
+}
+
+// A load names its DOF as [output] does: "theta10" is DOF 20, node 10's
+// rotation, which `node` (a beam node's deflection) cannot name.
+TEST(DofChoice, ALoadNamesItsDofByNumberOrName) {
+  const std::string by_name = test::replaced(kBeam, "node = 10\n", "dof = \"theta10\"\n");
+  const std::string by_number = test::replaced(kBeam, "node = 10\n", "dof = 20\n");
+  const Scene named = parseScene(by_name, "s.toml"), numbered = parseScene(by_number, "s.toml");
+  ASSERT_EQ(named.model.structure.loads.size(), 1u);
+  EXPECT_EQ(named.model.structure.loads[0].dof, 19);
+  EXPECT_EQ(numbered.model.structure.loads[0].dof, 19);
+  const std::string preloaded = test::replaced(by_name, "[harmonic_balance]\n",
+                                               "[[preload]]\ndof = \"w4\"\nforce = 2.0\n[harmonic_balance]\nset = \"all\"\n");
+  const Scene with_preload = parseScene(preloaded, "s.toml");
+  ASSERT_EQ(with_preload.preload.size(), 1u);
+  EXPECT_EQ(with_preload.preload[0].dof, 6);  // w4: DOF 7 from 1
+  EXPECT_NE(errorOf(test::replaced(kBeam, "node = 10\n", "dof = \"w11\"\n")).find("scene.toml: forcing[0].dof = \"w11\": no DOF"),
+            std::string::npos);
+  EXPECT_NE(errorOf(test::replaced(preloaded, "dof = \"w4\"", "dof = \"v4\"")).find("preload[0].dof = \"v4\": no DOF"),
+            std::string::npos);
 }
 
 TEST(DofChoice, DofsOutsideTheStructureOrAnEmptyListNameTheField) {

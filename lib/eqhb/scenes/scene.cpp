@@ -512,6 +512,27 @@ ReadStructure readStructure(TableReader& top, const std::string& source, const M
 
 // [output] dofs = [7, "w10"], peak = "w10": what the outputs show and the
 // DOF that defines a peak (scenes/dof_choice.h); each key optional.
+// The DOF (from 0) a load names: `dof` by number from 1 or by name as
+// [output] names DOFs ("w8", "thetay3", "x5"), or `node`, a beam's node
+// (its deflection).
+int loadDof(TableReader& f, const std::string& field, const std::string& source, const HbModel& model, int nodes) {
+  if (f.has("dof") && f.raw("dof").is_string()) {
+    int dof = -1;
+    bounded(source, [&] { dof = resolveDof(model, f.raw("dof").as_string().str, field + ".dof"); });
+    return dof;
+  }
+  const bool by_node = f.has("node");
+  const int number = f.integer(by_node ? "node" : "dof");
+  const int count = by_node ? nodes : model.structure.dofs();
+  if (by_node && count == 0)
+    f.fail(field + ".node", std::to_string(number), "this structure has no nodes (only beams have): use dof");
+  if (number < 1 || number > count)
+    f.fail(field + (by_node ? ".node" : ".dof"), std::to_string(number),
+           std::string(by_node ? "no such node" : "no such DOF") + " (the structure has " + std::to_string(count) +
+               ", numbered from 1)");
+  return by_node ? beamTransverseDof(number) : number - 1;
+}
+
 DofChoice readOutputChoice(TableReader& top, const std::string& source, const HbModel& model) {
   DofChoice choice = defaultDofChoice(model);
   if (!top.has("output")) return choice;
@@ -819,16 +840,7 @@ Scene buildScene(toml::value root, const std::string& source,
         }
         continue;
       }
-      const bool by_node = f.has("node");
-      const int number = f.integer(by_node ? "node" : "dof");
-      const int count = by_node ? structure.nodes : dofs;
-      if (by_node && count == 0)
-        f.fail(field + ".node", std::to_string(number), "this structure has no nodes (only beams have): use dof");
-      if (number < 1 || number > count)
-        f.fail(field + (by_node ? ".node" : ".dof"), std::to_string(number),
-               std::string(by_node ? "no such node" : "no such DOF") + " (the structure has " +
-                   std::to_string(count) + ", numbered from 1)");
-      load.dof = by_node ? beamTransverseDof(number) : number - 1;
+      load.dof = loadDof(f, field, source, scene.model, structure.nodes);
       load.cos_amplitude = f.number("cos", 0.0);
       load.sin_amplitude = f.number("sin", 0.0);
       f.requireKnownKeys();
@@ -841,16 +853,9 @@ Scene buildScene(toml::value root, const std::string& source,
       const std::string field = "preload[" + std::to_string(i) + "]";
       TableReader f(loads[i], field, source);
       if (f.has("dof") == f.has("node")) f.fail(field, "(dof and node)", "give exactly one of dof or node");
-      const bool by_node = f.has("node");
-      const int number = f.integer(by_node ? "node" : "dof");
-      const int count = by_node ? structure.nodes : dofs;
-      if (number < 1 || number > count)
-        f.fail(field + (by_node ? ".node" : ".dof"), std::to_string(number),
-               std::string(by_node ? "no such node" : "no such DOF") + " (the structure has " +
-                   std::to_string(count) + ", numbered from 1)");
       HarmonicLoad load;
       load.harmonic = 0;
-      load.dof = by_node ? beamTransverseDof(number) : number - 1;
+      load.dof = loadDof(f, field, source, scene.model, structure.nodes);
       load.cos_amplitude = f.number("force");
       f.requireKnownKeys();
       if (!scene.model.basis.contains(0))
