@@ -50,6 +50,14 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
                     "needs grounded Coulomb 1D (minmax or projection form) or Signorini laws only; use hill");
   n_ = model_.structure.dofs();
   transform_ = std::make_unique<FourierTransform>(model_.basis, model_.samples);
+  // The loads at the samples: harmonic h at t_k = kT/N has the phase
+  // 2π h k / N whatever ω, so they are sampled once.
+  load_samples_ = Eigen::MatrixXd::Zero(model_.samples, n_);
+  for (const HarmonicLoad& load : model_.structure.loads)
+    for (int k = 0; k < model_.samples; ++k) {
+      const double phase = 2.0 * M_PI * load.harmonic * k / model_.samples;
+      load_samples_(k, load.dof) += load.cos_amplitude * std::cos(phase) + load.sin_amplitude * std::sin(phase);
+    }
   mass_inverse_ = orbits::invertPositiveDefiniteMass(model_.structure);  // throws unless M > 0
   damping_ = Eigen::MatrixXd(model_.structure.damping);
   stiffness_ = Eigen::MatrixXd(model_.structure.stiffness);
@@ -95,6 +103,9 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
     transform.differentiate(full.data() + i * nb, model_.omega, rate.data());
     transform.synthesize(rate.data(), xdot_.col(i).data());
   }
+  // f(t_k) − K x_k − C ẋ_k per sample, the part of every holding force's b
+  // that does not depend on the states.
+  base_force_ = load_samples_ - x_ * stiffness_.transpose() - xdot_ * damping_.transpose();
   states_.assign(samples, std::vector<State>(laws, State::kStick));
   for (int k = 0; k < samples; ++k)
     for (int l = 0; l < laws; ++l) {
@@ -118,20 +129,24 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
 // |λ| <= μN (the series' force rings near the limit and flickers there),
 // then slips against λ until the samples slip the other way.
 double MonodromyStability::holdingForce(int l, int k) {
-  const double t = k * 2.0 * M_PI / model_.omega / model_.samples;
-  std::vector<State> states = states_[k];
-  states[l] = State::kStick;
-  Eigen::VectorXd y(2 * n_);
-  y.head(n_) = x_.row(k).transpose();
-  y.tail(n_) = xdot_.row(k).transpose();
-  y[n_ + dofs_[l]] = 0.0;
-  std::vector<int> dofs;
-  for (size_t m = 0; m < states.size(); ++m)
-    if (held(states[m])) dofs.push_back(dofs_[m]);
-  auto found = multipliers_.find(dofs);
-  if (found == multipliers_.end()) found = multipliers_.emplace(dofs, orbits::holdDofs(mass_inverse_, dofs).multiplier).first;
-  const Eigen::VectorXd lambda = found->second * freeForce(states, t, y);
-  return lambda[std::find(dofs.begin(), dofs.end(), dofs_[l]) - dofs.begin()];
+  // b = f(t_k) − K x − C v with the held DOF's velocity 0 (the rest of b_k
+  // is sampled once per orbit in classify), plus the other laws' slip forces.
+  const int held_dof = dofs_[l];
+  force_ = base_force_.row(k).transpose() + damping_.col(held_dof) * xdot_(k, held_dof);
+  held_dofs_.clear();
+  int row = 0;
+  for (size_t m = 0; m < states_[k].size(); ++m) {
+    const State state = static_cast<int>(m) == l ? State::kStick : states_[k][m];
+    if (state == State::kSlipPositive) force_[dofs_[m]] -= limit_[m];
+    if (state == State::kSlipNegative) force_[dofs_[m]] += limit_[m];
+    if (!held(state)) continue;
+    if (static_cast<int>(m) == l) row = static_cast<int>(held_dofs_.size());
+    held_dofs_.push_back(dofs_[m]);
+  }
+  auto found = multipliers_.find(held_dofs_);
+  if (found == multipliers_.end())
+    found = multipliers_.emplace(held_dofs_, orbits::holdDofs(mass_inverse_, held_dofs_).multiplier).first;
+  return found->second.row(row).dot(force_);
 }
 
 void MonodromyStability::keepHeldRuns() {

@@ -89,6 +89,10 @@ class MonodromyStability {
   std::vector<bool> contact_;
   Eigen::MatrixXd u_, v_, r_;                      // N x laws: displacement, velocity, force samples
   Eigen::MatrixXd x_, xdot_;                       // N x n: the structure's samples
+  Eigen::MatrixXd load_samples_;                   // N x n: f(t_k), the same at every ω (t_k = kT/N)
+  Eigen::MatrixXd base_force_;                     // N x n: f(t) − K x − C ẋ at the samples
+  Eigen::VectorXd force_;                          // holdingForce's b, kept to allocate once
+  std::vector<int> held_dofs_;                     // holdingForce's held DOFs, likewise
   std::map<std::vector<int>, Eigen::MatrixXd> multipliers_;  // λ_G = multiplier · b by held DOFs
   std::vector<std::vector<State>> states_;         // per sample, per law
   std::vector<Switch> switches_;                   // increasing in time, within [0, T)
