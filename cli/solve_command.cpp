@@ -38,7 +38,7 @@ void addStabilityFlag(CLI::App* cmd, SolveArguments& a) {
                   "hill: Hill's method (any law); monodromy: the monodromy of the linearised dynamics over the "
                   "solution with saltation at the switching instants (grounded Coulomb 1D minmax/projection and "
                   "Signorini laws; converges to the exact multipliers as H grows; its matrices are 2n x 2n and "
-                  "dense: about 20x cheaper than Hill on friction-1d, 40x dearer on beam-damper's 120 DOFs); "
+                  "dense: about 35x cheaper than Hill on friction-1d, 30x dearer on beam-damper's 120 DOFs); "
                   "auto: the monodromy where it applies on structures of at most 20 DOFs, else Hill")
       ->check(CLI::IsMember({"hill", "monodromy", "auto"}))
       ->capture_default_str();
