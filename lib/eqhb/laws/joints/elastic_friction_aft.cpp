@@ -9,17 +9,39 @@
 
 namespace eqhb {
 
-ElasticFrictionAft::ElasticFrictionAft(const ElasticFrictionParameters& parameters) : p_(parameters) {
-  if (p_.tangents != 1 && p_.tangents != 2)
-    throwInputError("tangents", std::to_string(p_.tangents), "an elastic-friction element has 1 or 2 tangents");
-  if (!(p_.mu >= 0.0) || !std::isfinite(p_.mu))
-    throwInputError("mu", formatNumber(p_.mu), "friction coefficient must be finite and >= 0");
-  if (!(p_.k_t > 0.0) || !std::isfinite(p_.k_t))
-    throwInputError("k_t", formatNumber(p_.k_t), "tangential stiffness must be finite and > 0");
-  if (!(p_.k_n > 0.0) || !std::isfinite(p_.k_n))
-    throwInputError("k_n", formatNumber(p_.k_n), "normal stiffness must be finite and > 0");
-  if (!std::isfinite(p_.gap)) throwInputError("gap", formatNumber(p_.gap), "must be finite (no NaN or Inf)");
+namespace {
+
+// The parameters checked (InputError naming the field), returned as given.
+const ElasticFrictionParameters& checked(const ElasticFrictionParameters& p) {
+  if (p.tangents != 1 && p.tangents != 2)
+    throwInputError("tangents", std::to_string(p.tangents), "an elastic-friction element has 1 or 2 tangents");
+  if (!(p.mu >= 0.0) || !std::isfinite(p.mu))
+    throwInputError("mu", formatNumber(p.mu), "friction coefficient must be finite and >= 0");
+  if (!(p.k_t > 0.0) || !std::isfinite(p.k_t))
+    throwInputError("k_t", formatNumber(p.k_t), "tangential stiffness must be finite and > 0");
+  if (!(p.k_n > 0.0) || !std::isfinite(p.k_n))
+    throwInputError("k_n", formatNumber(p.k_n), "normal stiffness must be finite and > 0");
+  if (!std::isfinite(p.gap)) throwInputError("gap", formatNumber(p.gap), "must be finite (no NaN or Inf)");
+  return p;
 }
+
+// The same element as contact-friction (the header): a compliant normal
+// without preload, the slider behind k_t.
+ContactFrictionParameters asContactFriction(const ElasticFrictionParameters& p) {
+  ContactFrictionParameters c;
+  c.tangential = p.tangents;
+  c.mu = p.mu;
+  c.gap = p.gap;
+  c.normal = NormalForm::kCompliant;
+  c.normal_stiffness = p.k_n;
+  c.tangential_stiffness = p.k_t;
+  return c;
+}
+
+}  // namespace
+
+ElasticFrictionAft::ElasticFrictionAft(const ElasticFrictionParameters& parameters)
+    : p_(checked(parameters)), step_law_(asContactFriction(p_)) {}
 
 double ElasticFrictionAft::displacementLevel() const { return std::abs(p_.gap); }
 
@@ -147,9 +169,13 @@ std::vector<std::pair<std::string, double>> ElasticFrictionAft::violations(const
           {"force_limit_excess", excess / scale}};
 }
 
-LocalVector ElasticFrictionAft::solveStep(const StepProblem&) const {
-  throw InputError("law elastic-friction: the time reference does not integrate it (its slider under a varying "
-                   "normal load is a state the reference integrator does not carry); use solve or sweep");
+LocalVector ElasticFrictionAft::solveStep(const StepProblem& step) const {
+  // contact-friction's λ is −λ here, so its Delassus operator (the response
+  // to its λ) is −delassus; its previous force carries the slider's state.
+  StepProblem turned = step;
+  turned.delassus = -step.delassus;
+  turned.force_start = -step.force_start;
+  return -step_law_.solveStep(turned);
 }
 
 std::optional<StaticStatus> ElasticFrictionAft::staticStatus(const LawSamples& rest) const {

@@ -36,10 +36,21 @@
 // P = (μp/‖T*‖)(I − e eᵀ), 0 with one tangent), which reaches every sample:
 // the law has one history term per sample (historyTermsOn): d² N² weights,
 // 37k on 64 samples in 3D (295 KB per element), quadratic in N.
+//
+// Time reference (solveStep): the element is contact-friction with a
+// compliant normal of stiffness k_n, no preload and k_t, whose λ is the
+// negative of this one's (its λ is the force on the structure, this one's
+// the force on the contact). The step is that law's: the penalty pressure at
+// the step's end and the slider's return map, a minimum over the disc of
+// radius μp in the metric of the spring and the structure's response (the
+// radial return when the structure is rigid). The slider's state rides on
+// the previous step's force: w = u_t − T/k_t at the step's start, and an
+// open contact (T = 0) leaves the slider at u_t, released.
 #pragma once
 
 #include <vector>
 
+#include "eqhb/laws/joints/contact_friction.h"
 #include "eqhb/laws/law.h"
 
 namespace eqhb {
@@ -76,8 +87,8 @@ class ElasticFrictionAft : public Law {
   // max(‖λ_t‖ − μ max(λ_n, 0), 0).
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
                                                          const PhysicalScales& scales) const override;
-  // The time reference carries no slider state for this element: refused
-  // (InputError naming the law), as for an Iwan element.
+  // One step of the time reference (the header): contact-friction's step
+  // with the signs of λ and of the Delassus operator turned.
   LocalVector solveStep(const StepProblem& step) const override;
   std::optional<StaticStatus> staticStatus(const LawSamples& rest) const override;
   // A copy whose slider starts at its state after the static step from
@@ -88,6 +99,7 @@ class ElasticFrictionAft : public Law {
 
  private:
   ElasticFrictionParameters p_;
+  ContactFriction step_law_;  // the same element as contact-friction, for solveStep
   std::vector<double> anchor_;  // the slider's static position; empty: start at ū_t
 };
 
