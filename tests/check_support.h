@@ -1,5 +1,6 @@
 // Checks shared by the scene, element and system tests: scene texts edited
-// and refused, Jacobians against central differences, turned solutions.
+// and refused, Jacobians against central differences, scaled residuals,
+// turned solutions.
 #pragma once
 
 #include <Eigen/Dense>
@@ -41,6 +42,15 @@ inline double jacobianError(SquareSystem& system, const Eigen::VectorXd& z) {
   if (!system.residualAndJacobian(z, g, j)) return INFINITY;
   const Eigen::MatrixXd fd = finiteDifferenceJacobian(system, z);
   return (j - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff());
+}
+
+// ‖g / scales‖ at z: the measure the solvers' residual tolerance bounds
+// (infinite if g cannot be formed).
+inline double scaledResidualNorm(SquareSystem& system, const Eigen::VectorXd& z) {
+  Eigen::VectorXd g(system.size()), scales(system.size());
+  if (!system.residual(z, g)) return INFINITY;
+  system.residualScales(scales);
+  return g.cwiseQuotient(scales).norm();
 }
 
 // Of two solutions' coefficients (nb per DOF, DOFs first) on `nodes` nodes

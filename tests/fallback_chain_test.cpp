@@ -5,18 +5,12 @@
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
-#include "test_support.h"
+#include "check_support.h"
 
 namespace eqhb {
 namespace {
 
-// ‖g / scales‖ at z: the measure the solvers' residual tolerance bounds (infinite if g cannot be formed).
-double scaledResidualNorm(HbSystem& system, const Eigen::VectorXd& z) {
-  Eigen::VectorXd g(system.size()), scales(system.size());
-  if (!system.residual(z, g)) return INFINITY;
-  system.residualScales(scales);
-  return g.cwiseQuotient(scales).norm();
-}
+using test::scaledResidualNorm;
 
 // A solve of `system` from rest (zero unknowns).
 SolverResult solveFromRest(HbSystem& system, Solver& solver, const SolverOptions& options) {

@@ -99,7 +99,7 @@ HbRun solveHarmonicBalance(const SceneSettings& scene, const SolveOptions& o) {
   // state (operating_point.h).
   if (run.scene.at_rest && !o.from_harmonics && !o.initial.size()) {
     z0 = system.fromFullCoefficients(
-        linearisedStart(model, *run.scene.at_rest, *solver, withinLimit("set-up, before the start")));
+        linearisedStart(model, *run.scene.at_rest, withinLimit("set-up, before the start")));
     run.start = "preload";
   }
   if (o.from_harmonics) {

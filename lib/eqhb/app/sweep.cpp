@@ -72,7 +72,7 @@ SweepPlan planSweep(const SceneSettings& settings, const SweepOptions& o) {
   if (plan.scene.at_rest) {
     HbModel first = plan.scene.model;
     first.omega = c.from;
-    c.start_full = linearisedStart(first, *plan.scene.at_rest, *makeSolver(o.solver), o.solver_options);
+    c.start_full = linearisedStart(first, *plan.scene.at_rest, o.solver_options);
   }
   // Every option checked before any count is derived from them.
   if (o.arclength) c.validate();

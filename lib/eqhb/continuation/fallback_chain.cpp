@@ -236,7 +236,7 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
   if (failed.termination == Termination::kInvalidOptions || failed.termination == Termination::kTimeLimit) return failed;
   // Under a preload every cold start begins about the static state, at this ω.
   const Eigen::VectorXd rest_full =
-      chain.at_rest ? linearisedStart(system.model(), *chain.at_rest, solver, remaining()) : Eigen::VectorXd();
+      chain.at_rest ? linearisedStart(system.model(), *chain.at_rest, remaining()) : Eigen::VectorXd();
   for (size_t i = 0; i < chain.steps.size(); ++i) {
     const std::string& step = chain.steps[i];
     if (step == kCold && started_cold) continue;        // the failed solve was this one
@@ -283,7 +283,7 @@ SolverResult solveWhereCondensationIsSingular(const HbModel& model, double omega
     HbModel at = model;
     at.omega = omega;
     const Eigen::VectorXd rest_full =
-        chain.at_rest ? linearisedStart(at, *chain.at_rest, solver, options) : Eigen::VectorXd();
+        chain.at_rest ? linearisedStart(at, *chain.at_rest, options) : Eigen::VectorXd();
     attempt.result = solveFullSystemAt(at, solver, options, rest_full, full);
   } catch (const std::exception& e) {
     attempt.result.solver = solver.name();

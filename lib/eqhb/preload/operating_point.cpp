@@ -1,5 +1,7 @@
 #include "eqhb/preload/operating_point.h"
 
+#include <Eigen/UmfPackSupport>
+
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 
@@ -17,17 +19,21 @@ Eigen::VectorXd operatingPoint(const HbModel& model, const StaticContactState& s
   return full;
 }
 
-Eigen::VectorXd linearisedStart(const HbModel& model, const StaticContactState& state, Solver& solver,
+Eigen::VectorXd linearisedStart(const HbModel& model, const StaticContactState& state,
                                 const SolverOptions& options) {
   const Eigen::VectorXd at_rest = operatingPoint(model, state);
   try {
     auto full = makeHbSystem(model, false, options.linear_algebra);
-    SolverOptions one = options;
-    one.max_iterations = 1;
-    const SolverResult step = solver.solve(*full, full->fromFullCoefficients(at_rest), one);
-    if (step.solution.allFinite() && step.final_norm < step.initial_norm)
-      return full->fullCoefficients(step.solution);
-  } catch (const std::exception&) {  // a singular A_k or Jacobian, memory: the operating point as it is
+    const Eigen::VectorXd z = full->fromFullCoefficients(at_rest);
+    Eigen::VectorXd g(z.size());
+    SparseMatrix jacobian = full->jacobianPattern();
+    if (!full->residualAndSparseJacobian(z, g, jacobian)) return at_rest;
+    const Eigen::UmfPackLU<SparseMatrix> lu(jacobian);
+    if (lu.info() != Eigen::Success) return at_rest;  // singular: no linear response
+    const Eigen::VectorXd step = lu.solve(g);
+    if (lu.info() != Eigen::Success || !step.allFinite()) return at_rest;
+    return full->fullCoefficients(z - step);
+  } catch (const std::exception&) {  // a singular A_k, memory: the operating point as it is
   }
   return at_rest;
 }
