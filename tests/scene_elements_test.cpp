@@ -189,5 +189,66 @@ TEST(SceneElements, ANodeTableFileNamesEachNodeOnce) {
   expectError(replaced(scene, "[[1, 2, 3], [4, 5, 6]]", "\"" + twice + "\""), "line 2) = 1: node listed twice");
 }
 
+// A Matrix Market file (coordinate, real, general) of `m`.
+std::string matrixMarket(const Eigen::MatrixXd& m) {
+  std::string out = "%%MatrixMarket matrix coordinate real general\n" + std::to_string(m.rows()) + " " +
+                    std::to_string(m.cols()) + " " + std::to_string(m.size()) + "\n";
+  for (int i = 0; i < m.rows(); ++i)
+    for (int j = 0; j < m.cols(); ++j)
+      out += std::to_string(i + 1) + " " + std::to_string(j + 1) + " " + formatRoundTrip(m(i, j)) + "\n";
+  return out;
+}
+
+// Two nodes in the plane (x, y) joined by a spring, with elastic friction
+// between them (normal y, tangent x), preloaded by their overlap and forced
+// along x on node 1, written twice: as `matrices` in node order, and as
+// `matrix-market` files whose DOFs are stored in another order, (y1, y2,
+// x1, x2), named back by node_table = [[3, 1], [4, 2]]. Read right, the
+// table makes them the same model: the same response, DOFs permuted, to
+// 1e-10. Read as the identity it is another model.
+TEST(SceneElements, AMatrixMarketNodeTableNamesTheStoredDofs) {
+  Eigen::MatrixXd m = Eigen::Vector4d(1.0, 1.2, 1.5, 0.8).asDiagonal(), k(4, 4);
+  k << 2.0, 0.1, -1.0, 0.0, 0.1, 2.5, 0.0, -1.0, -1.0, 0.0, 2.2, 0.2, 0.0, -1.0, 0.2, 3.0;
+  const Eigen::MatrixXd c = 0.03 * k;
+  const int stored[4] = {1, 3, 0, 2};  // file DOF i holds node-order DOF stored[i]
+  Eigen::PermutationMatrix<4> p;
+  for (int i = 0; i < 4; ++i) p.indices()[i] = stored[i];
+  auto permuted = [&](const Eigen::MatrixXd& a) { return Eigen::MatrixXd(p.transpose() * a * p); };
+  const std::string dir = ::testing::TempDir();
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir + "/" + name) << text;
+    return dir + "/" + name;
+  };
+  const std::string law =
+      "[[law]]\ntype = \"elastic-friction\"\nbetween = [1, 2]\nnormal = [0, 1]\ntangents = [[1, 0]]\nmu = 0.3\n"
+      "k_t = 2.0\nk_n = 3.0\ngap = -0.2\n"
+      "[harmonic_balance]\nharmonics = 5\nset = \"all\"\nsamples = 64\nomega = 1.0\n";
+  const std::string in_order = "name = \"pair\"\n[structure]\ntype = \"matrices\"\nmass = " + matrix(m) +
+                               "\nstiffness = " + matrix(k) + "\ndamping = " + matrix(c) +
+                               "\nnode_table = [[1, 2], [3, 4]]\n[[forcing]]\ndof = 1\ncos = 1.0\n" + law;
+  const std::string market = "name = \"pair\"\n[structure]\ntype = \"matrix-market\"\nmass = \"" +
+                             write("M.mtx", matrixMarket(permuted(m))) + "\"\nstiffness = \"" +
+                             write("K.mtx", matrixMarket(permuted(k))) + "\"\ndamping = \"" +
+                             write("C.mtx", matrixMarket(permuted(c))) +
+                             "\"\nnode_table = [[3, 1], [4, 2]]\n[[forcing]]\ndof = 3\ncos = 1.0\n" + law;
+  const Eigen::VectorXd a = test::solvedAsTheCommandSolves(in_order, dir + "/in-order.toml"),
+                        b = test::solvedAsTheCommandSolves(market, dir + "/market.toml");
+  const int nb = 11;  // harmonics 0..5
+  ASSERT_EQ(a.size(), 6 * nb);
+  ASSERT_EQ(b.size(), 6 * nb);
+  const double scale = a.cwiseAbs().maxCoeff();
+  double mismatch = (a.tail(2 * nb) - b.tail(2 * nb)).cwiseAbs().maxCoeff();  // (p, T)
+  for (int i = 0; i < 4; ++i)
+    mismatch = std::max(mismatch, (b.segment(i * nb, nb) - a.segment(stored[i] * nb, nb)).cwiseAbs().maxCoeff());
+  EXPECT_LT(mismatch, 1e-10 * scale);
+  // The element presses and rubs (else the check would hold for any table).
+  EXPECT_GT(a.segment(4 * nb, nb).cwiseAbs().maxCoeff(), 0.01 * scale);
+  EXPECT_GT(a.segment(5 * nb, nb).cwiseAbs().maxCoeff(), 0.01 * scale);
+  // Misread as DOFs in node order, the same files are another model.
+  const std::string identity = test::replaced(market, "[[3, 1], [4, 2]]", "[[1, 2], [3, 4]]");
+  const Eigen::VectorXd misread = test::solvedAsTheCommandSolves(identity, dir + "/misread.toml");
+  EXPECT_GT((misread.tail(2 * nb) - a.tail(2 * nb)).cwiseAbs().maxCoeff(), 1e-3 * scale);
+}
+
 }  // namespace
 }  // namespace eqhb
