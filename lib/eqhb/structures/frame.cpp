@@ -5,6 +5,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/structures/beam.h"
+#include "eqhb/structures/cantilever_assembly.h"
 
 namespace eqhb {
 
@@ -41,21 +42,10 @@ StructureMatrices cantileverFrame(const FrameParameters& frame) {
   requirePositive("structure.I", frame.section.second_moment);
   requirePositive("structure.rhoA", frame.section.mass_per_length);
   requirePositive("structure.L", frame.length);
-  const int n = 3 * frame.elements;
   const double l = frame.length / frame.elements;
-  std::vector<Eigen::Triplet<double>> k, m;
-  k.reserve(20 * frame.elements);
-  m.reserve(20 * frame.elements);
-  for (int e = 0; e < frame.elements; ++e) {
-    // Element e joins node e (the clamp when e = 0) and node e + 1.
-    std::array<int, 6> dofs;
-    for (int c = 0; c < 3; ++c) {
-      dofs[c] = e == 0 ? -1 : frameDof(e, c);
-      dofs[3 + c] = frameDof(e + 1, c);
-    }
-    addFrameElement(frame.section, l, dofs, &k, &m);
-  }
-  return fromElementTriplets(n, m, k);
+  return assembleCantilever<3>(frame.elements, 20, [&](const auto& dofs, auto* k, auto* m) {
+    addFrameElement(frame.section, l, dofs, k, m);
+  });
 }
 
 std::vector<double> axialBarFrequencies(const FrameParameters& frame, int count) {

@@ -5,6 +5,7 @@
 
 #include "eqhb/error.h"
 #include "eqhb/structures/beam.h"
+#include "eqhb/structures/cantilever_assembly.h"
 #include "eqhb/structures/frame.h"
 
 namespace eqhb {
@@ -61,21 +62,10 @@ StructureMatrices cantileverSpaceFrame(const SpaceFrameParameters& frame) {
   requirePositive("structure.Iz", s.second_moment_z);
   requirePositive("structure.J", s.torsion_constant);
   requirePositive("structure.L", frame.length);
-  const int n = 6 * frame.elements;
   const double l = frame.length / frame.elements;
-  std::vector<Eigen::Triplet<double>> k, m;
-  k.reserve(40 * frame.elements);
-  m.reserve(40 * frame.elements);
-  for (int e = 0; e < frame.elements; ++e) {
-    // Element e joins node e (the clamp when e = 0) and node e + 1.
-    std::array<int, 12> dofs;
-    for (int c = 0; c < 6; ++c) {
-      dofs[c] = e == 0 ? -1 : spaceFrameDof(e, c);
-      dofs[6 + c] = spaceFrameDof(e + 1, c);
-    }
-    addSpaceFrameElement(frame.section, l, dofs, &k, &m);
-  }
-  return fromElementTriplets(n, m, k);
+  return assembleCantilever<6>(frame.elements, 40, [&](const auto& dofs, auto* k, auto* m) {
+    addSpaceFrameElement(frame.section, l, dofs, k, m);
+  });
 }
 
 std::vector<double> torsionFrequencies(const SpaceFrameParameters& frame, int count) {
