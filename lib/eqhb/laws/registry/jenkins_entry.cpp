@@ -44,7 +44,9 @@ LawEntry jenkinsEntry() {
   e.examples = {{"jenkins1_minmax", 1, "muN = 1.2\nk_t = 2.0\nform = \"minmax\"\nrho = 0.9"},
                 {"jenkins1_projection", 1, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"},
                 {"jenkins2_max", 2, "muN = 1.2\nk_t = 2.0\nform = \"max\"\nrho = 0.9"},
-                {"jenkins2_projection", 2, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"}};
+                {"jenkins2_projection", 2, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"},
+                // The return map over the period (JenkinsAft): its Jacobian across samples.
+                {"jenkins1_aft", 1, "muN = 1.2\nk_t = 2.0\nformulation = \"aft\""}};
   // On one DOF: a slider behind a spring, closed form between events.
   e.piecewise_linear_flow = [](const Law& law) -> std::optional<PiecewiseLinearSite> {
     PiecewiseLinearSite site;
