@@ -72,10 +72,7 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
 
   auto forcing = [&](double t, Eigen::VectorXd& f) {
     f.setZero();
-    for (const auto& load : s.loads) {
-      const double phase = load.harmonic * model.omega * t;
-      f[load.dof] += load.cos_amplitude * std::cos(phase) + load.sin_amplitude * std::sin(phase);
-    }
+    for (const auto& load : s.loads) f[load.dof] += load.at(model.omega * t);
   };
 
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), v = Eigen::VectorXd::Zero(n);

@@ -54,10 +54,7 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   // 2π h k / N whatever ω, so they are sampled once.
   load_samples_ = Eigen::MatrixXd::Zero(model_.samples, n_);
   for (const HarmonicLoad& load : model_.structure.loads)
-    for (int k = 0; k < model_.samples; ++k) {
-      const double phase = 2.0 * M_PI * load.harmonic * k / model_.samples;
-      load_samples_(k, load.dof) += load.cos_amplitude * std::cos(phase) + load.sin_amplitude * std::sin(phase);
-    }
+    for (int k = 0; k < model_.samples; ++k) load_samples_(k, load.dof) += load.at(2.0 * M_PI * k / model_.samples);
   mass_inverse_ = orbits::invertPositiveDefiniteMass(model_.structure);  // throws unless M > 0
   damping_ = Eigen::MatrixXd(model_.structure.damping);
   stiffness_ = Eigen::MatrixXd(model_.structure.stiffness);
@@ -128,6 +125,11 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
 // reverses at the run's zero of v instead. A stick that holds lasts while
 // |λ| <= μN (the series' force rings near the limit and flickers there),
 // then slips against λ until the samples slip the other way.
+void MonodromyStability::addSlipForce(int l, State state, Eigen::VectorXd& b) const {
+  if (state == State::kSlipPositive) b[dofs_[l]] -= limit_[l];
+  if (state == State::kSlipNegative) b[dofs_[l]] += limit_[l];
+}
+
 double MonodromyStability::holdingForce(int l, int k) {
   // b = f(t_k) − K x − C v with the held DOF's velocity 0 (the rest of b_k
   // is sampled once per orbit in classify), plus the other laws' slip forces.
@@ -137,8 +139,7 @@ double MonodromyStability::holdingForce(int l, int k) {
   int row = 0;
   for (size_t m = 0; m < states_[k].size(); ++m) {
     const State state = static_cast<int>(m) == l ? State::kStick : states_[k][m];
-    if (state == State::kSlipPositive) force_[dofs_[m]] -= limit_[m];
-    if (state == State::kSlipNegative) force_[dofs_[m]] += limit_[m];
+    addSlipForce(static_cast<int>(m), state, force_);
     if (!held(state)) continue;
     if (static_cast<int>(m) == l) row = static_cast<int>(held_dofs_.size());
     held_dofs_.push_back(dofs_[m]);
@@ -237,14 +238,8 @@ const Eigen::MatrixXd& MonodromyStability::generator(const std::vector<State>& s
 
 Eigen::VectorXd MonodromyStability::freeForce(const std::vector<State>& states, double t, const Eigen::VectorXd& y) const {
   Eigen::VectorXd b = -stiffness_ * y.head(n_) - damping_ * y.segment(n_, n_);
-  for (const HarmonicLoad& load : model_.structure.loads) {
-    const double phase = load.harmonic * model_.omega * t;
-    b[load.dof] += load.cos_amplitude * std::cos(phase) + load.sin_amplitude * std::sin(phase);
-  }
-  for (size_t l = 0; l < states.size(); ++l) {
-    if (states[l] == State::kSlipPositive) b[dofs_[l]] -= limit_[l];
-    if (states[l] == State::kSlipNegative) b[dofs_[l]] += limit_[l];
-  }
+  for (const HarmonicLoad& load : model_.structure.loads) b[load.dof] += load.at(model_.omega * t);
+  for (size_t l = 0; l < states.size(); ++l) addSlipForce(static_cast<int>(l), states[l], b);
   return b;
 }
 

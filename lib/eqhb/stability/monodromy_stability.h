@@ -70,6 +70,8 @@ class MonodromyStability {
   void classify(const Eigen::VectorXd& full);
   void keepHeldRuns();
   double holdingForce(int law, int sample);
+  // b gains law l's slip force in `state` (∓μN against the slip; none held).
+  void addSlipForce(int l, State state, Eigen::VectorXd& b) const;
   void findSwitches();
   // b = f(t) − K x − C v + the slip forces: all but the holding forces.
   Eigen::VectorXd freeForce(const std::vector<State>& states, double t, const Eigen::VectorXd& y) const;

@@ -9,6 +9,8 @@
 // row); small structures convert to dense where dense algebra is faster.
 #pragma once
 
+#include <cmath>
+
 #include <Eigen/Dense>
 #include <vector>
 
@@ -22,6 +24,11 @@ struct HarmonicLoad {
   int harmonic = 1;  // k >= 0
   double cos_amplitude = 0.0;
   double sin_amplitude = 0.0;
+  // Its value where the fundamental's phase is θ (= ω t): a cos kθ + b sin kθ.
+  double at(double theta) const {
+    const double phase = harmonic * theta;
+    return cos_amplitude * std::cos(phase) + sin_amplitude * std::sin(phase);
+  }
 };
 
 struct LinearStructure {
