@@ -159,6 +159,69 @@ TEST(StaticPreload, PressedPairStartsFromTheLinearisedResponse) {
   EXPECT_LE(s.run.result.iterations, 1);
 }
 
+// A velocity-level friction law (no slider state of its own) stuck over the
+// whole period allows any mean within its friction limit: history decides.
+// Under a [[preload]] the history is the static state, stuck from rest, and
+// the dynamic solve keeps it: a 2-DOF chain (K = k [[2, -1], [-1, 1]]) whose
+// first DOF is held by friction (limit 1) while the preload pulls the second
+// with 0.5 and a small forcing shakes it. Stuck, the first DOF stays at 0
+// over the whole period (the static state) and the second is the 1-DOF
+// oscillator clamped at the first, about its static 0.5. The same load as a
+// constant forcing term, solved from zero, has no static state to keep.
+TEST(StaticPreload, VelocityLevelFrictionStuckFromRestKeepsTheStaticMean) {
+  const double f = 0.01;
+  const std::string chain =
+      "name = \"held\"\n[structure]\ntype = \"chain\"\ndofs = 2\nm = 1.0\nk = 1.0\nd = 0.02\n"
+      "[[forcing]]\ndof = 2\nharmonic = 1\ncos = " + formatNumber(f) + "\n";
+  const std::string settings = "[harmonic_balance]\nharmonics = 5\nset = \"all\"\nsamples = 64\nomega = 1.5\n";
+  const std::string pull = "[[preload]]\ndof = 2\nforce = 0.5\n";
+  const Eigen::Vector2d clamped = linear(1.0, f);
+  for (const std::string law : {"[[law]]\ntype = \"coulomb-1d\"\ndofs = [1]\nmuN = 1.0\n",
+                                "[[law]]\ntype = \"stribeck\"\ndofs = [1]\nmuN_dynamic = 1.0\nmuN_static = 1.2\n"
+                                "v_s = 0.1\n"}) {
+    app::SolveOptions o;
+    o.fallback = "none";
+    const app::Solution s = app::solve(written(chain + pull + law + settings), o);
+    ASSERT_TRUE(s.converged()) << law << terminationName(s.run.result.termination);
+    EXPECT_EQ(s.run.start, "preload");
+    ASSERT_TRUE(s.run.scene.at_rest);
+    EXPECT_NEAR(s.run.scene.at_rest->displacement[0], 0.0, 1e-12) << law;
+    EXPECT_NEAR(s.run.scene.at_rest->displacement[1], 0.5, 1e-12) << law;
+    const int size = s.model().basis.size();  // [x0, a1, b1, ...] per DOF
+    const Eigen::VectorXd held = s.full.head(size), shaken = s.full.segment(size, size);
+    EXPECT_LT(held.cwiseAbs().maxCoeff(), 1e-12) << law;  // the static mean, not moving
+    EXPECT_NEAR(shaken[0], 0.5, 1e-12) << law;
+    EXPECT_NEAR(shaken[1], clamped[0], 1e-10) << law;
+    EXPECT_NEAR(shaken[2], clamped[1], 1e-10) << law;
+    // The pull as a constant forcing term instead: a stuck solution too,
+    // but about another mean (0.5 here: the friction carries nothing on
+    // average), which is what the static solve fixes.
+    const std::string constant = "[[forcing]]\ndof = 2\nharmonic = 0\ncos = 0.5\n";
+    const app::Solution free = app::solve(written(chain + constant + law + settings), o);
+    ASSERT_TRUE(free.converged()) << law;
+    EXPECT_GT(std::abs(free.full[0]), 0.1) << law;
+  }
+  // A contact with friction pressed by a bolt-like preload (normal DOF 1)
+  // and loaded sideways (DOF 2) before the shaking: stuck and closed over the
+  // whole period at the static state, its forces the static ones on average.
+  const std::string pressed =
+      "name = \"pressed\"\n[structure]\ntype = \"matrices\"\nmass = [[1.0, 0.0], [0.0, 1.0]]\n"
+      "damping = [[0.05, 0.0], [0.0, 0.05]]\nstiffness = [[1.0, 0.3], [0.3, 1.0]]\n"
+      "[[forcing]]\ndof = 2\nharmonic = 1\ncos = 0.01\n[[preload]]\ndof = 1\nforce = 2.0\n[[preload]]\ndof = 2\n"
+      "force = 0.3\n[[law]]\ntype = \"contact-friction\"\ndofs = [1, 2]\nmu = 0.5\npreload = 0.0\n";
+  app::SolveOptions o;
+  o.fallback = "none";
+  const app::Solution s = app::solve(written(pressed + settings), o);
+  ASSERT_TRUE(s.converged()) << terminationName(s.run.result.termination);
+  const StaticStatus& status = *s.run.scene.at_rest->status[0];
+  EXPECT_EQ(std::string(staticStateName(status.state)), "stuck");
+  const int size = s.model().basis.size();
+  EXPECT_LT(s.full.head(2 * size).cwiseAbs().maxCoeff(), 1e-12);  // x = 0 on both DOFs, all harmonics
+  const int n = s.model().structure.dofs();
+  EXPECT_NEAR(std::abs(s.full[n * size]), *status.normal_force, 1e-10);            // λ_n's mean
+  EXPECT_NEAR(std::abs(s.full[(n + 1) * size]), *status.tangential_force, 1e-10);  // λ_t's mean
+}
+
 TEST(StaticPreload, SolveJsonReportsTheStaticState) {
   app::SolveOptions o;
   const app::Solution s = app::solve(written(oscillator(kWall, preload(2.0) + forcing(0.01))), o);
