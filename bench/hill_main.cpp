@@ -39,7 +39,7 @@ std::string problem(const std::string& name) { return std::string(EQHB_PROBLEMS_
 // A law that hits a rigid wall: the restitution matters.
 bool hasWall(const HbModel& model) {
   const auto site = piecewiseLinearSite(*model.laws[0].law);
-  return site && site->contact;
+  return site && site->rigidWall();
 }
 
 // Harmonic balance at H, as the reference orbit starts (exact_reference.h).

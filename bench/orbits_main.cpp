@@ -159,7 +159,7 @@ int main(int argc, char** argv) {
     const bench::ExactOrbit exact = bench::exactOrbit(model, c.restitution, hb);
     const auto& o = exact.orbit;
     const auto wall = piecewiseLinearSite(*model.laws[0].law);  // impacts: the restitution matters
-    md << "## " << scene.name << ", ω = " << c.omega << (wall && wall->contact ? ", e = " + number(c.restitution) : "")
+    md << "## " << scene.name << ", ω = " << c.omega << (wall && wall->rigidWall() ? ", e = " + number(c.restitution) : "")
        << "\n\n"
        << "exact orbit: " << (o.converged ? "converged" : "NOT converged (" + o.failure + ")") << ", period residual "
        << number(o.period_residual) << ", " << o.iterations << " Newton steps, " << number(o.seconds_per_orbit * 1e3)

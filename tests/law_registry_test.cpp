@@ -192,9 +192,12 @@ TEST(LawRegistry, CapabilitiesAnswerForTheLawsThatHaveThem) {
           EXPECT_NEAR(df_dv, (fp - fm) / (2 * h), 1e-6 * (1.0 + std::abs(df_dv))) << c.label;
         }
     }
-    EXPECT_EQ(piecewise.has_value(), c.type == "coulomb-1d" || c.type == "signorini" || jenkins_1d) << c.label;
+    EXPECT_EQ(piecewise.has_value(),
+              c.type == "coulomb-1d" || c.type == "signorini" || c.type == "penalty-contact" || jenkins_1d)
+        << c.label;
     if (piecewise) {
-      EXPECT_EQ(piecewise->contact, c.type == "signorini") << c.label;
+      EXPECT_EQ(piecewise->contact, c.type == "signorini" || c.type == "penalty-contact") << c.label;
+      EXPECT_EQ(piecewise->rigidWall(), c.type == "signorini") << c.label;
       EXPECT_EQ(piecewise->stiffness > 0.0, jenkins_1d) << c.label;
     }
   }

@@ -229,6 +229,81 @@ TEST(Shooting, ContactOrbitsWithRestitutionZeroAndOne) {
   }
 }
 
+// An elastic wall (penalty-contact) in closed form: the undamped, unforced
+// oscillator (m = k = 1) with the wall (k_n = 10) at x = 0, started at the
+// wall moving into it with speed V, is the bilinear oscillator: half a
+// period pressed (stiffness 11, out to V/sqrt(11) after pi/(2 sqrt(11))),
+// half open (out to -V after a further pi/2 of the open half), back at
+// (0, V) after pi/sqrt(11) + pi.
+TEST(Shooting, PenaltyWallFreeFlightIsTheBilinearOscillator) {
+  const HbModel model = loadScene(test::problem("penalty-contact.toml"),
+                                  {"structure.dofs=1", "structure.d=0", "law.dofs=[1]", "law.gap=0", "forcing.cos=0"})
+                            .model;
+  const PiecewiseLinearFlow flow(model, 0.0);
+  const double v = 0.7, pressed = M_PI / std::sqrt(11.0), open = M_PI;
+  orbits::FlowSamples samples;
+  samples.times = {0.5 * pressed, pressed + 0.5 * open};
+  const auto run = flow.integrate(Eigen::Vector2d(0.0, v), 0.0, pressed + open, true, &samples);
+  ASSERT_TRUE(run.ok) << run.failure;
+  EXPECT_NEAR(samples.displacement(0, 0), v / std::sqrt(11.0), 1e-12);
+  EXPECT_NEAR(samples.force(0, 0), 10.0 * v / std::sqrt(11.0), 1e-11);  // the pressure k_n x
+  EXPECT_NEAR(samples.displacement(1, 0), -v, 1e-12);
+  EXPECT_NEAR(samples.force(1, 0), 0.0, 1e-15);
+  EXPECT_NEAR(run.end[0], 0.0, 1e-12);
+  EXPECT_NEAR(run.end[1], v, 1e-12);
+  EXPECT_NEAR(run.max_abs[0], v, 1e-12);
+  EXPECT_EQ(run.events.at("release"), 1);
+  // The Jacobian across a release and a touch (identity saltations: the
+  // force is continuous there) against finite differences, from inside the
+  // pressed half.
+  const Eigen::Vector2d inside(samples.displacement(0, 0), 0.0);
+  const auto part = flow.integrate(inside, 0.5 * pressed, pressed + open, true);
+  ASSERT_TRUE(part.ok);
+  EXPECT_EQ(part.events.at("touch"), 1);
+  const Eigen::MatrixXd fd = finiteDifferenceFlowMap(flow, inside, 0.5 * pressed, pressed + open, 1e-6, part.events);
+  EXPECT_LT((fd - part.jacobian).norm(), 1e-7 * part.jacobian.norm());
+}
+
+// The penalty-contact scene's forced orbit (ω = 0.55, the wall touched once
+// per period) shot exactly, against the independent Moreau–Jean time
+// reference: the wall's force is continuous, so θ = ½ stays second order
+// (4.6e-3, 1.1e-3, 3.0e-4 at 500, 1000, 2000 steps per period).
+TEST(Shooting, PenaltyWallOrbitAgreesWithTheTimeReference) {
+  HbModel model = loadScene(test::problem("penalty-contact.toml")).model;
+  model.omega = 0.55;
+  const PiecewiseLinearFlow flow(model, 0.0);
+  auto system = makeHbSystem(model, false);  // the full system, which the penalty wall suits
+  SolverOptions solver_options;
+  solver_options.residual_tolerance = 1e-10;
+  const auto solved = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), solver_options);
+  ASSERT_TRUE(solved.converged());
+  const Eigen::VectorXd hb = system->fullCoefficients(solved.solution);
+  const double t0 = orbits::quietStartTime(model, hb);
+  const auto orbit = shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
+  ASSERT_TRUE(orbit.converged) << orbit.failure;
+  EXPECT_EQ(orbit.events.at("touch"), 1);
+  EXPECT_EQ(orbit.events.at("release"), 1);
+  std::vector<double> errors;
+  for (int steps : {500, 1000, 2000}) {
+    TimeOptions options;
+    options.step = flow.period() / steps;
+    options.periodic_tolerance = 1e-11;
+    const TimeReference ref = integrateToSteadyState(model, options, hb);
+    ASSERT_TRUE(ref.periodic);
+    errors.push_back(orbits::distanceToOrbit(flow, orbit, ref.displacement));
+  }
+  std::printf("penalty wall, distance of the time reference to the exact orbit: %.3g %.3g %.3g\n", errors[0],
+              errors[1], errors[2]);
+  EXPECT_GT(std::log2(errors[0] / errors[2]) / 2.0, 1.8);
+  EXPECT_LT(errors[2], 4e-4);
+  // The multipliers: stable, and the monodromy against finite differences.
+  EXPECT_TRUE(orbit.stable);
+  const auto run = flow.integrate(orbit.state, t0, flow.period(), true);
+  ASSERT_TRUE(run.ok);
+  const Eigen::MatrixXd fd = finiteDifferenceFlowMap(flow, orbit.state, t0, flow.period(), 1e-6, run.events);
+  EXPECT_LT((fd - run.jacobian).norm(), 1e-5 * std::max(1.0, run.jacobian.norm()));
+}
+
 TEST(Shooting, MoreauJeanConvergesToTheExactOrbit) {
   // Stick-slip (ω = 0.4) and continuous sliding (Coulomb oscillator).
   for (const auto& [file, omega] : {std::pair{"friction-1d.toml", 0.4}, std::pair{"coulomb-oscillator.toml", 0.6}}) {

@@ -25,12 +25,15 @@ struct SmoothFlowSite {
 
 // A law on one DOF that PiecewiseLinearFlow (orbits/piecewise_linear_flow.h)
 // integrates in closed form between events: a Coulomb slider with limit μN
-// (optionally behind a spring k_t, Jenkins), or a rigid wall at x = g0.
+// (optionally behind a spring k_t, Jenkins), or a wall at x = g0, rigid
+// (Signorini) or elastic (a penalty spring k_n pressed beyond it).
 struct PiecewiseLinearSite {
   bool contact = false;
   double limit = 0.0;      // μN (friction)
   double gap = 0.0;        // g0 (contact)
   double stiffness = 0.0;  // k_t of an elastic slider (Jenkins); 0: rigid
+  double penalty = 0.0;    // k_n of an elastic wall (contact); 0: rigid
+  bool rigidWall() const { return contact && penalty == 0.0; }
 };
 
 }  // namespace eqhb

@@ -108,6 +108,9 @@ bool PiecewiseLinearFlow::Integration::handleEvent(const Phase& p, const Event& 
   } else if (ev.kind == "slip") {
     const double r = flow_.lawForce(ev.law, Mode::kStick, p, z_);
     modes_[ev.law] = r > 0.0 ? Mode::kSlipNegative : Mode::kSlipPositive;
+  } else if (ev.kind == "touch") {
+    // An elastic wall: its spring takes over from zero force, no reset.
+    modes_[ev.law] = Mode::kClosed;
   } else if (ev.kind == "impact") {
     z_[site.dof] = site.gap;
     const double bounce = -flow_.restitution_ * z_[n_ + site.dof];

@@ -21,6 +21,11 @@ constexpr double kTieTolerance = 1e-13;
 
 }  // namespace
 
+bool PiecewiseLinearFlow::constrains(const LawSite& site, Mode mode) {
+  // Elastic sliders and walls act by springs, never by a held DOF.
+  return site.slider < 0 && site.penalty == 0.0 && (mode == Mode::kStick || mode == Mode::kClosed);
+}
+
 bool PiecewiseLinearFlow::supports(const HbModel& model) {
   for (const auto& attached : model.laws)
     if (!piecewiseLinearSite(*attached.law)) return false;
@@ -66,10 +71,12 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
       site.limit = capability->limit;
       site.gap = capability->gap;
       site.stiffness = capability->stiffness;
+      site.penalty = capability->penalty;
       if (site.stiffness > 0.0) site.slider = m_++;
     } else {
       throwInputError("law[" + std::to_string(l) + "].type", law->type(),
-                      "exact orbits handle coulomb-1d, jenkins on 1 DOF, signorini (closed form), cubic, polynomial, "
+                      "exact orbits handle coulomb-1d, jenkins on 1 DOF, signorini, penalty-contact (closed form), cubic, "
+                      "polynomial, "
                       "quadratic-damping, coulomb-2d, stribeck and coulomb-1d (smooth phases) laws; signorini does "
                       "not mix with the smooth ones");
     }
@@ -77,9 +84,8 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
   }
   nz_ = m_ + 1 + 2 * static_cast<int>(harmonics_.size());
   // Fastest rate: natural frequency bound, damping rate, forcing.
-  Eigen::MatrixXd stuck_stiffness = stiffness_;  // with every elastic slider stuck
-  for (const LawSite& site : sites_)
-    if (site.slider >= 0) stuck_stiffness(site.dof, site.dof) += site.stiffness;
+  Eigen::MatrixXd stuck_stiffness = stiffness_;  // every elastic slider stuck, every elastic wall pressed
+  for (const LawSite& site : sites_) stuck_stiffness(site.dof, site.dof) += site.stiffness + site.penalty;
   rate_ = fastestRate(mass_inverse_, stuck_stiffness, damping_, harmonics_, omega_);
 }
 
@@ -107,7 +113,7 @@ const PiecewiseLinearFlow::Phase& PiecewiseLinearFlow::phase(const std::vector<M
     const int dof = sites_[l].dof;
     if (modes[l] == Mode::kSlipPositive) sliding[dof] -= sites_[l].limit;
     if (modes[l] == Mode::kSlipNegative) sliding[dof] += sites_[l].limit;
-    if (sites_[l].slider < 0 && (modes[l] == Mode::kStick || modes[l] == Mode::kClosed)) p.constrained.push_back(dof);
+    if (constrains(sites_[l], modes[l])) p.constrained.push_back(dof);
   }
   // b = B z: the force on the structure except the constraint forces.
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n_, nz_);
@@ -118,6 +124,12 @@ const PiecewiseLinearFlow::Phase& PiecewiseLinearFlow::phase(const std::vector<M
     if (sites_[l].slider >= 0 && modes[l] == Mode::kStick) {
       b(sites_[l].dof, sites_[l].dof) -= sites_[l].stiffness;
       b(sites_[l].dof, sites_[l].slider) += sites_[l].stiffness;
+    }
+  // A pressed elastic wall: force −k_n (x − g0) on its DOF.
+  for (size_t l = 0; l < sites_.size(); ++l)
+    if (sites_[l].penalty > 0.0 && modes[l] == Mode::kClosed) {
+      b(sites_[l].dof, sites_[l].dof) -= sites_[l].penalty;
+      sliding[sites_[l].dof] += sites_[l].penalty * sites_[l].gap;
     }
   b.col(m_) = constant_load_ + sliding;
   for (size_t h = 0; h < harmonics_.size(); ++h) {
@@ -176,11 +188,16 @@ std::vector<PiecewiseLinearFlow::Event> PiecewiseLinearFlow::events(const std::v
       case Mode::kOpen:
         e.functional[site.dof] = -1.0;  // g0 − x
         e.functional[m_] = site.gap;
-        e.kind = "impact";
+        e.kind = site.penalty > 0.0 ? "touch" : "impact";
         out.push_back(e);
         break;
       case Mode::kClosed:
-        e.functional = -constraintRow(site.dof);  // pressure p = −(force on the structure)
+        if (site.penalty > 0.0) {  // pressed while x − g0 > 0
+          e.functional[site.dof] = 1.0;
+          e.functional[m_] = -site.gap;
+        } else {
+          e.functional = -constraintRow(site.dof);  // pressure p = −(force on the structure)
+        }
         e.kind = "release";
         out.push_back(e);
         break;
@@ -198,7 +215,11 @@ std::vector<PiecewiseLinearFlow::Mode> PiecewiseLinearFlow::chooseModes(const Ei
     if (!free_choice[l]) continue;
     const LawSite& site = sites_[l];
     const double v = z[n_ + site.dof];
-    if (site.slider >= 0) {
+    if (site.penalty > 0.0) {
+      // Elastic wall: pressed beyond g0, or at g0 moving into it.
+      const double into = z[site.dof] - site.gap;
+      modes[l] = (into > 0.0 || (into == 0.0 && v > 0.0)) ? Mode::kClosed : Mode::kOpen;
+    } else if (site.slider >= 0) {
       // Elastic: stuck inside the limit; on it, slipping where the DOF moves
       // against the spring force (r = −μN while ẋ > 0), else stuck.
       const double r = springForceRow(site).dot(z);
@@ -220,7 +241,7 @@ std::vector<PiecewiseLinearFlow::Mode> PiecewiseLinearFlow::chooseModes(const Ei
     double worst_excess = 0.0;
     Mode release = Mode::kOpen;
     for (size_t l = 0; l < sites_.size(); ++l) {
-      if (!free_choice[l] || sites_[l].slider >= 0 || (modes[l] != Mode::kStick && modes[l] != Mode::kClosed)) continue;
+      if (!free_choice[l] || !constrains(sites_[l], modes[l])) continue;
       const auto i = std::find(p.constrained.begin(), p.constrained.end(), sites_[l].dof) - p.constrained.begin();
       const double f = p.constraint_force.row(i).dot(z);
       // At a tie (force on the boundary of its set to round-off) the rate
@@ -254,20 +275,15 @@ Eigen::RowVectorXd PiecewiseLinearFlow::springForceRow(const LawSite& site) cons
 
 double PiecewiseLinearFlow::lawForce(int l, Mode mode, const Phase& p, const Eigen::VectorXd& z) const {
   const LawSite& site = sites_[l];
-  switch (mode) {
-    case Mode::kSlipPositive: return -site.limit;
-    case Mode::kSlipNegative: return site.limit;
-    case Mode::kOpen: return 0.0;
-    case Mode::kStick:
-      if (site.slider >= 0) return springForceRow(site).dot(z);
-      [[fallthrough]];
-    case Mode::kClosed: {
-      const auto i = std::find(p.constrained.begin(), p.constrained.end(), site.dof) - p.constrained.begin();
-      const double f = p.constraint_force.row(i).dot(z);
-      return mode == Mode::kClosed ? -f : f;
-    }
-  }
-  return 0.0;
+  if (mode == Mode::kSlipPositive) return -site.limit;
+  if (mode == Mode::kSlipNegative) return site.limit;
+  if (mode == Mode::kOpen) return 0.0;
+  if (site.penalty > 0.0) return site.penalty * (z[site.dof] - site.gap);  // pressed: the pressure
+  if (site.slider >= 0) return springForceRow(site).dot(z);                // stuck behind its spring
+  // Held: the constraint force (a closed wall's pressure is minus it).
+  const auto i = std::find(p.constrained.begin(), p.constrained.end(), site.dof) - p.constrained.begin();
+  const double f = p.constraint_force.row(i).dot(z);
+  return mode == Mode::kClosed ? -f : f;
 }
 
 }  // namespace eqhb::orbits

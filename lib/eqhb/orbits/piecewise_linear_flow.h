@@ -1,7 +1,8 @@
 // Event-driven integration of a linear structure with exact Coulomb 1D
 // friction, elastic dry friction on one DOF (Jenkins: spring k_t in series
-// with a slider) and Signorini contact (with Newton's impact law), phase by
-// phase in closed form.
+// with a slider), Signorini contact (with Newton's impact law) and elastic
+// walls (a penalty spring k_n pressed beyond g0), phase by phase in closed
+// form.
 //
 // A Jenkins slider adds its position w to the state. Stuck, it is a spring:
 // force −k_t (x − w) on its DOF, ẇ = 0, until |k_t (x − w)| reaches μN
@@ -10,7 +11,8 @@
 //
 // Between events every law is in one mode — slip in +x or −x (constant force
 // ∓μN), stick (velocity held at 0 by the force the structure needs, |r| <= μN),
-// contact open (no force) or closed (gap held at 0, pressure p >= 0) — so
+// contact open (no force) or closed (gap held at 0, pressure p >= 0), an
+// elastic wall open or pressed (force −k_n (x − g0), no constraint) — so
 // the dynamics are linear with harmonic forcing. With G the constrained DOFs
 // (stick, closed), P their selection and b = f(t) + s − C v − K x (s the
 // sliding forces), the constrained acceleration and force are
@@ -23,7 +25,9 @@
 // harmonic is resonant.
 //
 // Events are zeros of linear functionals g = cᵀ z (velocity of a sliding
-// DOF, |r| − μN in stick, gap when open, pressure when closed): bracketed on
+// DOF, |r| − μN in stick, gap when open, pressure when closed, x − g0 when
+// an elastic wall is pressed; its force is continuous there, so its
+// saltation is the identity): bracketed on
 // a grid finer than the fastest rate of the phase, then located by Newton
 // with bisection safeguard to round-off in t. At an event the state is reset
 // (impact: v⁺ = −e v⁻), the new modes chosen by the exact rules (a stopped
@@ -79,8 +83,8 @@ class Flow {
 
 class PiecewiseLinearFlow : public Flow {
  public:
-  // Throws InputError when a law is not Coulomb 1D, Jenkins on 1 DOF or Signorini or
-  // restitution e is outside [0, 1].
+  // Throws InputError when a law is not Coulomb 1D, Jenkins on 1 DOF,
+  // Signorini or a penalty wall, or restitution e is outside [0, 1].
   PiecewiseLinearFlow(const HbModel& model, double restitution);
 
   // [x; v; w]: w the positions of the elastic (Jenkins) sliders, in law order.
@@ -104,6 +108,7 @@ class PiecewiseLinearFlow : public Flow {
     double limit = 0.0;  // μN (friction)
     double gap = 0.0;    // g0 (contact)
     double stiffness = 0.0;  // k_t (elastic friction)
+    double penalty = 0.0;    // k_n (elastic wall; kClosed: pressed)
     int slider = -1;         // index of the slider position w in the state, elastic friction only
   };
   struct Phase {
@@ -119,6 +124,8 @@ class PiecewiseLinearFlow : public Flow {
     std::string kind;
   };
 
+  // The law holds its DOF in this mode (a constraint of the phase).
+  static bool constrains(const LawSite& site, Mode mode);
   const Phase& phase(const std::vector<Mode>& modes) const;
   std::vector<Event> events(const std::vector<Mode>& modes, const Phase& p) const;
   std::vector<Mode> chooseModes(const Eigen::VectorXd& z, std::vector<Mode> modes,

@@ -29,7 +29,7 @@ PiecewiseLinearFlow::Integration::Integration(const PiecewiseLinearFlow& flow, b
 bool PiecewiseLinearFlow::Integration::start(const Eigen::VectorXd& y0, double t0, double duration) {
   z_ = flow_.augment(y0, t0);
   for (const LawSite& site : flow_.sites_)
-    if (site.contact && z_[site.dof] > site.gap) {
+    if (site.contact && site.penalty == 0.0 && z_[site.dof] > site.gap) {
       result_.failure = "the initial state penetrates the wall (x" + std::to_string(site.dof + 1) + " = " +
                         formatNumber(z_[site.dof]) + " > gap " + formatNumber(site.gap) + ")";
       return false;
@@ -48,13 +48,14 @@ bool PiecewiseLinearFlow::Integration::start(const Eigen::VectorXd& y0, double t
     // to it at once (the stop / plastic-impact saltation at t0).
     jacobian_ = Eigen::MatrixXd::Identity(m_, m_);
     for (int l = 0; l < laws_; ++l) {
-      if (sites[l].slider < 0 && (modes_[l] == Mode::kStick || modes_[l] == Mode::kClosed))
+      if (flow_.constrains(sites[l], modes_[l])) {
         jacobian_.row(n_ + sites[l].dof).setZero();
+        if (modes_[l] == Mode::kClosed) jacobian_.row(sites[l].dof).setZero();
+      }
       if (sites[l].slider >= 0 && modes_[l] != Mode::kStick) {  // δw = δx
         jacobian_.row(sites[l].slider).setZero();
         jacobian_(sites[l].slider, sites[l].dof) = 1.0;
       }
-      if (modes_[l] == Mode::kClosed) jacobian_.row(sites[l].dof).setZero();
     }
   }
   result_.max_abs = y0.head(n_).cwiseAbs();

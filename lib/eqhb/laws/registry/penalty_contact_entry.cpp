@@ -15,6 +15,14 @@ LawEntry penaltyContactEntry() {
   };
   e.examples = {{"penalty-contact", 1, "stiffness = 3.0\ngap = 0.4"},
                 {"penalty-contact-stiff", 1, "stiffness = 200.0\ngap = -0.3"}};
+  e.piecewise_linear_flow = [](const Law& law) -> std::optional<PiecewiseLinearSite> {
+    const auto& wall = static_cast<const PenaltyContact&>(law);
+    PiecewiseLinearSite site;
+    site.contact = true;
+    site.gap = wall.gap();
+    site.penalty = wall.stiffness();
+    return site;
+  };
   return e;
 }
 
