@@ -45,6 +45,24 @@ ExactOrbit exactOrbit(const HbModel& model, double restitution, const Eigen::Vec
   return out;
 }
 
+ExactOrbit harmonicBalanceOrbit(const HbModel& model, const Eigen::VectorXd& full, bool converged) {
+  ExactOrbit out;
+  out.orbit.converged = converged;
+  if (!converged) {
+    out.orbit.failure = "the reference harmonic balance did not converge";
+    return out;
+  }
+  const int n = model.structure.dofs(), count = 4096;
+  const double period = 2.0 * M_PI / model.omega;
+  out.displacement.resize(count, n);
+  for (int s = 0; s < count; ++s) {
+    out.times.push_back(period * s / count);
+    out.displacement.row(s) = orbits::harmonicState(model, full, out.times.back()).head(n);
+  }
+  out.orbit.max_abs = peakDisplacements(model, full);
+  return out;
+}
+
 SeriesError seriesError(const HbModel& model, const Eigen::VectorXd& full, const ExactOrbit& exact) {
   SeriesError out;
   const int n = model.structure.dofs();

@@ -30,6 +30,11 @@ Eigen::VectorXd referenceHarmonicBalance(const HbModel& model, bool* converged =
 // Shoots from `hb` (FullSystem layout on `model`) and samples 4096 instants.
 ExactOrbit exactOrbit(const HbModel& model, double restitution, const Eigen::VectorXd& hb);
 
+// A converged harmonic-balance solution `full` on `model` sampled as the
+// reference (4096 instants, its peaks as max_abs), where shooting is out of
+// reach; `converged` false gives a reference that is not ok().
+ExactOrbit harmonicBalanceOrbit(const HbModel& model, const Eigen::VectorXd& full, bool converged);
+
 struct SeriesError {
   double sup = 0.0;      // max over the samples and DOFs of |x − x_exact| / max|x_exact|
   double max_abs = 0.0;  // worst relative error of max_t|x_i| per DOF (error_estimate.h's measure)

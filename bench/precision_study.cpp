@@ -116,7 +116,8 @@ std::string PrecisionCurve::name() const {
   return refine ? s + (coarse_start ? " + shooting from H0" : " + shooting") : s;
 }
 
-std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<std::string>& backends) {
+std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<std::string>& backends,
+                                      bool harmonic_balance_reference) {
   std::vector<std::string> forms;
   for (const auto& f : lawEntry(*model.laws[0].law).forms)
     if (exactForm(f)) forms.push_back(f);
@@ -131,12 +132,17 @@ std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<st
   std::vector<PrecisionCurve> curves;
   for (const auto& form : forms)
     for (RhoPolicy rho : policies) curves.push_back({form, rho, base_condensed, "dogleg", false});
+  const bool has_aft = static_cast<bool>(lawEntry(*model.laws[0].law).parse_aft);
+  if (harmonic_balance_reference) {
+    if (has_aft) curves.push_back({kAftForm, base_policy, base_condensed, "dogleg", false});
+    return curves;
+  }
   for (const auto& backend : backends)
     for (bool condensed : {true, false})
       if (backend != "dogleg" || condensed != base_condensed)
         curves.push_back({forms.front(), base_policy, condensed, backend, false});
   // The alternating frequency–time form has no ρ (the scene's is unused).
-  if (lawEntry(*model.laws[0].law).parse_aft) curves.push_back({kAftForm, base_policy, base_condensed, "dogleg", false});
+  if (has_aft) curves.push_back({kAftForm, base_policy, base_condensed, "dogleg", false});
   for (const auto& form : forms) curves.push_back({form, base_policy, base_condensed, "dogleg", true});
   curves.push_back({forms.front(), base_policy, base_condensed, "dogleg", true, true});
   return curves;

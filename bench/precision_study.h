@@ -18,6 +18,12 @@ struct PrecisionScene {
   double omega = 0.0;
   double restitution = 0.0;  // Newton's impact coefficient of the exact orbit (contact)
   double rho = 1.0;    // the scene file's ρ, what the fixed policy keeps
+  // > 0: the reference is the law's alternating frequency–time solution at
+  // this H instead of the exact orbit (a model too large to shoot in the
+  // study's time: beam-damper-elastic's 120 DOFs); the ladder then stops at
+  // `largest_harmonics` and only the own dogleg's forms run (no shooting).
+  int reference_harmonics = 0;
+  int largest_harmonics = 0;  // 0: the whole ladder
   std::string label() const;  // "friction-1d ω=0.4" (", e=1" for contact)
 };
 
@@ -59,7 +65,10 @@ struct PrecisionPoint {
 // dogleg solves there), the scene's first form at the fixed ρ on the other
 // backends and systems, harmonic balance followed by shooting per form, and
 // shooting from H₀ projected on every H for the first form.
-std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<std::string>& backends);
+// A scene with a harmonic-balance reference gets the own dogleg's forms and
+// the AFT form only.
+std::vector<PrecisionCurve> curvesFor(const HbModel& model, const std::vector<std::string>& backends,
+                                      bool harmonic_balance_reference = false);
 
 // One curve over the ladder of H: each point solved by continuation in H
 // from min(H, H₀) (H₀ = harmonics.front()), timed `repeats` times (once
