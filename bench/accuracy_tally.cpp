@@ -107,6 +107,9 @@ std::vector<TallyCase> accuracyTallyCases() {
   // Signorini contact against the elastic-impact orbit (e = 1, which its
   // harmonic balance approaches): ω = 0.4 stays clear of the wall.
   grid(out, "contact.toml", {0.4, 0.5, 0.55, 0.6}, "forcing[0].cos", {1.0});
+  // An elastic wall (penalty spring, exact orbits in closed form): below,
+  // at and above the first resonance, a soft and a stiff wall.
+  grid(out, "penalty-contact.toml", {0.4, 0.5, 0.7}, "law[0].stiffness", {10.0, 100.0});
   return out;
 }
 
