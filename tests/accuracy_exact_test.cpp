@@ -74,7 +74,7 @@ TEST(AccuracyExactTest, TheEstimateWithFactorTwoWouldMissTheSameCase) {
 
 TEST(AccuracyExactTest, LawsWithoutAnExactFlowAreTestedByTheEstimateWithItsSafetyFactor) {
   auto solver = makeSolver("dogleg");
-  const HbModel m = scene("penalty-contact.toml", 0.5);
+  const HbModel m = scene("field/tmdsimpy-2dof-elastic-dry-friction.toml", 2.0);  // contact-friction: no exact flow
   EXPECT_FALSE(exactOrbitUnavailable(m).empty());
   const AccuracyChoice c = chooseHarmonics(m, 1e-2, 5, 320, *solver, tightOptions(), true);
   ASSERT_TRUE(c.reached) << c.failure;
