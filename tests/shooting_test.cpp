@@ -229,6 +229,23 @@ TEST(Shooting, ContactOrbitsWithRestitutionZeroAndOne) {
   }
 }
 
+// The distance of the Moreau–Jean time reference, started from `hb`, to the
+// exact orbit at each count of steps per period.
+std::vector<double> timeReferenceDistances(const HbModel& model, const orbits::Flow& flow,
+                                           const orbits::ShootingResult& orbit, const Eigen::VectorXd& hb,
+                                           const std::vector<int>& steps_per_period) {
+  std::vector<double> errors;
+  for (int steps : steps_per_period) {
+    TimeOptions options;
+    options.step = flow.period() / steps;
+    options.periodic_tolerance = 1e-11;
+    const TimeReference ref = integrateToSteadyState(model, options, hb);
+    EXPECT_TRUE(ref.periodic);
+    errors.push_back(orbits::distanceToOrbit(flow, orbit, ref.displacement));
+  }
+  return errors;
+}
+
 // An elastic wall (penalty-contact) in closed form: the undamped, unforced
 // oscillator (m = k = 1) with the wall (k_n = 10) at x = 0, started at the
 // wall moving into it with speed V, is the bilinear oscillator: half a
@@ -283,15 +300,7 @@ TEST(Shooting, PenaltyWallOrbitAgreesWithTheTimeReference) {
   ASSERT_TRUE(orbit.converged) << orbit.failure;
   EXPECT_EQ(orbit.events.at("touch"), 1);
   EXPECT_EQ(orbit.events.at("release"), 1);
-  std::vector<double> errors;
-  for (int steps : {500, 1000, 2000}) {
-    TimeOptions options;
-    options.step = flow.period() / steps;
-    options.periodic_tolerance = 1e-11;
-    const TimeReference ref = integrateToSteadyState(model, options, hb);
-    ASSERT_TRUE(ref.periodic);
-    errors.push_back(orbits::distanceToOrbit(flow, orbit, ref.displacement));
-  }
+  const std::vector<double> errors = timeReferenceDistances(model, flow, orbit, hb, {500, 1000, 2000});
   std::printf("penalty wall, distance of the time reference to the exact orbit: %.3g %.3g %.3g\n", errors[0],
               errors[1], errors[2]);
   EXPECT_GT(std::log2(errors[0] / errors[2]) / 2.0, 1.8);
@@ -314,15 +323,7 @@ TEST(Shooting, MoreauJeanConvergesToTheExactOrbit) {
     const double t0 = orbits::quietStartTime(model, hb);
     const auto orbit = shootPeriodicOrbit(flow, orbits::harmonicState(model, hb, t0), t0, ShootingOptions());
     ASSERT_TRUE(orbit.converged) << orbit.failure;
-    std::vector<double> errors;
-    for (int steps : {250, 500, 1000}) {
-      TimeOptions options;
-      options.step = flow.period() / steps;
-      options.periodic_tolerance = 1e-11;
-      const TimeReference ref = integrateToSteadyState(model, options, hb);
-      ASSERT_TRUE(ref.periodic);
-      errors.push_back(orbits::distanceToOrbit(flow, orbit, ref.displacement));
-    }
+    const std::vector<double> errors = timeReferenceDistances(model, flow, orbit, hb, {250, 500, 1000});
     // θ = ½ is second order on smooth phases, first order across events:
     // at least first order overall, and small at 1000 steps per period.
     EXPECT_GT(std::log2(errors[0] / errors[2]) / 2.0, 0.9) << file;
