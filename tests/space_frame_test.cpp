@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "eqhb/app/modes.h"
 #include "eqhb/app/sweep.h"
 #include "eqhb/error.h"
 #include "eqhb/round_trip.h"
@@ -283,6 +284,30 @@ TEST(SpaceFrame, TheTipDampersResonanceLiesBetweenTheFreeAndTheHeldBlades) {
   const Peak at_1n = peakOf(light.curve, w);
   EXPECT_NEAR(at_1n.omega, free_mode, 0.02 * free_mode);
   EXPECT_GT(at_1n.amplitude, 10.0 * at_4n.amplitude);
+}
+
+// The damper's nonlinear mode 1 on the default range: the damper's limit is
+// μ times the preload's normal force, which the law does not hold itself,
+// so the range is set from the static state's limit: it starts where the
+// damper holds the tip (the held blade's 1389.5 rad/s), passes through the
+// microslip where the forced resonance lies (770) and ends on the free
+// blade's mode. Before, the range was the scene's length scale and started
+// 60 times above slip onset, the first point failing and the rest on the
+// free blade's 657.
+TEST(SpaceFrame, TheTipDampersModeRunsFromTheHeldToTheFreeBlade) {
+  app::SceneSettings scene;
+  scene.path = test::problem("blade-tip-damper.toml");
+  app::ModesOptions o;
+  o.points = 20;
+  const app::ModesRun run = app::modes(scene, o);
+  ASSERT_TRUE(run.backbone.complete());
+  EXPECT_NEAR(run.backbone.start.omega, 1389.52, 0.01);
+  const std::vector<BackbonePoint>& points = run.backbone.points;
+  EXPECT_NEAR(points.front().omega, run.backbone.start.omega, 1e-6 * run.backbone.start.omega);
+  EXPECT_NEAR(points.back().omega, 656.2, 0.01 * 656.2);
+  bool below = false, above = false;  // the forced resonance's 770 is crossed
+  for (const BackbonePoint& p : points) (p.omega > 770.0 ? above : below) = true;
+  EXPECT_TRUE(below && above);
 }
 
 }  // namespace

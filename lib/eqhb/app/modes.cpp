@@ -38,15 +38,25 @@ bool hasConstantLoad(const HbModel& model) {
 // The modal amplitude at which the first law reaches its force level (a
 // friction law its slip limit μN) on the linear mode: the laws' forces are
 // those that supply the mode's reaction (K − ω² M) φ per unit amplitude
-// (lawForcesFor); 0 when no law has a force level or a force.
-double onsetAmplitude(const HbModel& model, const LinearMode& mode) {
+// (lawForcesFor); 0 when no law has a force level or a force. A law whose
+// limit is set by its normal force (elastic friction pressed by a preload)
+// has no force level of its own: about a static state its tangential
+// components take the limit μN the static state gives, less the static
+// tangential force (without it, blade-tip-damper's range ran from 4.2e-4,
+// 60 times above where its damper starts to slip, and missed the stuck
+// blade's mode and the microslip).
+double onsetAmplitude(const HbModel& model, const LinearMode& mode, const StaticContactState* at_rest) {
   const LinearStructure& s = model.structure;
   const Eigen::VectorXd forces =
       lawForcesFor(model, s.stiffness * mode.shape - mode.omega * mode.omega * (s.mass * mode.shape));
   double onset = 0.0;
   for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
-    const double level = std::abs(model.laws[l].law->forceLevel());
+    const double own_level = std::abs(model.laws[l].law->forceLevel());
+    const std::optional<StaticStatus>* status = at_rest ? &at_rest->status[l] : nullptr;
     for (int c = 0; c < model.laws[l].law->dimension(); ++c) {
+      double level = own_level;
+      if (!(level > 0.0) && c > 0 && status && *status && (*status)->friction_limit)
+        level = *(*status)->friction_limit - (*status)->tangential_force.value_or(0.0);
       const double per_amplitude = std::abs(forces[model.componentIndex(l, c)]);
       if (!(level > 0.0) || !(per_amplitude > 0.0)) continue;
       const double a = level / per_amplitude;
@@ -98,7 +108,7 @@ BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const S
   BackboneOptions b;
   b.mode = o.mode;
   b.points = o.points;
-  double reach = onsetAmplitude(model, mode);
+  double reach = onsetAmplitude(model, mode, at_rest);
   if (!(reach > 0.0)) {
     HbModel unforced = model;
     unforced.structure.loads.clear();

@@ -18,7 +18,8 @@ struct ModesOptions {
   int mode = 1;  // K, by increasing frequency of the linearised structure, >= 1
   // Modal amplitude range φᵀ M x̂₁, both > 0, from < to. Unset: 10⁻² and
   // 10³ times the amplitude at which the linear mode's reaction at a law
-  // reaches the law's force level (a friction law's slip onset), so that
+  // reaches the law's force level (a friction law's slip onset; a friction
+  // contact pressed by a preload: the static state's μN), so that
   // the range runs from well below it to well above; without a force level,
   // the scene's length scale (problem_scales.h) over max|φ|. About a static
   // state with pressed contacts, `to` is lowered to 3 times where the first
