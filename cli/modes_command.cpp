@@ -23,6 +23,12 @@ void addModesCommand(CLI::App& app, ModesArguments& a) {
   addSceneOptions(cmd, a.solve.scene);
   cmd->add_option("--mode", a.modes.mode, "K: the mode of the structure linearised about rest, by frequency, from 1")
       ->capture_default_str();
+  cmd->add_option("--branch", a.modes.branch,
+                  "held: from the structure with sticking friction holding its DOFs, up in amplitude; sliding: from "
+                  "the structure without its laws, down from --to; auto: sliding when the scene's sweep range holds "
+                  "the free mode K and not the held one")
+      ->check(CLI::IsMember({"auto", "held", "sliding"}))
+      ->capture_default_str();
   cmd->add_option("--from", a.modes.from, "Smallest modal amplitude phi^T M x1 (default: 1e-2 of the slip onset's amplitude, else of the scene's "
                   "length scale)")
       ->check(representableNumber());

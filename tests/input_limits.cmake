@@ -71,4 +71,8 @@ eqhb_cli_expect(modes_to_nan 2 "to = nan: must be finite and > 0" modes ${SCENE}
 eqhb_cli_expect(modes_backbone_time_limit_negative 2 "--backbone-time-limit = -1: must be finite and >= 0" modes ${SCENE} --backbone-time-limit -1)
 eqhb_cli_expect(modes_synthesis_without_forcing 2 "forcing = none at harmonic 1" modes ${PROJECT_SOURCE_DIR}/problems/field/modes/nlvib-05-2dof-friction-modes.toml --synthesis)
 eqhb_cli_expect(modes_reversed 2 "to = 0.1: must be > from" modes ${SCENE} --from 1 --to 0.1)
-eqhb_cli_expect(modes_json 0 "\"damping_ratio\": 0.0141421356" modes ${SCENE} --from 0.1 --to 1 --points 3 --json)
+eqhb_cli_expect(modes_json 0 "\"damping_ratio\": 0.0141421356" modes ${SCENE} --branch held --from 0.1 --to 1 --points 3 --json)
+# friction-1d's sweep (0.1 .. 0.8) holds the free chain's mode 1 (0.618), not
+# the held one (1.414): by default its mode 1 is the sliding branch.
+eqhb_cli_expect(modes_default_branch 0 "\"branch\": \"sliding\"" modes ${SCENE} --points 3 --json)
+eqhb_cli_expect(modes_branch_unknown 2 "--branch" modes ${SCENE} --branch stuck)

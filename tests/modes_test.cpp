@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 
+#include "eqhb/app/modes.h"
 #include "eqhb/error.h"
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/laws/cubic_stiffness.h"
@@ -298,6 +299,71 @@ TEST(Backbone, BeamDamperPassesTheFoldWhereTheBackboneTurnsBackInAmplitude) {
   EXPECT_LT(below_fold[0]->damping_ratio, below_fold[1]->damping_ratio);
   for (size_t i = 1; i < b.points.size(); ++i)  // the path's order: 7.6e-4 up, then back, never skipped
     if (b.points[i].amplitude < b.points[i - 1].amplitude) EXPECT_EQ(&b.points[i - 1], below_fold[0]);
+}
+
+// beam-damper's sliding branch: the free beam's mode 1 (ω = 1.8751² with
+// EI = ρA = L = 1) followed down from large amplitude, the five dampers
+// sliding. Its ω and ζ at a = 0.3 and 3 are those solved there at fixed
+// amplitude from the free mode (3.4270, 0.267; 3.5151, 0.030); the forced
+// resonance (ω 3.504) lies on it. The held branch from ω 57.5 folds five
+// times and heads for the free beam's mode 2 instead.
+TEST(Backbone, BeamDamperSlidingBranchIsTheFreeBeamsFirstModeDownFromLargeAmplitude) {
+  const Scene scene = loadScene(test::problem("beam-damper.toml"));
+  auto solver = makeSolver("dogleg");
+  BackboneOptions o;
+  o.branch = ModeBranch::kSliding;
+  o.from = 0.3;
+  o.to = 3.0;
+  o.points = 5;
+  const Backbone b = followBackbone(scene.model, *solver, SolverOptions(), o);
+  EXPECT_EQ(b.branch, ModeBranch::kSliding);
+  EXPECT_NEAR(b.start.omega, 1.8751040687 * 1.8751040687, 1e-3);
+  ASSERT_TRUE(b.complete());
+  ASSERT_EQ(b.points.size(), 5u);
+  EXPECT_NEAR(b.points.front().amplitude, 0.3, 1e-12);
+  EXPECT_NEAR(b.points.back().amplitude, 3.0, 1e-12);
+  EXPECT_NEAR(b.points.front().omega, 3.4270, 2e-4);
+  EXPECT_NEAR(b.points.front().damping_ratio, 0.267, 1e-3);
+  EXPECT_NEAR(b.points.back().omega, 3.5151, 2e-4);
+  EXPECT_NEAR(b.points.back().damping_ratio, 0.030, 1e-3);
+  for (size_t i = 1; i < b.points.size(); ++i) {  // increasing amplitude: stiffer, less damped
+    EXPECT_GT(b.points[i].amplitude, b.points[i - 1].amplitude);
+    EXPECT_GT(b.points[i].omega, b.points[i - 1].omega);
+    EXPECT_LT(b.points[i].damping_ratio, b.points[i - 1].damping_ratio);
+  }
+}
+
+// `eqhb modes` by default: beam-damper's sweep (2.8 .. 4.4) holds the free
+// beam's mode 1 and not the held one (57.5), so its mode 1 is the sliding
+// branch, 50 amplitudes all converged; blade-tip-damper's holds both (1389.5
+// held, 656.2 free), so its mode 1 is the held branch, whose default range
+// now starts below the pressed damper's slip onset (its static μN over the
+// mode's tangential force): stuck at 1389.52 there, then sliding to 656.4
+// (before: from 4.2e-4, the first amplitude failed and the rest were already
+// at 657).
+TEST(Backbone, DefaultBranchIsTheOneTheScenesSweepHolds) {
+  app::SceneSettings beam;
+  beam.path = test::problem("beam-damper.toml");
+  const app::ModesRun b = app::modes(beam, app::ModesOptions());
+  EXPECT_EQ(b.backbone.branch, ModeBranch::kSliding);
+  EXPECT_EQ(b.backbone.points.size(), 50u);
+  EXPECT_TRUE(b.backbone.complete()) << b.backbone.failed_points << " failed";
+  EXPECT_NEAR(b.backbone.points.back().omega, 3.516, 1e-3);
+  std::printf("beam-damper sliding: %zu points, %d failed, %.3g s\n", b.backbone.points.size(),
+              b.backbone.failed_points, b.backbone.seconds);
+
+  app::SceneSettings blade;
+  blade.path = test::problem("blade-tip-damper.toml");
+  const app::ModesRun t = app::modes(blade, app::ModesOptions());
+  EXPECT_EQ(t.backbone.branch, ModeBranch::kHeld);
+  EXPECT_TRUE(t.backbone.complete()) << t.backbone.failed_points << " failed";
+  ASSERT_FALSE(t.backbone.points.empty());
+  EXPECT_NEAR(t.backbone.points.front().omega, 1389.52, 0.01);
+  EXPECT_NEAR(t.backbone.points.back().omega, 656.4, 0.5);
+
+  app::ModesOptions bad;
+  bad.branch = "stuck";
+  EXPECT_THROW(app::modes(beam, bad), InputError);
 }
 
 // A time limit for the whole backbone stops the path and says so; the

@@ -332,12 +332,17 @@ def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     return _shoot(_model(model), args)
 
 
-def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, samples=None, form=None, rho=None,
+def modes(model, mode=1, *, branch="auto", start=None, stop=None, points=50, harmonics=None, samples=None, form=None, rho=None,
           formulation=None,
           solver="dogleg", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
           linear_algebra="auto", backbone_time_limit=0.0, synthesis=False):
     """The nonlinear mode `mode` (K, from 1, of the structure linearised about
-    rest) by the extended periodic motion concept, as `eqhb modes`: the
+    rest) by the extended periodic motion concept, as `eqhb modes`. `branch`
+    ("auto", "held", "sliding", as `eqhb modes --branch`): held starts from
+    the structure with sticking friction holding its DOFs and goes up in
+    amplitude; sliding starts from the structure without its laws at `stop`
+    and goes down; auto is sliding when the scene's sweep range holds the
+    free mode K and not the held one. The held branch is: the
     unforced structure with an added damping -xi M x' that makes the motion
     periodic, continued in pseudo-arclength (past the folds where it turns
     back in amplitude) and reported at `points` modal amplitudes phi^T M x1
@@ -367,7 +372,7 @@ def modes(model, mode=1, *, start=None, stop=None, points=50, harmonics=None, sa
     if start is not None and stop is not None and not stop > start:
         raise InputError(f"stop = {stop!r}: must be > start ({start!r})")
     args = _scene_args(None, harmonics, samples, form, rho, formulation)
-    args.update(mode=_integer(mode, "mode"), points=_integer(points, "points"), **{"from": start, "to": stop},
+    args.update(mode=_integer(mode, "mode"), branch=_text(branch, "branch"), points=_integer(points, "points"), **{"from": start, "to": stop},
                 backbone_time_limit=_real(backbone_time_limit, "backbone_time_limit"),
                 synthesis=_flag(synthesis, "synthesis"))
     args.update(_hb_args(solver, "full", tolerance, max_iterations, max_evaluations, time_limit, options,

@@ -293,6 +293,7 @@ py::dict modes(const PyModel& m, const py::dict& args) {
   const app::SceneSettings scene = sceneArgs(args).of(m);
   app::ModesOptions o;
   o.mode = args["mode"].cast<int>();
+  o.branch = args["branch"].cast<std::string>();
   o.from = args["from"].cast<std::optional<double>>();
   o.to = args["to"].cast<std::optional<double>>();
   o.points = args["points"].cast<int>();

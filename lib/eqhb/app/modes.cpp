@@ -15,6 +15,8 @@ namespace eqhb::app {
 
 bool ModesOptions::isValid(std::string* why) const {
   if (mode < 1) return refuseOption(why, "mode", std::to_string(mode), "must be >= 1");
+  if (branch != "auto" && branch != "held" && branch != "sliding")
+    return refuseOption(why, "branch", branch, "must be auto, held or sliding");
   if (from && (!(*from > 0.0) || !std::isfinite(*from)))
     return refuseOption(why, "from", formatNumber(*from), "must be finite and > 0 (a modal amplitude)");
   if (to && (!(*to > 0.0) || !std::isfinite(*to)))
@@ -35,28 +37,33 @@ bool hasConstantLoad(const HbModel& model) {
   return false;
 }
 
+// The force at which law l's component c slips: its force level, but
+// about a static state where the law is a pressed contact, its friction
+// components (those after its normal one) slip at the margin its static
+// friction limit leaves, μN − |r_t|, and its normal one is not counted (a
+// contact pressed by a preload has no force level of its own).
+double slipLevel(const HbModel& model, int l, int c, const StaticContactState* at_rest) {
+  const std::optional<StaticStatus>* status = at_rest ? &at_rest->status[l] : nullptr;
+  if (status && *status && (*status)->friction_limit && *(*status)->friction_limit > 0.0)
+    return c == 0 ? 0.0 : *(*status)->friction_limit - (*status)->tangential_force.value_or(0.0);
+  return std::abs(model.laws[l].law->forceLevel());
+}
+
 // The modal amplitude at which the first law reaches its force level (a
 // friction law its slip limit μN) on the linear mode: the laws' forces are
 // those that supply the mode's reaction (K − ω² M) φ per unit amplitude
-// (lawForcesFor); 0 when no law has a force level or a force. A law whose
-// limit is set by its normal force (elastic friction pressed by a preload)
-// has no force level of its own: about a static state its tangential
-// components take the limit μN the static state gives, less the static
-// tangential force (without it, blade-tip-damper's range ran from 4.2e-4,
-// 60 times above where its damper starts to slip, and missed the stuck
-// blade's mode and the microslip).
+// (lawForcesFor); 0 when no law has a force level or a force. About a
+// static state, slipLevel's margin (blade-tip-damper's pressed damper
+// slides from a ≈ 5e-6; without it the range fell back on the length scale
+// and began at 4.2e-4, past the whole transition).
 double onsetAmplitude(const HbModel& model, const LinearMode& mode, const StaticContactState* at_rest) {
   const LinearStructure& s = model.structure;
   const Eigen::VectorXd forces =
       lawForcesFor(model, s.stiffness * mode.shape - mode.omega * mode.omega * (s.mass * mode.shape));
   double onset = 0.0;
   for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
-    const double own_level = std::abs(model.laws[l].law->forceLevel());
-    const std::optional<StaticStatus>* status = at_rest ? &at_rest->status[l] : nullptr;
     for (int c = 0; c < model.laws[l].law->dimension(); ++c) {
-      double level = own_level;
-      if (!(level > 0.0) && c > 0 && status && *status && (*status)->friction_limit)
-        level = *(*status)->friction_limit - (*status)->tangential_force.value_or(0.0);
+      const double level = slipLevel(model, l, c, at_rest);
       const double per_amplitude = std::abs(forces[model.componentIndex(l, c)]);
       if (!(level > 0.0) || !(per_amplitude > 0.0)) continue;
       const double a = level / per_amplitude;
@@ -97,8 +104,39 @@ double separationAmplitude(const HbModel& model, const LinearMode& mode, const S
 // hence the margin.
 constexpr double kPastSeparation = 3.0;
 
-BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const StaticContactState* at_rest) {
-  const std::vector<LinearMode> modes = linearModes(model, at_rest);
+// The amplitude at which the friction contacts, all sliding on the free
+// mode, alone would give ζ = 1 (ModesOptions): 2 Σ level |w·φ| / (π ω²);
+// 0 when no law has a force level.
+double slidingDampingAmplitude(const HbModel& model, const LinearMode& mode, const StaticContactState* at_rest) {
+  const int n = model.structure.dofs();
+  double sum = 0.0;
+  for (int l = 0; l < static_cast<int>(model.laws.size()); ++l) {
+    const Eigen::MatrixXd w = model.laws[l].attachment.transposeDense(n);
+    for (int c = 0; c < model.laws[l].law->dimension(); ++c)
+      sum += slipLevel(model, l, c, at_rest) * std::abs(w.col(c).dot(mode.shape));
+  }
+  return 2.0 * sum / (M_PI * mode.omega * mode.omega);
+}
+
+// ModesOptions::branch: "auto" is sliding when the scene's sweep range holds
+// the free mode K's frequency and not the held one's.
+ModeBranch chosenBranch(const Scene& scene, const ModesOptions& o, const StaticContactState* at_rest) {
+  if (o.branch == "held") return ModeBranch::kHeld;
+  if (o.branch == "sliding") return ModeBranch::kSliding;
+  if (!scene.sweep_from || !scene.sweep_to || scene.model.laws.empty()) return ModeBranch::kHeld;
+  const double low = std::min(*scene.sweep_from, *scene.sweep_to), high = std::max(*scene.sweep_from, *scene.sweep_to);
+  const auto inside = [&](const std::vector<LinearMode>& modes) {
+    return o.mode <= static_cast<int>(modes.size()) && modes[o.mode - 1].omega >= low &&
+           modes[o.mode - 1].omega <= high;
+  };
+  const bool held = inside(startingModes(scene.model, ModeBranch::kHeld, at_rest));
+  const bool sliding = inside(startingModes(scene.model, ModeBranch::kSliding, at_rest));
+  return sliding && !held ? ModeBranch::kSliding : ModeBranch::kHeld;
+}
+
+BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, ModeBranch branch,
+                            const StaticContactState* at_rest) {
+  const std::vector<LinearMode> modes = startingModes(model, branch, at_rest);
   const int count = static_cast<int>(modes.size());
   if (o.mode > count)
     throwInputError("mode", std::to_string(o.mode),
@@ -107,7 +145,18 @@ BackboneOptions chosenRange(const HbModel& model, const ModesOptions& o, const S
   const LinearMode& mode = modes[o.mode - 1];
   BackboneOptions b;
   b.mode = o.mode;
+  b.branch = branch;
   b.points = o.points;
+  const double sliding_reach = branch == ModeBranch::kSliding ? slidingDampingAmplitude(model, mode, at_rest) : 0.0;
+  if (sliding_reach > 0.0) {
+    b.from = o.from ? *o.from : 2.0 * sliding_reach;
+    b.to = o.to ? *o.to : 1e3 * sliding_reach;
+    if (!(b.to > b.from))
+      throwInputError(o.to ? "to" : "from", formatNumber(o.to ? b.to : b.from),
+                      "the range must have to > from (from = " + formatNumber(b.from) + ", to = " +
+                          formatNumber(b.to) + ")");
+    return b;
+  }
   double reach = onsetAmplitude(model, mode, at_rest);
   if (!(reach > 0.0)) {
     HbModel unforced = model;
@@ -145,7 +194,7 @@ ModesRun modes(const SceneSettings& scene, const ModesOptions& o, const Backbone
     run.scene.model = anchoredAtRest(std::move(run.scene.model), *run.scene.at_rest);
   }
   const StaticContactState* at_rest = run.scene.at_rest ? &*run.scene.at_rest : nullptr;
-  run.options = chosenRange(run.scene.model, o, at_rest);
+  run.options = chosenRange(run.scene.model, o, chosenBranch(run.scene, o, at_rest), at_rest);
   run.options.time_limit = o.backbone_time_limit;
   auto solver = makeSolver(o.solver);
   run.backbone = followBackbone(run.scene.model, *solver, o.solver_options, run.options, progress, at_rest);

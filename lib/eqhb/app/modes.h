@@ -16,7 +16,19 @@ namespace eqhb::app {
 
 struct ModesOptions {
   int mode = 1;  // K, by increasing frequency of the linearised structure, >= 1
-  // Modal amplitude range φᵀ M x̂₁, both > 0, from < to. Unset: 10⁻² and
+  // "held": from mode K of the structure with its laws linearised about rest
+  // (sticking friction holds its DOF), up in amplitude. "sliding": from mode
+  // K of the structure without its laws, at `to`, down in amplitude (every
+  // friction contact sliding). "auto": sliding when the scene's [sweep]
+  // range holds the free structure's mode K and not the held one's (the
+  // forced resonance the scene is about lies on the sliding branch, as
+  // beam-damper's), held otherwise.
+  std::string branch = "auto";
+  // Modal amplitude range φᵀ M x̂₁, both > 0, from < to. Unset on a sliding
+  // branch: from 2 to 10³ times the amplitude a_f at which the friction
+  // contacts, all sliding on the free mode, alone would give ζ = 1
+  // (ζ_f = a_f / a: 4 Σ μN |w·φ| a a cycle against 2π ω² a² ζ), that is from
+  // ζ_f = 0.5 to 10⁻³. Unset on a held branch: 10⁻² and
   // 10³ times the amplitude at which the linear mode's reaction at a law
   // reaches the law's force level (a friction law's slip onset; a friction
   // contact pressed by a preload: the static state's μN), so that

@@ -6,6 +6,7 @@
 #include "eqhb/error.h"
 #include "eqhb/modes/mode_system.h"
 #include "eqhb/modes/path_tracer.h"
+#include "eqhb/modes/sliding_branch.h"
 
 namespace eqhb {
 
@@ -23,6 +24,8 @@ void BackboneOptions::validate(int modes) const {
     throwInputError("time_limit", formatNumber(time_limit), "must be finite and >= 0 (seconds; 0 = none)");
 }
 
+const char* branchName(ModeBranch branch) { return branch == ModeBranch::kSliding ? "sliding" : "held"; }
+
 double dissipatedEnergy(const HbModel& model, const Eigen::VectorXd& full, double omega, double xi) {
   const int n = model.structure.dofs(), nb = model.basis.size();
   const Eigen::Map<const Eigen::MatrixXd> x(full.data(), nb, n);
@@ -37,16 +40,27 @@ double dissipatedEnergy(const HbModel& model, const Eigen::VectorXd& full, doubl
   return xi * M_PI * omega * sum;
 }
 
+std::vector<LinearMode> startingModes(const HbModel& model, ModeBranch branch, const StaticContactState* at_rest) {
+  if (branch == ModeBranch::kHeld) return linearModes(model, at_rest);
+  HbModel free = model;
+  free.laws.clear();
+  return linearModes(free, nullptr);
+}
+
 Backbone followBackbone(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
                         const BackboneOptions& o, const BackboneProgress& progress,
                         const StaticContactState* at_rest) {
   const auto start_time = std::chrono::steady_clock::now();
-  const std::vector<LinearMode> modes = linearModes(model, at_rest);
+  const std::vector<LinearMode> modes = startingModes(model, o.branch, at_rest);
   o.validate(static_cast<int>(modes.size()));
   Backbone backbone;
   backbone.start = modes[o.mode - 1];
+  backbone.branch = o.branch;
   ModeSystem system(model, backbone.start.shape, at_rest != nullptr);
-  tracePath(system, solver, solver_options, o, progress, at_rest, &backbone);
+  if (o.branch == ModeBranch::kSliding)
+    traceSlidingBranch(system, solver, solver_options, o, progress, at_rest, &backbone);
+  else
+    tracePath(system, solver, solver_options, o, progress, at_rest, &backbone);
   backbone.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return backbone;
 }

@@ -20,8 +20,20 @@
 
 namespace eqhb {
 
+// Which family a friction-damped structure's mode K belongs to. Its laws
+// held (sticking friction holds its DOF) give one linear structure, its laws
+// removed (every friction contact sliding) another, and mode K of the one
+// need not become mode K of the other: beam-damper's held mode 1 (ω 57.5)
+// turns, past its folds, towards the free beam's mode 2, while its forced
+// resonance lies on the free beam's mode 1 with the dampers sliding.
+enum class ModeBranch {
+  kHeld,     // from the laws linearised about rest, up in amplitude
+  kSliding,  // from the structure without its laws at `to`, down in amplitude
+};
+
 struct BackboneOptions {
   int mode = 1;          // K: the linearised structure's K-th mode by frequency, >= 1
+  ModeBranch branch = ModeBranch::kHeld;
   double from = 0.0;     // smallest modal amplitude, > 0 (modes.h chooses one when not given)
   double to = 0.0;       // largest, > from
   int points = 50;       // >= 2
@@ -60,7 +72,10 @@ struct BackboneStop {
 
 struct Backbone {
   LinearMode start;                  // the linear mode it started from
-  std::vector<BackbonePoint> points;  // in the order of the path
+  ModeBranch branch = ModeBranch::kHeld;
+  // In the order of the path; a sliding branch's in increasing amplitude
+  // (its path runs down from `to`).
+  std::vector<BackbonePoint> points;
   std::vector<BackboneFold> folds;
   BackboneStop stop;
   int failed_points = 0;
@@ -69,6 +84,15 @@ struct Backbone {
 };
 
 using BackboneProgress = std::function<void(const BackbonePoint&, int index)>;
+
+// "held" or "sliding".
+const char* branchName(ModeBranch branch);
+
+// The linear modes a branch starts from, by increasing frequency: the
+// structure's with its laws linearised about rest (or `at_rest`) for a held
+// branch, without its laws for a sliding one.
+std::vector<LinearMode> startingModes(const HbModel& model, ModeBranch branch,
+                                      const StaticContactState* at_rest = nullptr);
 
 // Throws InputError for bad options or a model without the fundamental, or
 // when the solver rejects its options. `at_rest`: a preloaded scene's static

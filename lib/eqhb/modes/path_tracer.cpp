@@ -14,11 +14,8 @@
 
 namespace eqhb {
 
-namespace {
-
-// The linear mode at amplitude a: x̂ = a φ cos ωt, the laws' forces those
-// that supply A₁(ω, ξ) x̂ (lawForcesFor: a held DOF's support force, a
-// spring's force), ω and ξ = 2ζω of the mode.
+// The laws' forces of the start are those that supply A₁(ω, ξ) x̂
+// (lawForcesFor: a held DOF's support force, a spring's force).
 Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, double a,
                             const StaticContactState* at_rest) {
   const HbModel& model = system.model();
@@ -42,6 +39,8 @@ Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, do
   z[system.xiIndex()] = xi;
   return z;
 }
+
+namespace {
 
 // Solves the mode system at amplitude `a` from `z0`; throws InputError when
 // the solver rejects its options.

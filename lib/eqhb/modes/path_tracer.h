@@ -14,6 +14,12 @@ namespace eqhb {
 // and `converged` left for the caller).
 BackbonePoint describeModePoint(const ModeSystem& system, const Eigen::VectorXd& z, double a);
 
+// The linear mode at amplitude a as a start of `system`: x̂ = a φ cos ωt,
+// the laws' forces those that supply its reaction (lawForcesFor), ω and
+// ξ = 2ζω of `mode`, plus the static state's constant terms when `at_rest`.
+Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, double a,
+                            const StaticContactState* at_rest);
+
 // Fills `backbone`'s points, folds and stop (its `start` set by the caller)
 // on `system`, built on the start's shape. Throws InputError when the solver
 // rejects its options.
