@@ -37,16 +37,18 @@ bool hasConstantLoad(const HbModel& model) {
   return false;
 }
 
-// The force at which law l's component c slips: its force level, but
-// about a static state where the law is a pressed contact, its friction
-// components (those after its normal one) slip at the margin its static
-// friction limit leaves, μN − |r_t|, and its normal one is not counted (a
-// contact pressed by a preload has no force level of its own).
+// The force at which law l's component c slips: its force level; for a law
+// without one (a contact pressed only by a scene's [[preload]]), about a
+// static state where it is pressed, its friction components (those after
+// its normal one) slip at the margin its static friction limit leaves,
+// μN − |r_t|, and its normal one is not counted.
 double slipLevel(const HbModel& model, int l, int c, const StaticContactState* at_rest) {
+  const double own = std::abs(model.laws[l].law->forceLevel());
+  if (own > 0.0) return own;
   const std::optional<StaticStatus>* status = at_rest ? &at_rest->status[l] : nullptr;
   if (status && *status && (*status)->friction_limit && *(*status)->friction_limit > 0.0)
     return c == 0 ? 0.0 : *(*status)->friction_limit - (*status)->tangential_force.value_or(0.0);
-  return std::abs(model.laws[l].law->forceLevel());
+  return 0.0;
 }
 
 // The modal amplitude at which the first law reaches its force level (a
