@@ -23,7 +23,7 @@ HbModel model(int law, int harmonics, int samples) {
   Eigen::MatrixXd t(2, 2);
   t << 2, -1, -1, 1;
   const Eigen::MatrixXd k = law == 1 ? Eigen::MatrixXd::Identity(2, 2) : t;
-  m.structure = LinearStructure(Eigen::MatrixXd::Identity(2, 2), 0.02 * k, k);
+  m.structure = LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd::Identity(2, 2), k, 0.02 * k);
   m.structure.loads.push_back({0, 1, 20.0, 0.0});
   HarmonicKind kind = HarmonicKind::kOdd;
   switch (law) {

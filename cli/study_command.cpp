@@ -65,8 +65,8 @@ app::StudyOptions studyOptions(const SolveArguments& s, const StudyArguments& a)
 
 // The name of the study's peak DOF, as study.csv's columns have it.
 std::string dofName(const StudySettings& s) {
-  const int dof = s.peak.dof - 1;
-  return static_cast<size_t>(dof) < s.dof_labels.size() ? s.dof_labels[dof] : std::to_string(s.peak.dof);
+  const int dof = s.peak.dof;
+  return static_cast<size_t>(dof) < s.dof_labels.size() ? s.dof_labels[dof] : std::to_string(dof + 1);
 }
 
 // The design chart of the study folder (plot_study.py, installed beside plot_curve.py).

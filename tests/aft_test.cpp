@@ -127,8 +127,8 @@ TEST(JenkinsAft, StuckOrbitIsTheLinearOne) {
     linear.laws.clear();
     Eigen::MatrixXd stiffness(model.structure.stiffness);
     stiffness(1, 1) += k_t;
-    linear.structure = LinearStructure(Eigen::MatrixXd(model.structure.mass),
-                                       Eigen::MatrixXd(model.structure.damping), stiffness);
+    linear.structure = LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd(model.structure.mass), stiffness,
+                                                                 Eigen::MatrixXd(model.structure.damping));
     linear.structure.loads = model.structure.loads;
     FullSystem plain(linear);
     Eigen::VectorXd gl(plain.size()), zl = Eigen::VectorXd::Zero(plain.size());

@@ -53,7 +53,7 @@ TEST(Allocation, ResidualAndJacobianAllocateNothing) {
       Eigen::MatrixXd t = 2.0 * Eigen::MatrixXd::Identity(3, 3);
       t(0, 1) = t(1, 0) = t(1, 2) = t(2, 1) = -1.0;
       t(2, 2) = 1.0;
-      model.structure = LinearStructure(Eigen::MatrixXd::Identity(3, 3), 0.02 * t, t);
+      model.structure = LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd::Identity(3, 3), t, 0.02 * t);
       model.structure.loads.push_back({0, 1, 20.0, 0.0});
       std::vector<int> dofs;
       for (int a = 0; a < law->dimension(); ++a) dofs.push_back(3 - law->dimension() + a);

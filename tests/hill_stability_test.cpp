@@ -81,7 +81,7 @@ HbModel chain(double epsilon, HarmonicKind kind, int harmonics, double omega, do
   HbModel model;
   Eigen::MatrixXd t(2, 2);
   t << 2, -1, -1, 1;
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(2, 2), damping * t, t);
+  model.structure = LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd::Identity(2, 2), t, damping * t);
   model.structure.loads.push_back({0, 1, 1.0, 0.0});
   model.laws.push_back({{1}, std::make_shared<CubicStiffness>(epsilon)});
   model.basis = HarmonicSet(kind, harmonics);

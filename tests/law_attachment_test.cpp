@@ -91,7 +91,7 @@ TEST(LawAttachment, RelativeElementOnAStifflyGroundedNodeIsTheGroundedElement) {
   c.topLeftCorner(2, 2) = grounded.structure.damping;
   k.topLeftCorner(2, 2) = grounded.structure.stiffness;
   k(2, 2) = 5e11;
-  relative.structure = LinearStructure(m, c, k);
+  relative.structure = LinearStructure::fromMassStiffnessDamping(m, k, c);
   relative.structure.loads = grounded.structure.loads;
   relative.laws[0].attachment = LawAttachment({{AttachmentTerm{1, 1.0}, AttachmentTerm{2, -1.0}}});
   ASSERT_FALSE(relative.laws[0].attachment.grounded());
@@ -120,7 +120,7 @@ HbModel jointInSpace(const Eigen::Matrix3d& r, int harmonics = 3) {
   m(3, 3) = m(4, 4) = m(5, 5) = 1.5;
   const Eigen::MatrixXd kr = rot * k * rot.transpose(), mr = rot * m * rot.transpose();
   HbModel model;
-  model.structure = LinearStructure(mr, 0.03 * kr, kr);
+  model.structure = LinearStructure::fromMassStiffnessDamping(mr, kr, 0.03 * kr);
   const Eigen::Vector3d load = r * Eigen::Vector3d(1.0, 0.4, 0.3);
   for (int i = 0; i < 3; ++i) model.structure.loads.push_back({i, 1, load[i], 0.0});
   const Eigen::VectorXd t1 = r * Eigen::Vector3d(1.0, 0.0, 0.0), t2 = r * Eigen::Vector3d(0.0, 1.0, 0.0);

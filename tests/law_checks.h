@@ -195,7 +195,7 @@ inline HbModel lawOnChain(const std::shared_ptr<Law>& law) {
   const int n = 3;
   Eigen::MatrixXd k = 2.0 * Eigen::MatrixXd::Identity(n, n);
   k(0, 1) = k(1, 0) = -1.0;
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(n, n), 0.05 * k, k);
+  model.structure = LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd::Identity(n, n), k, 0.05 * k);
   model.structure.loads.push_back({0, 1, 2.0, 0.5});
   const int d = law->dimension();
   std::vector<int> dofs;
@@ -229,7 +229,7 @@ inline HbModel lawBetweenNodes(const std::shared_ptr<Law>& law, double held, con
   k(0, 1) = k(1, 0) = -1.0;
   Eigen::MatrixXd c = 0.05 * k;
   for (int a = 0; a < d; ++a) k(n + a, n + a) = held;
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(n + d, n + d), c, k);
+  model.structure = LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd::Identity(n + d, n + d), k, c);
   model.structure.loads.push_back({0, 1, 2.0, 0.5});
   std::vector<int> p, q;
   std::vector<Eigen::VectorXd> directions;
@@ -261,9 +261,10 @@ inline void expectBetweenNodesMatches(const std::shared_ptr<Law>& law, const std
   }
   HbModel grounded = lawBetweenNodes(law, 5e11, Eigen::MatrixXd::Identity(d, d));
   const HbModel held = grounded;
-  grounded.structure = LinearStructure(Eigen::MatrixXd(held.structure.mass).topLeftCorner(3, 3),
-                                       Eigen::MatrixXd(held.structure.damping).topLeftCorner(3, 3),
-                                       Eigen::MatrixXd(held.structure.stiffness).topLeftCorner(3, 3));
+  grounded.structure =
+      LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd(held.structure.mass).topLeftCorner(3, 3),
+                                                Eigen::MatrixXd(held.structure.stiffness).topLeftCorner(3, 3),
+                                                Eigen::MatrixXd(held.structure.damping).topLeftCorner(3, 3));
   grounded.structure.loads = held.structure.loads;
   std::vector<int> dofs;
   for (int a = 0; a < d; ++a) dofs.push_back(3 - d + a);

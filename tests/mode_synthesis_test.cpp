@@ -25,8 +25,8 @@ namespace {
 TEST(ModeSynthesis, LinearOscillatorGivesItsExactFrequencyResponse) {
   const double m = 2.0, c = 0.3, k = 8.0, f_cos = 0.3, f_sin = -0.4;
   HbModel model;
-  model.structure = LinearStructure(Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, c),
-                                    Eigen::MatrixXd::Constant(1, 1, k));
+  model.structure = LinearStructure::fromMassStiffnessDamping(
+      Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, k), Eigen::MatrixXd::Constant(1, 1, c));
   model.structure.loads.push_back({0, 1, f_cos, f_sin});
   model.basis = HarmonicSet(HarmonicKind::kOdd, 3);
   model.samples = 32;

@@ -25,8 +25,8 @@ namespace {
 
 HbModel oneDof(double m, double c, double k, HarmonicKind kind, int harmonics, int samples) {
   HbModel model;
-  model.structure = LinearStructure(Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, c),
-                                    Eigen::MatrixXd::Constant(1, 1, k));
+  model.structure = LinearStructure::fromMassStiffnessDamping(
+      Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, k), Eigen::MatrixXd::Constant(1, 1, c));
   model.basis = HarmonicSet(kind, harmonics);
   model.samples = samples;
   return model;
@@ -38,7 +38,7 @@ HbModel rayleighChain(double alpha, double beta) {
   m << 1.0, 0.0, 0.0, 2.0;
   k << 3.0, -1.0, -1.0, 1.0;
   HbModel model;
-  model.structure = LinearStructure(m, alpha * m + beta * k, k);
+  model.structure = LinearStructure::fromMassStiffnessDamping(m, k, alpha * m + beta * k);
   model.basis = HarmonicSet(HarmonicKind::kOdd, 3);
   model.samples = 32;
   return model;
@@ -59,9 +59,9 @@ TEST(ModeSystem, JacobianMatchesFiniteDifferencesInEveryColumn) {
   // A smooth law (cubic) on a chain with non-proportional damping, at a
   // state with every harmonic, ω and ξ away from any special value.
   HbModel model = rayleighChain(0.03, 0.01);
-  model.structure = LinearStructure(Eigen::MatrixXd(model.structure.mass),
-                                    Eigen::MatrixXd(model.structure.damping) + Eigen::MatrixXd::Identity(2, 2) * 0.02,
-                                    Eigen::MatrixXd(model.structure.stiffness));
+  model.structure = LinearStructure::fromMassStiffnessDamping(
+      Eigen::MatrixXd(model.structure.mass), Eigen::MatrixXd(model.structure.stiffness),
+      Eigen::MatrixXd(model.structure.damping) + Eigen::MatrixXd::Identity(2, 2) * 0.02);
   model.laws.push_back({{1}, std::make_shared<CubicStiffness>(0.7)});
   model.basis = HarmonicSet(HarmonicKind::kAll, 3);
   model.samples = 32;
@@ -401,9 +401,10 @@ TEST(Backbone, ElementsBetweenTwoNodesGiveTheBackboneOfTheSameStructureInGrounde
   const std::vector<Eigen::VectorXd> along = {Eigen::VectorXd::Ones(1)};
   for (const bool friction : {false, true}) {
     HbModel relative = oneDof(1.0, 0.0, 1.0, HarmonicKind::kOdd, 5, 64);
-    relative.structure = LinearStructure(m, c, k);
+    relative.structure = LinearStructure::fromMassStiffnessDamping(m, k, c);
     HbModel grounded = relative;
-    grounded.structure = LinearStructure(t.transpose() * m * t, t.transpose() * c * t, t.transpose() * k * t);
+    grounded.structure =
+        LinearStructure::fromMassStiffnessDamping(t.transpose() * m * t, t.transpose() * k * t, t.transpose() * c * t);
     relative.laws.push_back({{0}, std::make_shared<CubicStiffness>(1.0)});
     grounded.laws.push_back({{0}, std::make_shared<CubicStiffness>(1.0)});
     std::shared_ptr<Law> between = std::make_shared<CubicStiffness>(0.0042);

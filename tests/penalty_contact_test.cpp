@@ -58,8 +58,8 @@ TEST(PenaltyContact, AlwaysPressedIsALinearSpring) {
   HbModel linear = s.model;
   Eigen::MatrixXd k = Eigen::MatrixXd(linear.structure.stiffness);
   k(1, 1) += k_n;
-  linear.structure = LinearStructure(Eigen::MatrixXd(linear.structure.mass), Eigen::MatrixXd(linear.structure.damping),
-                                     k);
+  linear.structure = LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd(linear.structure.mass), k,
+                                                               Eigen::MatrixXd(linear.structure.damping));
   linear.structure.loads = s.model.structure.loads;
   linear.structure.loads.push_back({1, 0, k_n * g0, 0.0});
   const Eigen::VectorXd expected = linearResponse(linear);

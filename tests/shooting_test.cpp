@@ -546,8 +546,8 @@ TEST(Shooting, NearGrazingImpactInsideOneGridIntervalIsFound) {
   // 1 − δ is crossed only for |t − π/2| < sqrt(2δ) ≈ 0.014, far inside one
   // grid interval (0.2): both ends of that interval are clear of the wall.
   HbModel model;
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
-                                    Eigen::MatrixXd::Identity(1, 1));
+  model.structure = LinearStructure::fromMassStiffnessDamping(
+      Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1));
   model.structure.loads.push_back({0, 1, 0.0, 0.0});
   model.basis = HarmonicSet(HarmonicKind::kAll, 1);
   model.samples = 16;
@@ -582,8 +582,8 @@ TEST(Shooting, BriefPlanarReleaseInsideOneStepIsFound) {
   // the field is 0 and the error control lets the steps grow).
   for (double delta : {1e-6, 1e-8, 1e-10}) {
     HbModel model;
-    model.structure = LinearStructure(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Zero(2, 2),
-                                      Eigen::MatrixXd::Identity(2, 2));
+    model.structure = LinearStructure::fromMassStiffnessDamping(
+        Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Zero(2, 2));
     model.structure.loads.push_back({0, 1, 10.0, 0.0});
     model.laws.push_back({{0, 1}, std::make_shared<Coulomb2D>(10.0 * (1.0 - delta), Coulomb2DForm::kMax)});
     model.basis = HarmonicSet(HarmonicKind::kOdd, 1);

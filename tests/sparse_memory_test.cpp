@@ -40,7 +40,7 @@ HbModel longChain(int n) {
   SparseMatrix m(n, n);
   m.setIdentity();
   HbModel model;
-  model.structure = LinearStructure(m, SparseMatrix(0.05 * k), k);
+  model.structure = LinearStructure::fromMassStiffnessDamping(m, k, SparseMatrix(0.05 * k));
   model.structure.loads.push_back({0, 1, 1.0, 0.0});
   for (int c = 1; c <= 5; ++c)
     model.laws.push_back({{c * n / 6}, std::make_shared<Coulomb1D>(0.05, CoulombForm::kMinMax)});

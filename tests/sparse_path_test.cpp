@@ -183,8 +183,9 @@ TEST(SparsePath, SparseCondensationEqualsTheDenseOneOnEveryScene) {
 TEST(SparsePath, SingularDynamicStiffnessNamesOmegaAndHarmonicOnBothPaths) {
   // Undamped single mass–spring (k = m = 1): A_1 is singular at ω = 1.
   HbModel model = test::chainWithFriction(1.0, CoulombForm::kMinMax, 3, 1.0);
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
-                                    Eigen::MatrixXd::Identity(1, 1), {{0, 1, 1.0, 0.0}});
+  model.structure =
+      LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Identity(1, 1),
+                                                Eigen::MatrixXd::Zero(1, 1), {{0, 1, 1.0, 0.0}});
   model.laws = {{{0}, std::make_shared<Coulomb1D>(0.5, CoulombForm::kMinMax)}};
   for (LinearAlgebra algebra : {LinearAlgebra::kDense, LinearAlgebra::kSparse}) {
     try {
@@ -224,7 +225,8 @@ TEST(SparsePath, DenseOnlyBackendsRefuseSparseAndLargeSystems) {
   const int n = 400;
   SparseMatrix identity(n, n);
   identity.setIdentity();
-  large.structure = LinearStructure(identity, identity, SparseMatrix(2.0 * identity), {{0, 1, 1.0, 0.0}});
+  large.structure =
+      LinearStructure::fromMassStiffnessDamping(identity, SparseMatrix(2.0 * identity), identity, {{0, 1, 1.0, 0.0}});
   FullSystem large_system(large);
   ASSERT_EQ(large_system.size(), 4010);
   if (test::registered("minpack")) {

@@ -94,7 +94,7 @@ inline HbModel chainWithFriction(double mu_n, CoulombForm form, int harmonics, d
   HbModel model;
   Eigen::MatrixXd t(2, 2);
   t << 2, -1, -1, 1;
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(2, 2), 0.02 * t, t);
+  model.structure = LinearStructure::fromMassStiffnessDamping(Eigen::MatrixXd::Identity(2, 2), t, 0.02 * t);
   model.structure.loads.push_back({0, 1, 20.0, 0.0});
   model.laws.push_back({{1}, std::make_shared<Coulomb1D>(mu_n, form, 1.0, 5.0)});
   model.basis = HarmonicSet(kind, harmonics);
@@ -107,8 +107,8 @@ inline HbModel chainWithFriction(double mu_n, CoulombForm form, int harmonics, d
 // (no damping), F = `friction`, on odd harmonics.
 inline HbModel denHartog(double omega, double friction, int harmonics, int samples) {
   HbModel model;
-  model.structure = LinearStructure(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1),
-                                    Eigen::MatrixXd::Identity(1, 1));
+  model.structure = LinearStructure::fromMassStiffnessDamping(
+      Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Zero(1, 1));
   model.structure.loads.push_back({0, 1, 1.0, 0.0});
   model.laws.push_back({{0}, std::make_shared<Coulomb1D>(friction, CoulombForm::kMinMax)});
   model.basis = HarmonicSet(HarmonicKind::kOdd, harmonics);

@@ -23,7 +23,7 @@ int main() {
   load.cos_amplitude = 20.0;
 
   eqhb::HbModel model;
-  model.structure = eqhb::LinearStructure(M, C, K, {load});
+  model.structure = eqhb::LinearStructure::fromMassStiffnessDamping(M, K, C, {load});
   // Coulomb friction μN = 7.2 on DOF 2, min/max form, ρ = 1.
   model.laws.push_back({{1}, std::make_shared<eqhb::Coulomb1D>(7.2, eqhb::CoulombForm::kMinMax)});
   model.basis = eqhb::HarmonicSet(eqhb::HarmonicKind::kOdd, 10);  // harmonics 1, 3, ..., 19

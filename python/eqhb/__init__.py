@@ -84,7 +84,7 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), preload=(), har
         except (TypeError, ValueError):
             raise InputError(f"sweep = {sweep!r}: must be a pair (start, stop)") from None
         lines += ["", "[sweep]"] + _toml_table({"from": start, "to": stop}, "sweep")
-    return Model._from_arrays("\n".join(lines) + "\n", mass, damping, stiffness)
+    return Model._from_arrays("\n".join(lines) + "\n", mass, stiffness, damping)
 
 
 def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, formulation=None, solver="dogleg",

@@ -352,8 +352,8 @@ PYBIND11_MODULE(_eqhb, m) {
       .def_static("_from_text",
                   &modelFromText,
                   py::arg("text"), py::arg("source"))
-      .def_static("_from_arrays", &modelFromArrays, py::arg("text"), py::arg("mass"), py::arg("damping"),
-                  py::arg("stiffness"))
+      .def_static("_from_arrays", &modelFromArrays, py::arg("text"), py::arg("mass"), py::arg("stiffness"),
+                  py::arg("damping"))
       .def_property_readonly("name", [](const PyModel& p) { return p.scene.name; })
       .def_property_readonly("dofs", [](const PyModel& p) { return p.scene.model.structure.dofs(); })
       .def_property_readonly("omega", [](const PyModel& p) { return p.scene.model.omega; })

@@ -26,8 +26,8 @@ PyModel modelFromText(const std::string& text, const std::string& source) {
   return m;
 }
 
-PyModel modelFromArrays(const std::string& text, const py::object& mass, const py::object& damping,
-                        const py::object& stiffness) {
+PyModel modelFromArrays(const std::string& text, const py::object& mass, const py::object& stiffness,
+                        const py::object& damping) {
   StructureMatrices matrices;
   matrices.mass = matrixArgument(mass, "mass");
   matrices.stiffness = matrixArgument(stiffness, "stiffness");

@@ -25,9 +25,10 @@ struct PyModel {
 PyModel modelFromScene(const std::string& path, const std::vector<std::string>& overrides);
 PyModel modelFromText(const std::string& text, const std::string& source);
 // The model of `text` (a scene document whose structure only fixes the DOF
-// count) with M, C, K from arrays; the loads and laws come from the text.
-PyModel modelFromArrays(const std::string& text, const py::object& mass, const py::object& damping,
-                        const py::object& stiffness);
+// count) with M, K and C (None: no damping) from arrays, in the order of
+// eqhb.model; the loads and laws come from the text.
+PyModel modelFromArrays(const std::string& text, const py::object& mass, const py::object& stiffness,
+                        const py::object& damping);
 
 // The model's settings with ω, H, N, form, ρ and formulation of one call.
 app::SceneSettings sceneSettings(const PyModel& model, std::optional<double> omega, std::optional<int> harmonics,

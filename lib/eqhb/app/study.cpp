@@ -64,7 +64,7 @@ void resolveRange(const Scene& scene, const StudyOptions& o, StudySettings* sett
   PeakOptions& peak = settings->peak;
   peak.from = o.from ? *o.from : *scene.sweep_from;
   peak.to = o.to ? *o.to : *scene.sweep_to;
-  peak.dof = resolveDof(scene.model, o.dof, "dof") + 1;
+  peak.dof = resolveDof(scene.model, o.dof, "dof");
   peak.coarse_points = o.coarse_points;
   peak.max_peaks = o.max_peaks;
   peak.condensed = o.condensed;
@@ -98,8 +98,8 @@ StudySetup setupStudy(const SceneSettings& scene_settings, const StudyOptions& o
   settings.mode = o.mode == "sweep" ? StudyMode::kSweep : StudyMode::kPeak;
   resolveRange(scene, o, &settings);
   settings.csv_dofs = scene.output.shown;
-  if (std::find(settings.csv_dofs.begin(), settings.csv_dofs.end(), settings.peak.dof - 1) == settings.csv_dofs.end())
-    settings.csv_dofs.push_back(settings.peak.dof - 1);
+  if (std::find(settings.csv_dofs.begin(), settings.csv_dofs.end(), settings.peak.dof) == settings.csv_dofs.end())
+    settings.csv_dofs.push_back(settings.peak.dof);
   if (o.threads < 0 || o.threads > 4096) throwInputError("threads", std::to_string(o.threads), "must be in [0, 4096]");
   std::string why;
   if (!o.solver_options.isValid(&why)) throw InputError(why);

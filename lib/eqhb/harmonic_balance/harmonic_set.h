@@ -46,4 +46,7 @@ class HarmonicSet {
   std::vector<int> offsets_;
 };
 
+// Coefficients of harmonic k in one channel: 1 for the constant, else 2 (cos, sin).
+inline int harmonicWidth(int k) { return k == 0 ? 1 : 2; }
+
 }  // namespace eqhb

@@ -34,6 +34,7 @@ class HbSystem : public SquareSystem {
   // Validates the model and checks with `fits` (which throws InputError)
   // that the system fits in memory, before anything of it is allocated.
   HbSystem(HbModel model, const std::function<void(const HbModel&)>& fits);
+  int size() const override { return size_; }
   const HbModel& model() const { return model_; }
   double omega() const { return model_.omega; }
   // Changes ω; throws (std::runtime_error) where the condensed system's
@@ -75,6 +76,7 @@ class HbSystem : public SquareSystem {
   HbModel model_;
   LawAssembly laws_;
   int nb_;
+  int size_ = 0;  // unknowns, set by each system's constructor
   bool rho_held_ = false;
   bool rho_static_ = false;
 };
@@ -84,7 +86,6 @@ class FullSystem : public HbSystem {
   // Throws InputError if the model is invalid, TimeLimitReached once
   // `deadline` has passed during the set-up.
   explicit FullSystem(HbModel model, const Deadline& deadline = Deadline());
-  int size() const override { return size_; }
   bool residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                 Eigen::Ref<Eigen::VectorXd> g) override;
   bool residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
@@ -116,8 +117,13 @@ class FullSystem : public HbSystem {
   // pattern_'s storage.
   bool evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,
                 double* values);
+  // The set-up (at construction), step by step, `deadline` checked in each.
+  using Entry = Eigen::Triplet<double>;
   void buildPattern(const Deadline& deadline);
-  int size_;
+  std::vector<Entry> dynamicsEntries(const SparseMatrix& union_pattern, const Deadline& deadline) const;
+  void buildJacobianPattern(const std::vector<Entry>& dynamics, const Deadline& deadline);
+  void locateDynamicsEntries(const std::vector<Entry>& dynamics, const Deadline& deadline);
+  void locateLawEntries(const Deadline& deadline);
   int dynamic_rows_;
   SparseMatrix linear_operator_;  // A, (n nb) x (n nb): blocks of A_k per DOF pair
   Eigen::VectorXd forcing_;
@@ -146,7 +152,6 @@ class CondensedSystem : public HbSystem {
   // TimeLimitReached once `deadline` has passed during the set-up.
   explicit CondensedSystem(HbModel model, LinearAlgebra algebra = LinearAlgebra::kAuto,
                            const Deadline& deadline = Deadline());
-  int size() const override { return size_; }
   bool residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                 Eigen::Ref<Eigen::VectorXd> g) override;
   bool residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
@@ -167,7 +172,6 @@ class CondensedSystem : public HbSystem {
                 Eigen::Ref<Eigen::MatrixXd>* jacobian);
   // setOmega, with the set-up's deadline checked between harmonics.
   void condenseAt(double omega, const Deadline& deadline);
-  int size_;
   int components_;
   // Row of W (law_attachment.h) of each law component, and its force sign.
   std::vector<std::vector<AttachmentTerm>> component_row_;

@@ -21,6 +21,17 @@ namespace eqhb::orbits {
 // massless DOFs would make the phases differential-algebraic.
 Eigen::MatrixXd invertPositiveDefiniteMass(const LinearStructure& structure);
 
+// The structure's M⁻¹, C and K dense, as the exact flows and the monodromy
+// integrate them.
+struct DenseDynamics {
+  DenseDynamics() = default;
+  // Throws InputError (structure.mass) unless M is positive definite.
+  explicit DenseDynamics(const LinearStructure& structure)
+      : mass_inverse(invertPositiveDefiniteMass(structure)), damping(structure.damping),
+        stiffness(structure.stiffness) {}
+  Eigen::MatrixXd mass_inverse, damping, stiffness;
+};
+
 struct HeldDofs {
   Eigen::MatrixXd projector;   // Q (M⁻¹ when nothing is held)
   Eigen::MatrixXd multiplier;  // λ_G = multiplier · b, rows in the order of `dofs`

@@ -41,9 +41,7 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
   const LinearStructure& s = model.structure;
   n_ = s.dofs();
   omega_ = model.omega;
-  mass_inverse_ = invertPositiveDefiniteMass(s);
-  damping_ = s.damping;
-  stiffness_ = s.stiffness;
+  dynamics_ = DenseDynamics(s);
   constant_load_ = Eigen::VectorXd::Zero(n_);
   for (const auto& load : s.loads) {
     if (load.harmonic == 0) {
@@ -84,9 +82,9 @@ PiecewiseLinearFlow::PiecewiseLinearFlow(const HbModel& model, double restitutio
   }
   nz_ = m_ + 1 + 2 * static_cast<int>(harmonics_.size());
   // Fastest rate: natural frequency bound, damping rate, forcing.
-  Eigen::MatrixXd stuck_stiffness = stiffness_;  // every elastic slider stuck, every elastic wall pressed
+  Eigen::MatrixXd stuck_stiffness = dynamics_.stiffness;  // every elastic slider stuck, every elastic wall pressed
   for (const LawSite& site : sites_) stuck_stiffness(site.dof, site.dof) += site.stiffness + site.penalty;
-  rate_ = fastestRate(mass_inverse_, stuck_stiffness, damping_, harmonics_, omega_);
+  rate_ = fastestRate(dynamics_.mass_inverse, stuck_stiffness, dynamics_.damping, harmonics_, omega_);
 }
 
 Eigen::VectorXd PiecewiseLinearFlow::augment(const Eigen::VectorXd& y, double t) const {
@@ -117,8 +115,8 @@ const PiecewiseLinearFlow::Phase& PiecewiseLinearFlow::phase(const std::vector<M
   }
   // b = B z: the force on the structure except the constraint forces.
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n_, nz_);
-  b.leftCols(n_) = -stiffness_;
-  b.middleCols(n_, n_) = -damping_;
+  b.leftCols(n_) = -dynamics_.stiffness;
+  b.middleCols(n_, n_) = -dynamics_.damping;
   // A stuck elastic slider: force −k_t (x − w) on its DOF.
   for (size_t l = 0; l < sites_.size(); ++l)
     if (sites_[l].slider >= 0 && modes[l] == Mode::kStick) {
@@ -136,7 +134,7 @@ const PiecewiseLinearFlow::Phase& PiecewiseLinearFlow::phase(const std::vector<M
     b.col(m_ + 1 + 2 * h) = cos_load_[h];
     b.col(m_ + 2 + 2 * h) = sin_load_[h];
   }
-  const HeldDofs held = holdDofs(mass_inverse_, p.constrained);
+  const HeldDofs held = holdDofs(dynamics_.mass_inverse, p.constrained);
   const Eigen::MatrixXd& q = held.projector;
   p.constraint_force = p.constrained.empty() ? Eigen::MatrixXd::Zero(0, nz_) : Eigen::MatrixXd(held.multiplier * b);
   p.generator = Eigen::MatrixXd::Zero(nz_, nz_);

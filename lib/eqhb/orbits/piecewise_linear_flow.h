@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/orbits/flow_dynamics.h"
 
 namespace eqhb::orbits {
 
@@ -137,7 +138,7 @@ class PiecewiseLinearFlow : public Flow {
 
   int n_ = 0, m_ = 0, nz_ = 0;  // DOFs, state size, augmented size
   double omega_ = 1.0, restitution_ = 0.0;
-  Eigen::MatrixXd mass_inverse_, damping_, stiffness_;
+  DenseDynamics dynamics_;  // M⁻¹, C, K
   Eigen::VectorXd constant_load_;
   std::vector<int> harmonics_;                      // forcing harmonics k > 0
   std::vector<Eigen::VectorXd> cos_load_, sin_load_;  // per harmonic

@@ -36,9 +36,7 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
   const LinearStructure& s = model.structure;
   n_ = s.dofs();
   omega_ = model.omega;
-  mass_inverse_ = invertPositiveDefiniteMass(s);
-  damping_ = s.damping;
-  stiffness_ = s.stiffness;
+  dynamics_ = DenseDynamics(s);
   loads_ = s.loads;
   for (size_t l = 0; l < model.laws.size(); ++l) {
     const Law* law = model.laws[l].law.get();
@@ -66,12 +64,12 @@ SmoothFlow::SmoothFlow(const HbModel& model) {
   }
   std::vector<int> harmonics;
   for (const auto& load : loads_) harmonics.push_back(load.harmonic);
-  rate_ = fastestRate(mass_inverse_, stiffness_, damping_, harmonics, omega_);
+  rate_ = fastestRate(dynamics_.mass_inverse, dynamics_.stiffness, dynamics_.damping, harmonics, omega_);
   double force = 0.0;
   for (const auto& load : loads_) force += std::abs(load.cos_amplitude) + std::abs(load.sin_amplitude);
   for (const Site& site : sites_)
     if (!site.alwaysSmooth()) force += site.coefficient + site.drop;
-  acceleration_scale_ = mass_inverse_.cwiseAbs().rowwise().sum().maxCoeff() * force;
+  acceleration_scale_ = dynamics_.mass_inverse.cwiseAbs().rowwise().sum().maxCoeff() * force;
 }
 
 const SmoothFlow::Constraint& SmoothFlow::constraint(const Modes& modes) const {
@@ -84,7 +82,7 @@ const SmoothFlow::Constraint& SmoothFlow::constraint(const Modes& modes) const {
     c.dofs.push_back(sites_[s].dof);
     if (sites_[s].kind == Kind::kPlanar) c.dofs.push_back(sites_[s].second_dof);
   }
-  HeldDofs held = holdDofs(mass_inverse_, c.dofs);
+  HeldDofs held = holdDofs(dynamics_.mass_inverse, c.dofs);
   c.projector = std::move(held.projector);
   c.multiplier = std::move(held.multiplier);
   return constraints_.emplace(modes, std::move(c)).first->second;
@@ -103,10 +101,10 @@ void SmoothFlow::forcing(double t, Eigen::VectorXd& f, Eigen::VectorXd* df) cons
 bool SmoothFlow::freeForce(double t, const Eigen::VectorXd& y, const Modes& modes, Eigen::VectorXd& b,
                            Eigen::MatrixXd* db) const {
   forcing(t, b, nullptr);
-  b.noalias() -= stiffness_ * y.head(n_) + damping_ * y.tail(n_);
+  b.noalias() -= dynamics_.stiffness * y.head(n_) + dynamics_.damping * y.tail(n_);
   if (db) {
     db->resize(n_, 2 * n_);
-    *db << -stiffness_, -damping_;
+    *db << -dynamics_.stiffness, -dynamics_.damping;
   }
   const double speed_floor = kRestSpeed * (1.0 + y.tail(n_).cwiseAbs().maxCoeff());
   for (size_t s = 0; s < sites_.size(); ++s) {

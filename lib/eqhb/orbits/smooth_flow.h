@@ -120,7 +120,7 @@ class SmoothFlow : public Flow {
   int n_ = 0;
   double omega_ = 1.0, rate_ = 1.0;
   double acceleration_scale_ = 0.0;  // ‖M⁻¹‖ (Σ load amplitudes + friction limits)
-  Eigen::MatrixXd mass_inverse_, damping_, stiffness_;
+  DenseDynamics dynamics_;  // M⁻¹, C, K
   std::vector<HarmonicLoad> loads_;
   std::vector<Site> sites_;
   int components_ = 0;

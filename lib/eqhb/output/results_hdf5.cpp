@@ -87,7 +87,7 @@ void writeStudyHdf5(const std::string& path, const app::StudyRun& run) {
   Hdf5File file(path);
   file.attribute("/", "scene", run.setup.scene_name);
   file.attribute("/", "mode", settings.mode == StudyMode::kPeak ? "peak" : "sweep");
-  file.attribute("/", "dof", settings.peak.dof);
+  file.attribute("/", "dof", settings.peak.dof + 1);
   std::vector<std::string> parameters, status, reasons;
   for (const auto& p : settings.plan.parameters) parameters.push_back(p.path);
   file.strings("/parameters", parameters);

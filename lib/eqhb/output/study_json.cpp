@@ -38,13 +38,13 @@ nlohmann::json studyJson(const app::StudyRun& run) {
   nlohmann::json j;
   j["scene"] = run.setup.scene_name;
   j["mode"] = settings.mode == StudyMode::kPeak ? "peak" : "sweep";
-  j["dof"] = settings.peak.dof;
+  j["dof"] = settings.peak.dof + 1;
   // Names per DOF (the order of each sample's first_harmonic and max_abs),
   // the peak DOF's, and those of study.csv's columns.
   std::vector<std::string> labels = settings.dof_labels;
   for (int i = static_cast<int>(labels.size()); i < settings.dofs; ++i) labels.push_back("x" + std::to_string(i + 1));
   j["dof_labels"] = labels;
-  j["dof_label"] = settings.peak.dof >= 1 && settings.peak.dof <= settings.dofs ? labels[settings.peak.dof - 1] : "";
+  j["dof_label"] = settings.peak.dof >= 0 && settings.peak.dof < settings.dofs ? labels[settings.peak.dof] : "";
   j["shown"] = nlohmann::json::array();
   for (int i : settings.csv_dofs)
     if (i >= 0 && i < settings.dofs) j["shown"].push_back(labels[i]);

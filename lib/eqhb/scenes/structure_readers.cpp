@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <iterator>
+#include <utility>
+#include <vector>
 
 #include "eqhb/error.h"
 #include "eqhb/size_limits.h"
@@ -114,18 +116,25 @@ void readChain(TableReader& s, const std::string& source, const ModelSizes& sett
   const SparseMatrix t = chainPattern(n);
   SparseMatrix identity(n, n);
   identity.setIdentity();
-  read->structure = LinearStructure(SparseMatrix(m * identity), SparseMatrix(d * t), SparseMatrix(k * t));
+  read->structure = LinearStructure::fromMassStiffnessDamping(SparseMatrix(m * identity), SparseMatrix(k * t),
+                                                              SparseMatrix(d * t));
 }
 
 // Small M, C, K given inline.
 void readInlineMatrices(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
   (void)settings;
-  LinearStructure& structure = read->structure;
-  structure = LinearStructure(s.matrix("mass"), s.matrix("damping"), s.matrix("stiffness"));
-  StructureMatrices matrices{structure.mass, structure.damping, structure.stiffness};
+  StructureMatrices matrices;
+  // K, C, M in this order: a scene with several bad matrices is refused
+  // naming the stiffness first, then the damping.
+  matrices.stiffness = s.matrix("stiffness").sparseView(1.0, 0.0);
+  matrices.damping = s.matrix("damping").sparseView(1.0, 0.0);
+  matrices.mass = s.matrix("mass").sparseView(1.0, 0.0);
+  read->structure = toLinearStructure(matrices);
   // Named like every other field: the file, then the key.
-  MatrixNames names{source + ": structure.mass", source + ": structure.damping",
-                    source + ": structure.stiffness"};
+  MatrixNames names;
+  names.mass = source + ": structure.mass";
+  names.damping = source + ": structure.damping";
+  names.stiffness = source + ": structure.stiffness";
   checkStructureMatrices(matrices, 1e-12, names);
 }
 
@@ -182,6 +191,25 @@ void boundAssembly(const std::string& source, const ModelSizes& settings, const 
   checkModelBeforeBuilding(source, settings, field, value, dofs, 3.0 * entries);
 }
 
+// An element assembly's structure: M and K from `assemble` (run bounded, so
+// that a refusal names the scene), C from the damping keys.
+template <class Assemble>
+void readAssembled(TableReader& s, const std::string& source, ReadStructure* read, const Assemble& assemble) {
+  StructureMatrices matrices;
+  bounded(source, [&] { matrices = assemble(); });
+  readDampingModel(s, matrices);
+  read->structure = toLinearStructure(matrices);
+}
+
+// Node i → its first three DOFs (a frame node's DOFs that an element between
+// two nodes reads), for nodes 1..nodes.
+template <class DofOf>
+std::vector<std::vector<int>> firstThreeDofs(int nodes, const DofOf& dof_of) {
+  std::vector<std::vector<int>> table;
+  for (int node = 1; node <= nodes; ++node) table.push_back({dof_of(node, 0), dof_of(node, 1), dof_of(node, 2)});
+  return table;
+}
+
 // A cantilever Euler–Bernoulli beam (structures/beam.h), with a damping model.
 void readBeam(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
   BeamParameters beam;
@@ -215,12 +243,8 @@ void readFrame(TableReader& s, const std::string& source, const ModelSizes& sett
   frame.section.second_moment = s.number("I");
   frame.section.mass_per_length = s.number("rhoA");
   frame.length = s.number("L");
-  StructureMatrices matrices;
-  bounded(source, [&] { matrices = cantileverFrame(frame); });
-  readDampingModel(s, matrices);
-  read->structure = toLinearStructure(matrices);
-  for (int node = 1; node <= frame.elements; ++node)
-    read->node_table.push_back({frameDof(node, 0), frameDof(node, 1), frameDof(node, 2)});
+  readAssembled(s, source, read, [&] { return cantileverFrame(frame); });
+  read->node_table = firstThreeDofs(frame.elements, frameDof);
   read->dof_names = nodeDofNames(read->structure.dofs(), frame.elements, {"u", "w", "theta"}, frameDof);
 }
 
@@ -243,12 +267,8 @@ void readSpaceFrame(TableReader& s, const std::string& source, const ModelSizes&
   section.second_moment_z = s.number("Iz");
   section.torsion_constant = s.number("J");
   frame.length = s.number("L");
-  StructureMatrices matrices;
-  bounded(source, [&] { matrices = cantileverSpaceFrame(frame); });
-  readDampingModel(s, matrices);
-  read->structure = toLinearStructure(matrices);
-  for (int node = 1; node <= frame.elements; ++node)
-    read->node_table.push_back({spaceFrameDof(node, 0), spaceFrameDof(node, 1), spaceFrameDof(node, 2)});
+  readAssembled(s, source, read, [&] { return cantileverSpaceFrame(frame); });
+  read->node_table = firstThreeDofs(frame.elements, spaceFrameDof);
   read->dof_names = nodeDofNames(read->structure.dofs(), frame.elements,
                                  {"u", "v", "w", "thetax", "thetay", "thetaz"}, spaceFrameDof);
 }
@@ -272,9 +292,10 @@ void readLapJoint(TableReader& s, const std::string& source, const ModelSizes& s
   p.youngs_modulus = s.number("E");
   p.density = s.number("rho");
   LapJoint joint;
-  bounded(source, [&] { joint = lapJoint(p); });
-  readDampingModel(s, joint.matrices);
-  read->structure = toLinearStructure(joint.matrices);
+  readAssembled(s, source, read, [&] {
+    joint = lapJoint(p);
+    return std::move(joint.matrices);
+  });
   read->node_table = joint.surfaces;
   read->dof_names = nodeDofNames(read->structure.dofs(), 2 * joint.beam_nodes, {"u", "w", "theta"}, frameDof);
   for (const auto& surface : joint.surfaces) {

@@ -85,12 +85,6 @@ MonitoredSystem::MonitoredSystem(SquareSystem& inner, const SolverOptions& optio
   }
 }
 
-void MonitoredSystem::record(const Eigen::Ref<Eigen::VectorXd>& g, bool ok) {
-  ++residual_evaluations_;
-  if (!ok) ++failed_evaluations_;
-  if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
-}
-
 namespace {
 // The evaluation's answer; an exception is a failed evaluation whose
 // message is kept in `failure` (none crosses a backend's callback).
@@ -107,54 +101,51 @@ bool guarded(const Evaluate& evaluate, const char* what, std::string& failure) {
 }
 }  // namespace
 
-bool MonitoredSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z,
-                               Eigen::Ref<Eigen::VectorXd> g) {
+template <class Evaluate, class ScaleJacobian>
+bool MonitoredSystem::monitored(int& evaluations, const char* what, Eigen::Ref<Eigen::VectorXd> g,
+                                const Evaluate& evaluate, const ScaleJacobian& scale_jacobian) {
   const bool ok = guarded(
       [&] {
-        if (!inner_.residual(z, g) || !g.allFinite()) return false;
+        if (!evaluate() || !g.allFinite()) return false;
         g.array() *= inverse_scales_.array();
+        scale_jacobian();
         return true;
       },
-      "residual", failure_);
-  record(g, ok);
+      what, failure_);
+  ++evaluations;
+  if (!ok) ++failed_evaluations_;
+  if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
   return ok;
+}
+
+bool MonitoredSystem::residual(const Eigen::Ref<const Eigen::VectorXd>& z,
+                               Eigen::Ref<Eigen::VectorXd> g) {
+  return monitored(
+      residual_evaluations_, "residual", g, [&] { return inner_.residual(z, g); }, [] {});
 }
 
 bool MonitoredSystem::residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                                           Eigen::Ref<Eigen::VectorXd> g,
                                           Eigen::Ref<Eigen::MatrixXd> jacobian) {
-  const bool ok = guarded(
-      [&] {
-        if (!inner_.residualAndJacobian(z, g, jacobian) || !g.allFinite() || !jacobian.allFinite()) return false;
-        g.array() *= inverse_scales_.array();
-        jacobian.array().colwise() *= inverse_scales_.array();
-        return true;
-      },
-      "Jacobian", failure_);
-  ++jacobian_evaluations_;
-  if (!ok) ++failed_evaluations_;
-  if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
-  return ok;
+  return monitored(
+      jacobian_evaluations_, "Jacobian", g,
+      [&] { return inner_.residualAndJacobian(z, g, jacobian) && jacobian.allFinite(); },
+      [&] { jacobian.array().colwise() *= inverse_scales_.array(); });
 }
 
 bool MonitoredSystem::residualAndSparseJacobian(const Eigen::Ref<const Eigen::VectorXd>& z,
                                                 Eigen::Ref<Eigen::VectorXd> g,
                                                 SparseMatrix& jacobian) {
-  const bool ok = guarded(
+  return monitored(
+      jacobian_evaluations_, "Jacobian", g,
       [&] {
-        if (!inner_.residualAndSparseJacobian(z, g, jacobian) || !g.allFinite() ||
-            !Eigen::Map<const Eigen::VectorXd>(jacobian.valuePtr(), jacobian.nonZeros()).allFinite())
-          return false;
-        g.array() *= inverse_scales_.array();
+        return inner_.residualAndSparseJacobian(z, g, jacobian) &&
+               Eigen::Map<const Eigen::VectorXd>(jacobian.valuePtr(), jacobian.nonZeros()).allFinite();
+      },
+      [&] {
         for (int j = 0; j < jacobian.outerSize(); ++j)
           for (SparseMatrix::InnerIterator it(jacobian, j); it; ++it) it.valueRef() *= inverse_scales_[it.row()];
-        return true;
-      },
-      "Jacobian", failure_);
-  ++jacobian_evaluations_;
-  if (!ok) ++failed_evaluations_;
-  if (ok && std::isnan(first_norm_)) first_norm_ = g.norm();
-  return ok;
+      });
 }
 
 double MonitoredSystem::elapsedSeconds() const {

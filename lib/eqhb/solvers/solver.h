@@ -110,7 +110,13 @@ class MonitoredSystem : public SquareSystem {
   const Eigen::VectorXd& inverseScales() const { return inverse_scales_; }
 
  private:
-  void record(const Eigen::Ref<Eigen::VectorXd>& g, bool ok);
+  // One evaluation, no exception let through, counted in `evaluations` (and
+  // as failed unless `evaluate` succeeds with a finite g and Jacobian): g, and
+  // by `scale_jacobian` the Jacobian, divided by the equations' scales; the
+  // first successful residual's norm kept.
+  template <class Evaluate, class ScaleJacobian>
+  bool monitored(int& evaluations, const char* what, Eigen::Ref<Eigen::VectorXd> g, const Evaluate& evaluate,
+                 const ScaleJacobian& scale_jacobian);
   SquareSystem& inner_;
   const SolverOptions& options_;
   std::chrono::steady_clock::time_point start_;

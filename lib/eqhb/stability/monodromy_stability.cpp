@@ -55,9 +55,7 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   load_samples_ = Eigen::MatrixXd::Zero(model_.samples, n_);
   for (const HarmonicLoad& load : model_.structure.loads)
     for (int k = 0; k < model_.samples; ++k) load_samples_(k, load.dof) += load.at(2.0 * M_PI * k / model_.samples);
-  mass_inverse_ = orbits::invertPositiveDefiniteMass(model_.structure);  // throws unless M > 0
-  damping_ = Eigen::MatrixXd(model_.structure.damping);
-  stiffness_ = Eigen::MatrixXd(model_.structure.stiffness);
+  dynamics_ = orbits::DenseDynamics(model_.structure);  // throws unless M > 0
   for (const AttachedLaw& a : model_.laws) {
     dofs_.push_back(a.attachment.dof(0));
     if (const auto* c = dynamic_cast<const Coulomb1D*>(a.law.get())) {
@@ -102,7 +100,7 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
   }
   // f(t_k) − K x_k − C ẋ_k per sample, the part of every holding force's b
   // that does not depend on the states.
-  base_force_ = load_samples_ - x_ * stiffness_.transpose() - xdot_ * damping_.transpose();
+  base_force_ = load_samples_ - x_ * dynamics_.stiffness.transpose() - xdot_ * dynamics_.damping.transpose();
   states_.assign(samples, std::vector<State>(laws, State::kStick));
   for (int k = 0; k < samples; ++k)
     for (int l = 0; l < laws; ++l) {
@@ -134,7 +132,7 @@ double MonodromyStability::holdingForce(int l, int k) {
   // b = f(t_k) − K x − C v with the held DOF's velocity 0 (the rest of b_k
   // is sampled once per orbit in classify), plus the other laws' slip forces.
   const int held_dof = dofs_[l];
-  force_ = base_force_.row(k).transpose() + damping_.col(held_dof) * xdot_(k, held_dof);
+  force_ = base_force_.row(k).transpose() + dynamics_.damping.col(held_dof) * xdot_(k, held_dof);
   held_dofs_.clear();
   int row = 0;
   for (size_t m = 0; m < states_[k].size(); ++m) {
@@ -146,7 +144,7 @@ double MonodromyStability::holdingForce(int l, int k) {
   }
   auto found = multipliers_.find(held_dofs_);
   if (found == multipliers_.end())
-    found = multipliers_.emplace(held_dofs_, orbits::holdDofs(mass_inverse_, held_dofs_).multiplier).first;
+    found = multipliers_.emplace(held_dofs_, orbits::holdDofs(dynamics_.mass_inverse, held_dofs_).multiplier).first;
   return found->second.row(row).dot(force_);
 }
 
@@ -227,17 +225,17 @@ const Eigen::MatrixXd& MonodromyStability::generator(const std::vector<State>& s
   std::vector<int> dofs;
   for (int i = 0; i < n_; ++i)
     if (key[i]) dofs.push_back(i);
-  const Eigen::MatrixXd q = orbits::holdDofs(mass_inverse_, dofs).projector;
+  const Eigen::MatrixXd q = orbits::holdDofs(dynamics_.mass_inverse, dofs).projector;
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
   a.topRightCorner(n_, n_).setIdentity();
-  a.bottomLeftCorner(n_, n_) = -q * stiffness_;
-  a.bottomRightCorner(n_, n_) = -q * damping_;
+  a.bottomLeftCorner(n_, n_) = -q * dynamics_.stiffness;
+  a.bottomRightCorner(n_, n_) = -q * dynamics_.damping;
   projectors_[key] = q;
   return generators_[key] = a;
 }
 
 Eigen::VectorXd MonodromyStability::freeForce(const std::vector<State>& states, double t, const Eigen::VectorXd& y) const {
-  Eigen::VectorXd b = -stiffness_ * y.head(n_) - damping_ * y.segment(n_, n_);
+  Eigen::VectorXd b = -dynamics_.stiffness * y.head(n_) - dynamics_.damping * y.segment(n_, n_);
   for (const HarmonicLoad& load : model_.structure.loads) b[load.dof] += load.at(model_.omega * t);
   for (size_t l = 0; l < states.size(); ++l) addSlipForce(static_cast<int>(l), states[l], b);
   return b;

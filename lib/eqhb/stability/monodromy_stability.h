@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/stability/hill_stability.h"
 
 namespace eqhb {
@@ -85,7 +86,7 @@ class MonodromyStability {
   std::unique_ptr<FourierTransform> transform_;
   double unit_tolerance_;
   int n_ = 0;
-  Eigen::MatrixXd mass_inverse_, damping_, stiffness_;
+  orbits::DenseDynamics dynamics_;  // M⁻¹, C, K
   std::vector<int> dofs_;                          // per law
   std::vector<double> limit_, rho_, gap_;          // per law: μN (friction), ρ in trial form, g0 (contact)
   std::vector<bool> contact_;

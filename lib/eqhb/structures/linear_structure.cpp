@@ -40,24 +40,26 @@ bool semidefinite(const SparseMatrix& m, double scale) {
 }
 }  // namespace
 
-LinearStructure::LinearStructure(SparseMatrix mass_matrix, SparseMatrix damping_matrix,
-                                 SparseMatrix stiffness_matrix, std::vector<HarmonicLoad> load_list)
-    : mass(std::move(mass_matrix)),
-      damping(std::move(damping_matrix)),
-      stiffness(std::move(stiffness_matrix)),
-      loads(std::move(load_list)) {
-  mass.makeCompressed();
-  damping.makeCompressed();
-  stiffness.makeCompressed();
+LinearStructure LinearStructure::fromMassStiffnessDamping(SparseMatrix mass, SparseMatrix stiffness,
+                                                          SparseMatrix damping, std::vector<HarmonicLoad> loads) {
+  LinearStructure s;
+  s.mass = std::move(mass);
+  s.stiffness = std::move(stiffness);
+  s.damping = std::move(damping);
+  s.loads = std::move(loads);
+  s.mass.makeCompressed();
+  s.damping.makeCompressed();
+  s.stiffness.makeCompressed();
+  return s;
 }
 
-LinearStructure::LinearStructure(const Eigen::MatrixXd& mass_matrix,
-                                 const Eigen::MatrixXd& damping_matrix,
-                                 const Eigen::MatrixXd& stiffness_matrix,
-                                 std::vector<HarmonicLoad> load_list)
-    : LinearStructure(SparseMatrix(mass_matrix.sparseView(1.0, 0.0)),
-                      SparseMatrix(damping_matrix.sparseView(1.0, 0.0)),
-                      SparseMatrix(stiffness_matrix.sparseView(1.0, 0.0)), std::move(load_list)) {}
+LinearStructure LinearStructure::fromMassStiffnessDamping(const Eigen::MatrixXd& mass,
+                                                          const Eigen::MatrixXd& stiffness,
+                                                          const Eigen::MatrixXd& damping,
+                                                          std::vector<HarmonicLoad> loads) {
+  return fromMassStiffnessDamping(SparseMatrix(mass.sparseView(1.0, 0.0)), SparseMatrix(stiffness.sparseView(1.0, 0.0)),
+                                  SparseMatrix(damping.sparseView(1.0, 0.0)), std::move(loads));
+}
 
 void LinearStructure::validate() const {
   const Eigen::Index n = mass.rows();

@@ -18,9 +18,15 @@
 
 namespace eqhb {
 
+// DOF numbering: DOF i of the structure is row/column i of M, C and K, counted
+// from 0 as Eigen indexes them; every DOF index the C++ API takes or returns
+// (HarmonicLoad::dof, LawAttachment, HbSolution's displacements, a DofChoice)
+// is 0-based. Scene files, the command line, Python and every writer's output
+// number DOFs from 1 ("x1", "dof": 1); the scene reader and the writers convert.
+
 // One harmonic load on one DOF: cos_amplitude cos(kωt) + sin_amplitude sin(kωt).
 struct HarmonicLoad {
-  int dof = 0;       // 0-based
+  int dof = 0;       // 0-based, as every DOF index in C++
   int harmonic = 1;  // k >= 0
   double cos_amplitude = 0.0;
   double sin_amplitude = 0.0;
@@ -36,12 +42,16 @@ struct LinearStructure {
   std::vector<HarmonicLoad> loads;
 
   LinearStructure() = default;
+  // The three matrices in the order the name gives: mass, stiffness, damping,
+  // as Python's eqhb.model(mass, stiffness, damping). There is no positional
+  // constructor: C and K are both n x n, so a swap would compile and run.
   // From sparse matrices (the usual way for models read from files).
-  LinearStructure(SparseMatrix mass, SparseMatrix damping, SparseMatrix stiffness,
-                  std::vector<HarmonicLoad> loads = {});
+  static LinearStructure fromMassStiffnessDamping(SparseMatrix mass, SparseMatrix stiffness, SparseMatrix damping,
+                                                  std::vector<HarmonicLoad> loads = {});
   // From dense matrices (small inline models); exact zeros are dropped.
-  LinearStructure(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
-                  const Eigen::MatrixXd& stiffness, std::vector<HarmonicLoad> loads = {});
+  static LinearStructure fromMassStiffnessDamping(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& stiffness,
+                                                  const Eigen::MatrixXd& damping,
+                                                  std::vector<HarmonicLoad> loads = {});
 
   int dofs() const { return static_cast<int>(mass.rows()); }
   // Throws InputError naming the matrix and the rule (square, same size,

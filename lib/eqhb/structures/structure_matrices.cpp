@@ -150,7 +150,7 @@ void checkStructureMatrices(const StructureMatrices& s, double symmetry_toleranc
 }
 
 LinearStructure toLinearStructure(const StructureMatrices& s) {
-  return LinearStructure(s.mass, s.damping, s.stiffness);
+  return LinearStructure::fromMassStiffnessDamping(s.mass, s.stiffness, s.damping);
 }
 
 }  // namespace eqhb

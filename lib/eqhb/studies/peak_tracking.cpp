@@ -16,8 +16,8 @@ namespace eqhb {
 void PeakOptions::validate(int dofs) const {
   if (!(from > 0.0) || !std::isfinite(from)) throwInputError("from", formatNumber(from), "must be finite and > 0");
   if (!(to > from) || !std::isfinite(to)) throwInputError("to", formatNumber(to), "must be finite and > from");
-  if (dof < 1 || dof > dofs)
-    throwInputError("dof", std::to_string(dof), "must be a DOF of the scene, 1.." + std::to_string(dofs));
+  if (dof < 0 || dof >= dofs)  // named as the scene numbers DOFs, from 1
+    throwInputError("dof", std::to_string(dof + 1), "must be a DOF of the scene, 1.." + std::to_string(dofs));
   if (coarse_points < 3) throwInputError("coarse_points", std::to_string(coarse_points), "must be >= 3");
   if (!(omega_tolerance > 0.0) || omega_tolerance >= 1e-2)
     throwInputError("omega_tolerance", formatNumber(omega_tolerance), "must be in (0, 1e-2)");
@@ -68,7 +68,7 @@ class BranchProbe {
 
   double amplitude2(const Eigen::VectorXd& z) const {
     const Eigen::VectorXd full = system_.fullCoefficients(z);
-    const double a = firstHarmonicAmplitude(system_.model().basis, full.data() + (dof_ - 1) * nb_);
+    const double a = firstHarmonicAmplitude(system_.model().basis, full.data() + dof_ * nb_);
     return a * a;
   }
 
@@ -311,7 +311,7 @@ PeakResult trackPeak(const HbModel& model, Solver& solver, const SolverOptions& 
     if (options.fallbacks) sweep.fallbacks = *options.fallbacks;
     const Curve curve = sweepSequential(m, solver, solver_options, sweep);
     const int last = static_cast<int>(curve.points.size()) - 1;
-    auto amplitude = [&](int i) { return curve.points[i].first_harmonic[options.dof - 1]; };
+    auto amplitude = [&](int i) { return curve.points[i].first_harmonic[options.dof]; };
     int best = -1;
     for (int i = 0; i <= last; ++i) {
       probe.solves += 1;

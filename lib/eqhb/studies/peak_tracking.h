@@ -39,7 +39,7 @@ namespace eqhb {
 
 struct PeakOptions {
   double from = 0.1, to = 0.8;  // the peak is searched for in [from, to]
-  int dof = 1;                  // DOF (from 1) whose first-harmonic amplitude peaks
+  int dof = 0;                  // DOF (0-based) whose first-harmonic amplitude peaks
   int coarse_points = 41;       // grid points of a cold start's sweep, >= 3
   double omega_tolerance = 1e-9;  // relative: stop when |Δω| <= tol · ω
   int max_secant_steps = 40;

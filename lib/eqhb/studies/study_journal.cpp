@@ -209,7 +209,7 @@ std::string studyPlanText(const StudySettings& s, const std::string& solver_name
   for (const auto& o : s.overrides) out << "set = " << o << "\n";
   out << "mode = " << (s.mode == StudyMode::kPeak ? "peak" : "sweep") << "\n"
       << "range = " << formatRoundTrip(s.peak.from) << " " << formatRoundTrip(s.peak.to) << "\n"
-      << "dof = " << s.peak.dof << "\n"
+      << "dof = " << s.peak.dof + 1 << "\n"
       << "system = " << (s.peak.condensed ? "condensed" : "full") << "\n";
   if (s.mode == StudyMode::kPeak)
     out << "coarse_points = " << s.peak.coarse_points << "\nmax_peaks = " << s.peak.max_peaks << "\n";

@@ -88,7 +88,7 @@ SampleResult SampleWorker::compute(int id) {
   r.start = "sweep";
   r.ok = curve.failed_points == 0 && !curve.points.empty();
   if (!r.ok) r.reason = curve.stop_reason;
-  const int dof = settings_.peak.dof - 1;
+  const int dof = settings_.peak.dof;
   const CurvePoint* best = nullptr;
   for (const auto& p : curve.points) {
     ++r.solves;
