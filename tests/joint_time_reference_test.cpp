@@ -20,12 +20,13 @@ namespace eqhb {
 namespace {
 
 // `eqhb compare SCENE --harmonics H --set ...` on the scene's time step.
-app::Comparison compared(const std::string& path, int harmonics, const std::vector<std::string>& set = {}) {
+app::Comparison compared(const std::string& path, int harmonics, const std::vector<std::string>& set = {},
+                         const app::CompareOptions& options = {}) {
   app::SceneSettings scene;
   scene.path = path;
   scene.harmonics = harmonics;
   scene.overrides = set;
-  app::Comparison c = app::compare(scene, app::CompareOptions());
+  app::Comparison c = app::compare(scene, options);
   EXPECT_TRUE(c.succeeded()) << path << " H = " << harmonics << ": " << c.hb.result.summary()
                              << (c.reference.periodic ? "" : "; the reference did not settle");
   return c;
@@ -103,8 +104,16 @@ TEST(ElasticFrictionTimeReference, ThreeDimensionalErrorFallsWithH) {
 // N0 − p (N0 = 1) and the friction force, μ = 0.4. Measured at H = 15
 // (256 samples, h = 1e-3): x L2 8e-4 to 1.2e-2, the largest along the
 // second tangent (x2, x5); the landings are impacts in the reference.
+// The min form's harmonic balance has more than one root here, each to
+// |g| < 1e-10: the dense LU dogleg's Broyden path from the coarse start
+// lands on the one above; its refresh path (Newton steps while they are
+// accepted, the default) on one 2.1e-2 off along x5, dogleg-newton on one
+// 3.6e-2 off. The error bound is the one root's, so the path is fixed.
 TEST(ContactFrictionTimeReference, ExactNormalWithElasticFrictionIn3DBetweenNodes) {
-  const app::Comparison c = compared(std::string(EQHB_TEST_SCENES_DIR) + "/contact-friction-3d.toml", 15);
+  app::CompareOptions broyden;
+  broyden.hb.solver_options.backend = {{"update", "broyden"}};
+  const app::Comparison c =
+      compared(std::string(EQHB_TEST_SCENES_DIR) + "/contact-friction-3d.toml", 15, {}, broyden);
   expectEveryPhase(phases(c.reference, 0.4, -1.0, 1.0), "contact-friction 3D");
   EXPECT_LT(displacementError(c), 2e-2);
 }

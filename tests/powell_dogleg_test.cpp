@@ -1,4 +1,5 @@
 #include "eqhb/backends/dogleg/powell_dogleg.h"
+#include "eqhb/backends/dogleg/preconditioned_gmres.h"
 
 #include <gtest/gtest.h>
 
@@ -68,8 +69,8 @@ TEST(PowellDogleg, SolvesEveryMghCaseMinpackSolves) {
   EXPECT_GE(minpack_solved, 40);  // the suite itself still runs as intended
 }
 
-// The dense LU strategy takes the QR strategy's steps (the same Gauss–Newton
-// and Cauchy points, the same Broyden updates, kept as vectors instead of
+// With update = "broyden", the dense LU strategy takes the QR strategy's
+// steps (the same Gauss–Newton and Cauchy points, the same Broyden updates, kept as vectors instead of
 // rotated into Q R): on the Moré–Garbow–Hillstrom cases it solves as many,
 // with the same evaluations on most. Rounding lets the two drift apart on
 // the nearly singular ones (Powell singular, Brown almost-linear at n = 30
@@ -78,7 +79,7 @@ TEST(PowellDogleg, TheLuFactorisationTakesTheQrFactorisationsSteps) {
   for (const std::string name : {"dogleg", "dogleg-newton"}) {
     auto lu = makeSolver(name);
     auto qr = makeSolver(name);
-    const auto rows = mgh::compare(*lu, *qr, mgh::standardCases(), {{"factorisation", "lu"}},
+    const auto rows = mgh::compare(*lu, *qr, mgh::standardCases(), {{"factorisation", "lu"}, {"update", "broyden"}},
                                    {{"factorisation", "qr"}});
     int lu_solved = 0, qr_solved = 0, same_evaluations = 0;
     for (const auto& row : rows) {
@@ -91,6 +92,52 @@ TEST(PowellDogleg, TheLuFactorisationTakesTheQrFactorisationsSteps) {
     EXPECT_GE(lu_solved, qr_solved) << name;
     EXPECT_GE(same_evaluations, 45) << name << ": of " << rows.size() << " cases";
   }
+}
+
+// The refresh model's linear solve: J = M + (a rank-2 change, as when two
+// laws' samples switch between stick and slip) on the LU of M. J M⁻¹ is the
+// identity plus rank 2, so GMRES is exact after 2 Krylov vectors (3 at most
+// in rounding); with one vector allowed it misses and says so.
+TEST(PreconditionedGmres, SolvesALowRankChangeOfTheFactorisedMatrixInFewVectors) {
+  srand(11);
+  const int n = 60;
+  const Eigen::MatrixXd m = Eigen::MatrixXd::Random(n, n) + n * Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd j = m + Eigen::MatrixXd::Random(n, 2) * Eigen::MatrixXd::Random(2, n) * 5.0;
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(m);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+  Eigen::VectorXd y(n);
+  dogleg::PreconditionedGmres gmres(n, 20);
+  ASSERT_TRUE(gmres.solve(j, lu, b, 1e-12, y));
+  EXPECT_LE(gmres.lastVectors(), 3);
+  EXPECT_GE(gmres.lastVectors(), 1);  // the chord step M⁻¹ b alone is off
+  EXPECT_LT((j * y - b).norm(), 1e-11 * b.norm());
+  EXPECT_LT((y - j.partialPivLu().solve(b)).norm(), 1e-9 * y.norm());
+  dogleg::PreconditionedGmres one(n, 1);
+  EXPECT_FALSE(one.solve(j, lu, b, 1e-12, y));
+  EXPECT_GT((j * y - b).norm(), 1e-11 * b.norm());
+}
+
+TEST(PowellDogleg, AnUnknownUpdateIsRefusedNamingTheOption) {
+  auto solver = makeSolver("dogleg");
+  SolverOptions options;
+  options.backend["update"] = "secant";
+  Eigen::VectorXd z0 = Eigen::VectorXd::Ones(2);
+  struct Linear : SquareSystem {
+    int size() const override { return 2; }
+    bool residual(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g) override {
+      g = z;
+      return true;
+    }
+    bool residualAndJacobian(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g,
+                             Eigen::Ref<Eigen::MatrixXd> j) override {
+      g = z;
+      j.setIdentity();
+      return true;
+    }
+  } system;
+  const SolverResult r = solver->solve(system, z0, options);
+  EXPECT_EQ(r.termination, Termination::kInvalidOptions);
+  EXPECT_NE(r.native_message.find("update"), std::string::npos) << r.native_message;
 }
 
 }  // namespace

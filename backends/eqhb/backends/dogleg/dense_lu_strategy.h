@@ -7,12 +7,18 @@
 // as vectors: B⁻¹ by Sherman–Morrison on the LU of J, B x and Bᵀ x by
 // products with J and the vectors; a fresh Jacobian after two failed steps in
 // a row, after kMostUpdates updates, or when an update makes B singular.
+// With update = "refresh" (the default) the model before the first rejected
+// step is instead the Jacobian at each accepted iterate, its Newton step by
+// GMRES on the LU kept (preconditioned_gmres.h): near-Newton steps for one
+// Jacobian and a few products each, where a warm-started point would take many
+// secant steps; a GMRES miss takes a new LU of that Jacobian.
 #pragma once
 
 #include <Eigen/Dense>
 
 #include "eqhb/backends/dogleg/lu_dogleg_strategy.h"
 #include "eqhb/backends/dogleg/powell_dogleg.h"
+#include "eqhb/backends/dogleg/preconditioned_gmres.h"
 
 namespace eqhb::dogleg {
 
@@ -21,8 +27,14 @@ class DenseLuStrategy : public LuDoglegStrategy {
   // Updates kept before a fresh Jacobian: each costs two vector products per
   // step, and a long run of them means the secant model has drifted.
   static constexpr int kMostUpdates = 48;
+  // Krylov vectors before a new LU: 20 products and solves cost about a
+  // sixth of an LU at n = 700.
+  static constexpr int kMostKrylovVectors = 20;
+  // GMRES stops at ‖g − J y‖ <= this · ‖g‖: an inexact Newton step whose
+  // linear error stays far below the nonlinear one.
+  static constexpr double kKrylovTolerance = 1e-4;
 
-  DenseLuStrategy(MonitoredSystem& system, JacobianPolicy policy);
+  DenseLuStrategy(MonitoredSystem& system, JacobianPolicy policy, bool refresh);
 
   bool evaluateJacobian(const Eigen::VectorXd& z, Eigen::VectorXd& g, int iteration, StopReason* stop) override;
   double jacobianColumnNorm(Eigen::Index j) const override { return jacobian_.col(j).norm(); }
@@ -38,7 +50,17 @@ class DenseLuStrategy : public LuDoglegStrategy {
   // y = B⁻¹ x: J⁻¹ x, then each update's Sherman–Morrison correction in turn.
   void applyInverse(const Eigen::VectorXd& x, Eigen::VectorXd& y);
 
+  // The refresh model after an accepted step: J at the new iterate, its
+  // Newton step by GMRES on the LU kept; false for a new LU.
+  bool refreshModel(const TrialStep& trial);
+
   JacobianPolicy policy_;
+  bool refresh_;                // the refresh model, until a step is rejected
+  bool krylov_ = false;         // jacobian_ is newer than lu_'s factors
+  bool refreshed_at_z_ = false;  // jacobian_ and g_: the refresh model's J and g at z_
+  Eigen::VectorXd z_;            // where jacobian_ was evaluated
+  Eigen::VectorXd krylov_step_;  // J⁻¹ g of the refresh model, by GMRES
+  PreconditionedGmres gmres_;
   Eigen::MatrixXd jacobian_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   // Every matrix and vector of the updates is made here, once.

@@ -95,8 +95,15 @@ bool parseSettings(const SolverOptions& options, Settings* settings, std::string
         *why = "factorisation = \"" + text + "\": must be \"auto\", \"qr\" or \"lu\"";
         return false;
       }
+    } else if (key == "update") {
+      if (text == "refresh") settings->update = Settings::Update::kRefresh;
+      else if (text == "broyden") settings->update = Settings::Update::kBroyden;
+      else {
+        *why = "update = \"" + text + "\": must be \"refresh\" or \"broyden\"";
+        return false;
+      }
     } else {
-      *why = "unknown dogleg option \"" + key + "\" (known: factor, xtol, scaling, factorisation)";
+      *why = "unknown dogleg option \"" + key + "\" (known: factor, xtol, scaling, factorisation, update)";
       return false;
     }
   }
@@ -217,7 +224,7 @@ void PowellDogleg::run(MonitoredSystem& system, const Eigen::VectorXd& z0,
                   (settings.factorisation == DoglegSettings::Factorisation::kAuto &&
                    system.size() >= kDenseLuFromUnknowns);
   if (lu) {
-    dogleg::DenseLuStrategy strategy(system, policy_);
+    dogleg::DenseLuStrategy strategy(system, policy_, settings.update == DoglegSettings::Update::kRefresh);
     return dogleg::runTrustRegionLoop(system, z0, options, settings, strategy, result);
   }
   dogleg::DenseDoglegStrategy strategy(system, policy_);

@@ -18,6 +18,10 @@
 //            LU costs a quarter of a QR with its Q, and its Broyden updates
 //            are kept as vectors (dense_lu_strategy.h). The steps are the
 //            same in exact arithmetic; auto takes LU from kDenseLuFromUnknowns.
+//   update   "refresh" (default) or "broyden": the LU's model between
+//            factorisations (dense_lu_strategy.h): the Jacobian at each
+//            accepted iterate solved by GMRES on the LU kept, or Broyden's
+//            updates as hybrj's. The QR factorisation always updates by Broyden.
 #pragma once
 
 #include "eqhb/solvers/named_solver.h"

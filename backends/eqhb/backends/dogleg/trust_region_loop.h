@@ -20,6 +20,10 @@ struct DoglegSettings {
   // The dense model's factorisation: QR (hybrj's Q R, updated by rotations)
   // or LU (dense_lu_strategy.h); auto: LU from kDenseLuFromUnknowns.
   enum class Factorisation { kAuto, kQr, kLu } factorisation = Factorisation::kAuto;
+  // Between LUs of the dense LU strategy with the Broyden policy: the
+  // Jacobian at each accepted iterate, solved by GMRES on the LU kept
+  // (kRefresh), or Broyden's secant updates (kBroyden).
+  enum class Update { kRefresh, kBroyden } update = Update::kRefresh;
 };
 
 namespace dogleg {
