@@ -12,6 +12,13 @@ std::string defaultBackupSolver(const std::string& primary) {
   return "";
 }
 
+std::string defaultFullSystemSolver(const std::string& primary) {
+  if (primary == "ceres-lm") return "";  // the chain's "full" step is already that
+  for (const SolverEntry& entry : registeredSolvers())
+    if (entry.name == "ceres-lm") return entry.name;
+  return "";
+}
+
 OwnedFallbackChain::OwnedFallbackChain(const std::string& text, const std::string& primary,
                                        const std::string& field) {
   auto solver_for = [this](const std::string& name) -> Solver* {
@@ -23,8 +30,9 @@ OwnedFallbackChain::OwnedFallbackChain(const std::string& text, const std::strin
     return nullptr;
   };
   if (text == "default") {
-    const std::string backup = defaultBackupSolver(primary);
-    chain_ = FallbackChain::standard(backup.empty() ? nullptr : solver_for(backup));
+    const std::string backup = defaultBackupSolver(primary), full_backup = defaultFullSystemSolver(primary);
+    chain_ = FallbackChain::standard(backup.empty() ? nullptr : solver_for(backup),
+                                     full_backup.empty() ? nullptr : solver_for(full_backup));
   } else {
     chain_ = FallbackChain::parse(text, field, solver_for);
   }

@@ -17,9 +17,15 @@ namespace eqhb {
 // Levenberg–Marquardt, else the Newton dogleg; never `primary` itself.
 std::string defaultBackupSolver(const std::string& primary);
 
+// The backend the default path tries on the full system after the backup:
+// Ceres' Levenberg-Marquardt where built (the damper above its peak at
+// H >= 25 converges only there), none when it is `primary` itself.
+std::string defaultFullSystemSolver(const std::string& primary);
+
 class OwnedFallbackChain {
  public:
-  // "default": cold, full, condensed, defaultBackupSolver(primary), forcing; "none"; or steps
+  // "default": cold, full, condensed, defaultBackupSolver(primary),
+  // full:defaultFullSystemSolver(primary), forcing; "none"; or steps
   // "cold,full,NAME,..." (FallbackChain::parse). Throws InputError naming
   // `field` for an unknown step or backend.
   OwnedFallbackChain(const std::string& text, const std::string& primary, const std::string& field);

@@ -17,8 +17,12 @@ constexpr const char* kCold = "cold";
 constexpr const char* kFull = "full";
 constexpr const char* kCondensed = "condensed";
 constexpr const char* kForcing = "forcing";
+// "full:NAME": the backend NAME on the full system.
+constexpr const char* kFullWith = "full:";
 // What a step may be, for the messages that refuse one.
-constexpr const char* kStepKinds = "cold, full, condensed, forcing or a backend name";
+constexpr const char* kStepKinds = "cold, full, condensed, forcing, a backend name or full:NAME";
+
+bool isFullWith(const std::string& step) { return step.rfind(kFullWith, 0) == 0; }
 
 // The forcing homotopy: the first fraction of the dynamic loads solved cold,
 // the first step up, the smallest step before it gives up, and the most
@@ -169,13 +173,19 @@ SolverResult solveByForcingHomotopy(Solver& solver, HbSystem& system, const Solv
 
 }  // namespace
 
-FallbackChain FallbackChain::standard(Solver* backup) {
+FallbackChain FallbackChain::standard(Solver* backup, Solver* full_backup) {
   FallbackChain chain;
   chain.steps = {kCold, kFull, kCondensed};
   chain.solvers = {nullptr, nullptr, nullptr};
   if (backup) {
     chain.steps.push_back(backup->name());
     chain.solvers.push_back(backup);
+  }
+  // After the backup: it only runs where every step before it failed, so
+  // the points those steps rescued cost what they did.
+  if (full_backup) {
+    chain.steps.push_back(kFullWith + full_backup->name());
+    chain.solvers.push_back(full_backup);
   }
   // Last: the forcing homotopy takes several solves, and the steps before it
   // rescue every point they rescued before it existed at the same cost.
@@ -207,7 +217,7 @@ FallbackChain FallbackChain::parse(const std::string& text, const std::string& f
       throwInputError(field, text, "names " + step + " twice");
     Solver* backend = nullptr;
     if (step != kCold && step != kFull && step != kCondensed && step != kForcing) {
-      backend = solver_for(step);
+      backend = solver_for(isFullWith(step) ? step.substr(std::string(kFullWith).size()) : step);
       if (!backend)
         throwInputError(field, text, "has an unknown step " + step + " (steps: " + kStepKinds + ", or none)");
     }
@@ -249,6 +259,9 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
       else if (step == kFull) attempt.result = solveOnFullSystem(solver, system, remaining(), rest_full);
       else if (step == kCondensed) attempt.result = solveOnCondensedSystem(solver, system, remaining(), rest_full);
       else if (step == kForcing) attempt.result = solveByForcingHomotopy(solver, system, remaining(), rest_full);
+      else if (isFullWith(step) && system.condensed())
+        attempt.result = solveOnFullSystem(*chain.solvers[i], system,
+                                           forBackend(*chain.solvers[i], solver, remaining()), rest_full);
       else attempt.result = solveCold(*chain.solvers[i], system, forBackend(*chain.solvers[i], solver, remaining()),
                                       rest_full);
     } catch (const std::exception& e) {  // a singular A_k, a system too large for memory

@@ -12,7 +12,12 @@
 //   4. SOLVER another backend on the system, from the cold start (the caller
 //             names it: the core knows no backend by name), on its own
 //             defaults: the backend-specific options are the failed solve's.
-//   5. forcing  a homotopy in the dynamic loads (harmonic >= 1): a quarter of
+//   5. full:SOLVER  another backend on the full system, from its cold start
+//             (the caller names it): Ceres' Levenberg-Marquardt there solves
+//             the damper above its peak at H >= 25 (omega = 1.1, H = 40: 13
+//             iterations from rest), where the own dogleg and Ipopt's least
+//             squares stall on both systems and LM stalls on the condensed one.
+//   6. forcing  a homotopy in the dynamic loads (harmonic >= 1): a quarter of
 //             them solved cold, then raised to the whole, each solve from the
 //             last (the step doubled after a success, halved after a
 //             failure): where ‖g‖ has a local minimum that every backend
@@ -40,8 +45,9 @@
 namespace eqhb {
 
 struct FallbackChain {
-  // Steps in order: "cold", "full", "condensed", "forcing", or a backend supplied in
-  // `solvers` by its Solver::name(). Empty: no fallback.
+  // Steps in order: "cold", "full", "condensed", "forcing", a backend supplied in
+  // `solvers` by its Solver::name(), or "full:" and that name (the backend on
+  // the full system; on the full system itself, the same as its name). Empty: no fallback.
   std::vector<std::string> steps;
   std::vector<Solver*> solvers;  // the backends named in `steps`, owned by the caller
   // A preloaded problem's static state (null: none). Every step's cold start
@@ -52,15 +58,15 @@ struct FallbackChain {
   std::shared_ptr<const StaticContactState> at_rest;
 
   // The default order: cold, full, condensed, `backup` (may be null: no
-  // backend step), forcing.
-  static FallbackChain standard(Solver* backup);
+  // backend step), full:`full_backup` (may be null), forcing.
+  static FallbackChain standard(Solver* backup, Solver* full_backup = nullptr);
   // The same without the forcing step: for a sweep's point after a converged
   // one, which its continuation in ω (from the previous point, then from the
   // next) serves better; there the homotopy's up to 40 solves per failed
   // point made nlvib-03-unilateral-spring's H = 40 sweep 5x slower (98 s for
   // 20 s) and rescued no point that the next point did not.
   FallbackChain withoutForcing() const;
-  // Parses "cold,full,condensed,forcing,NAME" (or "none"); `solver_for` returns the backend for a
+  // Parses "cold,full,condensed,forcing,NAME,full:NAME" (or "none"); `solver_for` returns the backend for a
   // NAME that is neither cold nor full, or null for an unknown one. Throws
   // InputError naming `field` for an unknown, empty or repeated step.
   static FallbackChain parse(const std::string& text, const std::string& field,
