@@ -380,6 +380,38 @@ TEST(ArclengthSteps, ARetraceLiesOnThePathANewBranchOffIt) {
   EXPECT_FALSE(path.retraces(unit, last, back));
 }
 
+// A bridge asks of the whole curve: a path that keeps every point finds a
+// landing on its first segment, 600 points back, which the last 512 (what a
+// kink looks at) no longer hold; a bridge's own jump is no part of the path.
+TEST(ArclengthSteps, ABridgeLandingFarBackLiesOnTheWholePathNotOnAJump) {
+  TracedPath recent, whole(1000);
+  for (int i = 0; i < 600; ++i) {
+    const Eigen::VectorXd z = Eigen::VectorXd::Constant(1, 0.001 * i);
+    recent.add(z, 1.0 + 0.001 * i);
+    whole.add(z, 1.0 + 0.001 * i);
+  }
+  ArcScales unit;
+  Eigen::VectorXd last(2), first_segment(2);
+  last << 0.0005, 1.1;              // off the path, near its start
+  first_segment << 0.0005, 1.0005;  // on the segment from point 0 to point 1
+  EXPECT_FALSE(recent.retraces(unit, last, first_segment));
+  EXPECT_TRUE(whole.retraces(unit, last, first_segment));
+
+  TracedPath bridged(10);
+  bridged.add(Eigen::VectorXd::Constant(1, 0.0), 1.0);
+  bridged.add(Eigen::VectorXd::Constant(1, 0.1), 1.1);
+  bridged.breakPath();  // jump from (0.1, 1.1) to (0.5, 1.5)
+  bridged.add(Eigen::VectorXd::Constant(1, 0.5), 1.5);
+  bridged.add(Eigen::VectorXd::Constant(1, 0.6), 1.6);
+  Eigen::VectorXd on_jump(2), from(2);
+  on_jump << 0.3, 1.3;
+  from << 0.3, 2.3;
+  EXPECT_FALSE(bridged.retraces(unit, from, on_jump));
+  Eigen::VectorXd on_path(2);
+  on_path << 0.55, 1.55;
+  EXPECT_TRUE(bridged.retraces(unit, from, on_path));
+}
+
 TEST(Continuation, StepBoundsAreValidated) {
   ContinuationOptions options;
   options.min_step = 0.5;

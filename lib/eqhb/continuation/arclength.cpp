@@ -268,8 +268,11 @@ class ArclengthSweep {
         taken += " (" + tried.taken + ")";
       }
       const ArcScales s = ArcScales::at(r.solution, scaleFloor(r.solution.norm()), hi_ - lo_);
-      // Landed back on the path traced (a heading reversed by a spurious fold): no way on.
-      if (traced_.retraces(s, s.scaled(current_.z, current_.omega), s.scaled(r.solution, target))) continue;
+      // Landed back on the path traced (a heading reversed by a spurious fold,
+      // or past a fold onto the branch that led to it): no way on.
+      if (traced_.retraces(s, s.scaled(current_.z, current_.omega), s.scaled(r.solution, target)) ||
+          wholeCurve().retraces(s, s.scaled(current_.z, current_.omega), s.scaled(r.solution, target)))
+        continue;
       Eigen::VectorXd ahead = Eigen::VectorXd::Zero(n_ + 1), tangent;
       ahead[n_] = heading;
       if (!tangentAt(*system_, s, s.scaled(r.solution, target), ahead, &tangent))
@@ -283,6 +286,21 @@ class ArclengthSweep {
       return true;
     }
     return false;
+  }
+
+  // Every point recorded, in the current system's unknowns, each bridge's
+  // jump left out: a bridge may land on the curve far behind the last
+  // points traced_ keeps (stribeck at H = 40: past its second fold, 527
+  // points back on the branch before the first, which it then retraced
+  // to the start of the range).
+  TracedPath wholeCurve() const {
+    TracedPath whole(curve_.points.size());
+    for (const CurvePoint& p : curve_.points) {
+      if (!p.converged || p.full.size() == 0) continue;
+      if (p.fallback.rfind("bridge", 0) == 0) whole.breakPath();
+      whole.add(system_->fromFullCoefficients(p.full), p.omega);
+    }
+    return whole;
   }
 
   // While every law is idle (a contact not yet reached: ‖z‖ below the scale

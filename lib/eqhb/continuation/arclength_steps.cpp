@@ -9,7 +9,6 @@ namespace eqhb {
 namespace {
 // A retrace lands on the path within this many points behind the current
 // one (a corrector hovering where a curve ends can take hundreds there).
-constexpr size_t kRetraceMemory = 512;
 constexpr double kRetraceFraction = 0.25;
 
 double distanceToSegment(const Eigen::VectorXd& y, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -59,9 +58,12 @@ bool KinkTest::isKink(double step, double turn_angle) {
 void TracedPath::add(const Eigen::VectorXd& z, double omega) {
   Eigen::VectorXd point(z.size() + 1);
   point << z, omega;
-  if (!points_.empty() && points_.back().size() != point.size()) points_.clear();  // another system's unknowns
+  if (!points_.empty() && points_.back().size() != point.size()) clear();  // another system's unknowns
   points_.push_back(std::move(point));
-  if (points_.size() > kRetraceMemory) points_.pop_front();
+  if (points_.size() > memory_) {
+    points_.pop_front();
+    break_at_.clear();  // only bridges' paths are unbounded, and they never drop a point
+  }
 }
 
 bool TracedPath::retraces(const ArcScales& scales, const Eigen::VectorXd& y, const Eigen::VectorXd& y_new) const {
@@ -72,7 +74,7 @@ bool TracedPath::retraces(const ArcScales& scales, const Eigen::VectorXd& y, con
     scaled.push_back(scales.scaled(p.head(p.size() - 1), p[p.size() - 1]));
   }
   for (size_t i = 1; i < scaled.size(); ++i)
-    if (distanceToSegment(y_new, scaled[i - 1], scaled[i]) <= tolerance) return true;
+    if (std::find(break_at_.begin(), break_at_.end(), i) == break_at_.end() && distanceToSegment(y_new, scaled[i - 1], scaled[i]) <= tolerance) return true;
   return false;
 }
 

@@ -71,8 +71,18 @@ class FoldWatch {
 // traced branch: the curve did not turn, the corrector went back).
 class TracedPath {
  public:
+  // Keeps the last `memory` points: enough to tell a retrace at a kink,
+  // where the path went back a few steps; a bridge's jump asks of the whole
+  // curve (unbounded).
+  explicit TracedPath(size_t memory = 512) : memory_(memory) {}
   void add(const Eigen::VectorXd& z, double omega);
-  void clear() { points_.clear(); }
+  // Ends the segment at the last point: the next point added starts a new
+  // one (a bridge's jump is no part of the path).
+  void breakPath() { break_at_.push_back(points_.size()); }
+  void clear() {
+    points_.clear();
+    break_at_.clear();
+  }
   // True when `y_new`, found from the last point `y` (both scaled by
   // `scales`), lies closer to the traced path than a quarter of its distance
   // from `y`: back on the path (a chord of a bend within max_turn is off
@@ -80,7 +90,9 @@ class TracedPath {
   bool retraces(const ArcScales& scales, const Eigen::VectorXd& y, const Eigen::VectorXd& y_new) const;
 
  private:
+  size_t memory_;
   std::deque<Eigen::VectorXd> points_;  // [z; ω] in physical units
+  std::vector<size_t> break_at_;        // no segment from points_[i − 1] to points_[i]
 };
 
 }  // namespace eqhb
