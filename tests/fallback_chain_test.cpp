@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
@@ -121,6 +124,73 @@ TEST(FallbackChain, AContactThatStallsEverywhereIsSolvedByTheForcingHomotopy) {
   EXPECT_LE(scaledResidualNorm(*condensed, r.solution), options.residual_tolerance);
   // The wall is touched: the answer is not the linear response of the scaled-down load.
   EXPECT_GT(condensed->fullCoefficients(r.solution).tail(scene.model.basis.size()).norm(), 0.1);
+}
+
+// The damper above its peak (omega = 1.3, H = 15): the own dogleg stalls on
+// the condensed system from its cold start (|g| 0.049) and on the full one
+// (0.063), and so do Ipopt's least squares and the forcing homotopy; Ceres'
+// Levenberg-Marquardt stalls on the condensed system too (|g| 0.32 after 200
+// iterations) but converges on the full one in about 12. The step
+// "full:ceres-lm" is that backend on the full system, its answer the
+// condensed system's unknowns; the step "ceres-lm" before it, the same
+// backend on the condensed system, fails.
+TEST(FallbackChain, ADamperThatStallsOnTheCondensedSystemIsSolvedByAnotherBackendOnTheFullOne) {
+  if (!test::registered("ceres-lm")) GTEST_SKIP() << "built without the Ceres backend";
+  const Scene scene = loadScene(test::problem("damper.toml"), {"harmonic_balance.harmonics=15"});
+  auto condensed = makeHbSystem(scene.model, true);
+  condensed->setOmega(1.3);
+  auto solver = makeSolver("dogleg");
+  auto lm = makeSolver("ceres-lm");
+  SolverOptions options;
+  options.max_iterations = 200;  // LM on the condensed system would spend its 1000 and still stall
+  const SolverResult failed = solveFromRest(*condensed, *solver, options);
+  ASSERT_FALSE(failed.converged());
+
+  auto lm_by_name = [&](const std::string& name) -> Solver* { return name == "ceres-lm" ? lm.get() : nullptr; };
+  const FallbackChain chain = FallbackChain::parse("cold,full,ceres-lm,full:ceres-lm", "fallback", lm_by_name);
+  ASSERT_EQ(chain.solvers.back(), lm.get());
+  FallbackReport report;
+  const SolverResult r = solveWithFallbacks(*condensed, *solver, options, failed, false, chain, &report);
+  ASSERT_TRUE(r.converged()) << describeFallbacks(report);
+  EXPECT_EQ(report.taken, "full:ceres-lm");
+  ASSERT_EQ(report.attempts.size(), 4u) << describeFallbacks(report);
+  for (size_t i = 0; i < 3; ++i) EXPECT_FALSE(report.attempts[i].result.converged()) << describeFallbacks(report);
+  EXPECT_EQ(report.attempts[3].result.solver, "ceres-lm");
+  // The answer, in the condensed unknowns, solves the full system: its
+  // residual there, in the full system's scales, within tolerance.
+  auto full = makeHbSystem(scene.model, false);
+  full->setOmega(1.3);
+  EXPECT_LE(scaledResidualNorm(*full, full->fromFullCoefficients(condensed->fullCoefficients(r.solution))),
+            options.residual_tolerance);
+}
+
+// full:NAME names a backend as NAME does: an unknown one is refused, naming the field.
+TEST(FallbackChain, RefusesAFullStepWithAnUnknownBackend) {
+  auto none = [](const std::string&) -> Solver* { return nullptr; };
+  for (const char* text : {"cold,full:nonsense", "full:", "full:full"})
+    try {
+      FallbackChain::parse(text, "fallback", none);
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("fallback"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("unknown step full:"), std::string::npos) << e.what();
+    }
+}
+
+// The default path: Ceres' LM on the full system after the backup backend,
+// before the forcing homotopy; none when LM is the solve's own backend.
+TEST(FallbackChain, TheDefaultTriesLevenbergMarquardtOnTheFullSystemBeforeTheForcing) {
+  if (!test::registered("ceres-lm")) GTEST_SKIP() << "built without the Ceres backend";
+  const OwnedFallbackChain with_dogleg("default", "dogleg", "fallback");
+  const std::vector<std::string>& steps = with_dogleg.chain().steps;
+  ASSERT_GE(steps.size(), 2u);
+  EXPECT_EQ(steps[steps.size() - 2], "full:ceres-lm");
+  EXPECT_EQ(steps.back(), "forcing");
+  EXPECT_EQ(with_dogleg.chain().solvers[steps.size() - 2]->name(), "ceres-lm");
+  const OwnedFallbackChain with_lm("default", "ceres-lm", "fallback");
+  const std::vector<std::string>& own = with_lm.chain().steps;
+  EXPECT_EQ(std::find(own.begin(), own.end(), "full:ceres-lm"), own.end());
+  EXPECT_THROW(OwnedFallbackChain("cold,full:nonsense", "dogleg", "fallback"), InputError);
 }
 
 TEST(FallbackChain, ParsesTheForcingStepAndPutsItLast) {

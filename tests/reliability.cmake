@@ -154,6 +154,9 @@ add_test(NAME cli.badly_scaled_rho_is_named
 add_test(NAME cli.fallback_unknown_step
          COMMAND ${EXPECT_EXIT} 2 "--fallback = cold,newton-deluxe: has an unknown step newton-deluxe"
                  ${EQHB_CLI} solve ${SCENE} --fallback cold,newton-deluxe)
+add_test(NAME cli.fallback_unknown_full_system_backend
+         COMMAND ${EXPECT_EXIT} 2 "--fallback = full:nonsense: has an unknown step full:nonsense"
+                 ${EQHB_CLI} solve ${SCENE} --fallback full:nonsense)
 add_test(NAME cli.fallback_empty_step
          COMMAND ${EXPECT_EXIT} 2 "--fallback = cold,,full: has an empty step"
                  ${EQHB_CLI} sweep ${SCENE} --fallback cold,,full)
@@ -179,6 +182,14 @@ if(EQHB_WITH_IPOPT)
   add_test(NAME cli.cubic_without_fallback_fails
            COMMAND ${EXPECT_EXIT} 1 "did not converge"
                    ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/cubic.toml --omega 0.8 --fallback none)
+endif()
+if(EQHB_WITH_CERES)
+  # The damper at omega = 1.3, H = 15: the own dogleg stalls on both systems,
+  # Ceres' LM on the condensed one; full:ceres-lm, LM on the full system, solves it.
+  add_test(NAME cli.damper_full_system_backend_step
+           COMMAND ${EXPECT_EXIT} 0 "fallback: full \\(dogleg: [a-z_]+ after [0-9]+ iterations\\), full:ceres-lm \\(ceres-lm: converged\\)"
+                   ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/damper.toml --omega 1.3 --harmonics 15
+                   --fallback full,full:ceres-lm)
 endif()
 # contact at omega = 0.5 on H = 40: every step before it stalls at a local
 # minimum of |g|; the chain's last step, the forcing homotopy, solves it.

@@ -252,6 +252,11 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
     if (step == kCold && started_cold) continue;        // the failed solve was this one
     if (step == kFull && !system.condensed()) continue;  // already on the full system
     if (step == kCondensed && system.condensed()) continue;
+    // On the full system full:NAME is the step NAME: where the chain has both, one solve.
+    if (isFullWith(step) && !system.condensed() &&
+        std::find(chain.steps.begin(), chain.steps.end(), step.substr(std::string(kFullWith).size())) !=
+            chain.steps.end())
+      continue;
     if (options.time_limit > 0.0 && elapsed() >= options.time_limit) break;
     FallbackAttempt attempt{step, SolverResult()};
     try {

@@ -47,7 +47,8 @@ namespace eqhb {
 struct FallbackChain {
   // Steps in order: "cold", "full", "condensed", "forcing", a backend supplied in
   // `solvers` by its Solver::name(), or "full:" and that name (the backend on
-  // the full system; on the full system itself, the same as its name). Empty: no fallback.
+  // the full system; on the full system itself, the same as its name, skipped
+  // where the chain names that too). Empty: no fallback.
   std::vector<std::string> steps;
   std::vector<Solver*> solvers;  // the backends named in `steps`, owned by the caller
   // A preloaded problem's static state (null: none). Every step's cold start
