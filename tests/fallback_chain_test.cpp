@@ -199,10 +199,17 @@ TEST(FallbackChain, ParsesTheForcingStepAndPutsItLast) {
             (std::vector<std::string>{"forcing", "cold"}));
   EXPECT_THROW(FallbackChain::parse("forcing,forcing", "fallback", none), InputError);
   EXPECT_EQ(FallbackChain::standard(nullptr).steps.back(), "forcing");
-  // A sweep's warm points go without it.
-  const FallbackChain warm = FallbackChain::standard(nullptr).withoutForcing();
+  // A sweep's warm points go without it, and without a backend on the full system.
+  const FallbackChain warm = FallbackChain::standard(nullptr).forWarmPoints();
   EXPECT_EQ(warm.steps, (std::vector<std::string>{"cold", "full", "condensed"}));
   EXPECT_EQ(warm.solvers.size(), warm.steps.size());
+  const std::unique_ptr<Solver> backend = makeSolver("dogleg");
+  const FallbackChain backends =
+      FallbackChain::parse("full,dogleg,full:dogleg,forcing", "fallback", [&](const std::string&) {
+        return backend.get();
+      }).forWarmPoints();
+  EXPECT_EQ(backends.steps, (std::vector<std::string>{"full", "dogleg"}));
+  EXPECT_EQ(backends.solvers, (std::vector<Solver*>{nullptr, backend.get()}));
 }
 
 TEST(FallbackChain, ParsesTheCondensedStepAndRefusesItTwice) {

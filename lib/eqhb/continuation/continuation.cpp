@@ -168,7 +168,7 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   const int grid = static_cast<int>(options.gridPoints()) - 1;
   // After the first converged point a failed one has continuation in ω (and
   // the next point, below) to fall back on: no forcing homotopy there.
-  const FallbackChain warm_fallbacks = options.fallbacks.withoutForcing();
+  const FallbackChain warm_fallbacks = options.fallbacks.forWarmPoints();
   Eigen::VectorXd z = options.start_full.size() ? system->fromFullCoefficients(options.start_full)
                                                 : Eigen::VectorXd::Zero(system->size());
   double last_converged_omega = NAN;

@@ -194,12 +194,12 @@ FallbackChain FallbackChain::standard(Solver* backup, Solver* full_backup) {
   return chain;
 }
 
-FallbackChain FallbackChain::withoutForcing() const {
+FallbackChain FallbackChain::forWarmPoints() const {
   FallbackChain chain = *this;
   chain.steps.clear();
   chain.solvers.clear();
   for (size_t i = 0; i < steps.size(); ++i)
-    if (steps[i] != kForcing) {
+    if (steps[i] != kForcing && !isFullWith(steps[i])) {
       chain.steps.push_back(steps[i]);
       chain.solvers.push_back(solvers[i]);
     }

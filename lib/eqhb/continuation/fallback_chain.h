@@ -61,12 +61,14 @@ struct FallbackChain {
   // The default order: cold, full, condensed, `backup` (may be null: no
   // backend step), full:`full_backup` (may be null), forcing.
   static FallbackChain standard(Solver* backup, Solver* full_backup = nullptr);
-  // The same without the forcing step: for a sweep's point after a converged
-  // one, which its continuation in ω (from the previous point, then from the
-  // next) serves better; there the homotopy's up to 40 solves per failed
-  // point made nlvib-03-unilateral-spring's H = 40 sweep 5x slower (98 s for
-  // 20 s) and rescued no point that the next point did not.
-  FallbackChain withoutForcing() const;
+  // The same without the forcing and full:NAME steps: for a sweep's point
+  // after a converged one, which its continuation in ω (from the previous
+  // point, then from the next) serves better. There the homotopy's up to 40
+  // solves per failed point made nlvib-03-unilateral-spring's H = 40 sweep 5x
+  // slower (98 s for 20 s), and full:ceres-lm's 1000 iterations per failed
+  // point its default sweep 3x slower (75 s for 244 s), each rescuing no
+  // point that the next point did not.
+  FallbackChain forWarmPoints() const;
   // Parses "cold,full,condensed,forcing,NAME,full:NAME" (or "none"); `solver_for` returns the backend for a
   // NAME that is neither cold nor full, or null for an unknown one. Throws
   // InputError naming `field` for an unknown, empty or repeated step.
