@@ -8,6 +8,7 @@
 
 #include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
+#include "eqhb/modes/deadline_options.h"
 #include "eqhb/modes/mode_path_system.h"
 #include "eqhb/preload/operating_point.h"
 #include "eqhb/solvers/deadline.h"
@@ -217,15 +218,7 @@ class PathTracer {
 
   double gridS(int i) const { return s_from_ + grid_step_ * i; }
 
-  // The solver's options with its time limit cut to what the backbone has left.
-  SolverOptions options() const {
-    SolverOptions limited = solver_options_;
-    if (deadline_.limited()) {
-      const double left = std::max(deadline_.remaining(), 1e-3);
-      limited.time_limit = limited.time_limit > 0.0 ? std::min(limited.time_limit, left) : left;
-    }
-    return limited;
-  }
+  SolverOptions options() const { return withinDeadline(solver_options_, deadline_); }
 
   std::string timeLimitReached() const {
     return "stopped: the time limit of " + formatNumber(deadline_.seconds()) + " s was reached";

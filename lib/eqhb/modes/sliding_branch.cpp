@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "eqhb/error.h"
+#include "eqhb/modes/deadline_options.h"
 #include "eqhb/modes/path_tracer.h"
 #include "eqhb/solvers/deadline.h"
 
@@ -38,14 +39,7 @@ class SlidingDescent {
  private:
   double gridS(int i) const { return s_from_ + grid_step_ * i; }
 
-  SolverOptions options() const {
-    SolverOptions limited = solver_options_;
-    if (deadline_.limited()) {
-      const double left = std::max(deadline_.remaining(), 1e-3);
-      limited.time_limit = limited.time_limit > 0.0 ? std::min(limited.time_limit, left) : left;
-    }
-    return limited;
-  }
+  SolverOptions options() const { return withinDeadline(solver_options_, deadline_); }
 
   SolverResult solveAt(double s, const Eigen::VectorXd& z0) {
     system_.setAmplitude(std::exp(s));
