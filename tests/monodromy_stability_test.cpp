@@ -66,6 +66,29 @@ TEST(MonodromyStability, ReversalRadiusFollowsShooting) {
   EXPECT_EQ(c.monodromy.stable, c.exact.stable);
 }
 
+// Cost signal (no timing): a point costs the syntheses of each law's
+// velocity and force and one per holding-force series, not a sampling of
+// every DOF; a stick-slip orbit of friction-1d (two sticks, two slips) forms
+// one exponential per phase, a reversal-only orbit one per reversal. Radii
+// are the same when the curve's MonodromyStability is reused.
+TEST(MonodromyStability, WorkPerPoint) {
+  const std::pair<double, long> cases[] = {{0.308, 4}, {0.55, 2}};
+  for (const auto& [omega, phases] : cases) {
+    const HbModel model =
+        loadScene(test::problem("friction-1d.toml"), {"harmonic_balance.omega=" + std::to_string(omega)}).model;
+    const Eigen::VectorXd hb = test::harmonicBalance(model);
+    MonodromyStability monodromy(model);
+    const HillResult first = monodromy.analyse(omega, hb);
+    const MonodromyStability::Work before = monodromy.work();
+    const HillResult again = monodromy.analyse(omega, hb);
+    const MonodromyStability::Work& after = monodromy.work();
+    EXPECT_EQ(again.spectral_radius, first.spectral_radius) << omega;
+    EXPECT_LE(after.syntheses - before.syntheses, 3) << omega;  // v, r, one holding series
+    EXPECT_EQ(after.exponentials - before.exponentials, phases) << omega;
+    EXPECT_LE(after.holding_forces - before.holding_forces, model.samples / 2) << omega;
+  }
+}
+
 TEST(MonodromyStability, RejectsUnsupportedLawsAndBadInput) {
   const HbModel cubic = loadScene(test::problem("cubic.toml")).model;
   EXPECT_FALSE(MonodromyStability::supports(cubic));

@@ -55,6 +55,8 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   load_samples_ = Eigen::MatrixXd::Zero(model_.samples, n_);
   for (const HarmonicLoad& load : model_.structure.loads)
     for (int k = 0; k < model_.samples; ++k) load_samples_(k, load.dof) += load.at(2.0 * M_PI * k / model_.samples);
+  rate_.resize(model_.basis.size());
+  combined_.resize(model_.basis.size());
   dynamics_ = orbits::DenseDynamics(model_.structure);  // throws unless M > 0
   for (const AttachedLaw& a : model_.laws) {
     dofs_.push_back(a.attachment.dof(0));
@@ -75,43 +77,38 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
 
 MonodromyStability::~MonodromyStability() = default;
 
-// Samples of each law's displacement, velocity and force, and its state per
-// sample by the law's branch rule (header).
+// Samples of each law's velocity, force (and displacement for contacts),
+// and its state per sample by the law's branch rule (header). The
+// structure's other DOFs are not sampled: the holding forces are series
+// formed from the coefficients (holdingForce).
 void MonodromyStability::classify(const Eigen::VectorXd& full) {
   const int nb = model_.basis.size(), samples = model_.samples, laws = static_cast<int>(dofs_.size());
   FourierTransform& transform = *transform_;
   u_.resize(samples, laws);
   v_.resize(samples, laws);
   r_.resize(samples, laws);
-  Eigen::VectorXd rate(nb);
   for (int l = 0; l < laws; ++l) {
     const double* x = full.data() + dofs_[l] * nb;
-    transform.synthesize(x, u_.col(l).data());
-    transform.differentiate(x, model_.omega, rate.data());
-    transform.synthesize(rate.data(), v_.col(l).data());
+    if (contact_[l]) {
+      transform.synthesize(x, u_.col(l).data());
+      ++work_.syntheses;
+    }
+    transform.differentiate(x, model_.omega, rate_.data());
+    transform.synthesize(rate_.data(), v_.col(l).data());
     transform.synthesize(full.data() + (n_ + model_.componentIndex(l, 0)) * nb, r_.col(l).data());
+    work_.syntheses += 2;
   }
-  x_.resize(samples, n_);
-  xdot_.resize(samples, n_);
-  for (int i = 0; i < n_; ++i) {
-    transform.synthesize(full.data() + i * nb, x_.col(i).data());
-    transform.differentiate(full.data() + i * nb, model_.omega, rate.data());
-    transform.synthesize(rate.data(), xdot_.col(i).data());
-  }
-  // f(t_k) − K x_k − C ẋ_k per sample, the part of every holding force's b
-  // that does not depend on the states.
-  base_force_ = load_samples_ - x_ * dynamics_.stiffness.transpose() - xdot_ * dynamics_.damping.transpose();
-  states_.assign(samples, std::vector<State>(laws, State::kStick));
+  states_.resize(static_cast<size_t>(samples) * laws);
   for (int k = 0; k < samples; ++k)
     for (int l = 0; l < laws; ++l) {
       if (contact_[l]) {
-        states_[k][l] = r_(k, l) > rho_[l] * (gap_[l] - u_(k, l)) ? State::kClosed : State::kOpen;
+        state(k, l) = r_(k, l) > rho_[l] * (gap_[l] - u_(k, l)) ? State::kClosed : State::kOpen;
         continue;
       }
       const double trial = r_(k, l) - rho_[l] * v_(k, l);
-      states_[k][l] = std::abs(trial) <= limit_[l] ? State::kStick
-                      : trial < 0.0               ? State::kSlipPositive
-                                                  : State::kSlipNegative;
+      state(k, l) = std::abs(trial) <= limit_[l] ? State::kStick
+                    : trial < 0.0               ? State::kSlipPositive
+                                                : State::kSlipNegative;
     }
 }
 
@@ -128,66 +125,104 @@ void MonodromyStability::addSlipForce(int l, State state, Eigen::VectorXd& b) co
   if (state == State::kSlipNegative) b[dofs_[l]] += limit_[l];
 }
 
-double MonodromyStability::holdingForce(int l, int k) {
-  // b = f(t_k) − K x − C v with the held DOF's velocity 0 (the rest of b_k
-  // is sampled once per orbit in classify), plus the other laws' slip forces.
-  const int held_dof = dofs_[l];
-  force_ = base_force_.row(k).transpose() + dynamics_.damping.col(held_dof) * xdot_(k, held_dof);
-  held_dofs_.clear();
+// λ = row · b(t_k) with b = f − K x − C ẋ (the held DOF's velocity 0) plus
+// the other laws' slip forces. Per (held DOFs, law) the row, Kᵀrow, Cᵀrow
+// and the loads' part are made once per curve; the orbit's part is the
+// series −(Kᵀrow)·X − D((Cᵀrow)·X), formed (O(n nb)) and sampled once per
+// point, so that a stick run costs one synthesis, not n per sample.
+double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int k) {
+  ++work_.holding_forces;
+  const int held_dof = dofs_[l], nb = model_.basis.size(), samples = model_.samples;
+  const int laws = static_cast<int>(dofs_.size());
+  held_key_.clear();
   int row = 0;
-  for (size_t m = 0; m < states_[k].size(); ++m) {
-    const State state = static_cast<int>(m) == l ? State::kStick : states_[k][m];
-    addSlipForce(static_cast<int>(m), state, force_);
-    if (!held(state)) continue;
-    if (static_cast<int>(m) == l) row = static_cast<int>(held_dofs_.size());
-    held_dofs_.push_back(dofs_[m]);
+  for (int m = 0; m < laws; ++m) {
+    const State s = m == l ? State::kStick : state(k, m);
+    if (!held(s)) continue;
+    if (m == l) row = static_cast<int>(held_key_.size());
+    held_key_.push_back(dofs_[m]);
   }
-  auto found = multipliers_.find(held_dofs_);
-  if (found == multipliers_.end())
-    found = multipliers_.emplace(held_dofs_, orbits::holdDofs(dynamics_.mass_inverse, held_dofs_).multiplier).first;
-  return found->second.row(row).dot(force_);
+  held_key_.push_back(row);
+  // Consecutive calls mostly ask for the same key (a stick run).
+  if (last_holding_ == nullptr || last_key_ != held_key_) {
+    auto found = holdings_.find(held_key_);
+    if (found == holdings_.end()) {
+      Holding h;
+      const std::vector<int> held_dofs(held_key_.begin(), held_key_.end() - 1);
+      h.row = orbits::holdDofs(dynamics_.mass_inverse, held_dofs).multiplier.row(row);
+      h.stiffness_row = dynamics_.stiffness.transpose() * h.row.transpose();
+      h.damping_row = dynamics_.damping.transpose() * h.row.transpose();
+      h.damping_row[held_dof] = 0.0;
+      h.loads = load_samples_ * h.row.transpose();
+      h.samples.resize(samples);
+      found = holdings_.emplace(held_key_, std::move(h)).first;
+    }
+    last_holding_ = &found->second;
+    last_key_ = held_key_;
+  }
+  Holding& h = *last_holding_;
+  if (h.point != point_) {
+    // −(Kᵀrow)·X − D((Cᵀrow)·X) as a series, sampled by one synthesis.
+    const Eigen::Map<const Eigen::MatrixXd> x(full.data(), nb, n_);
+    combined_.noalias() = x * h.damping_row;
+    differentiateCoefficients(model_.basis, combined_.data(), model_.omega, rate_.data());
+    combined_.noalias() = -(x * h.stiffness_row);
+    combined_ -= rate_;
+    transform_->synthesize(combined_.data(), h.samples.data());
+    ++work_.syntheses;
+    h.samples += h.loads;
+    h.point = point_;
+  }
+  double force = h.samples[k];
+  for (int m = 0; m < laws; ++m) {
+    if (m == l) continue;
+    const State s = state(k, m);
+    if (s == State::kSlipPositive) force -= h.row[dofs_[m]] * limit_[m];
+    if (s == State::kSlipNegative) force += h.row[dofs_[m]] * limit_[m];
+  }
+  return force;
 }
 
-void MonodromyStability::keepHeldRuns() {
+void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
   const int samples = model_.samples, laws = static_cast<int>(dofs_.size());
   auto opposite = [](State s) { return s == State::kSlipPositive ? State::kSlipNegative : State::kSlipPositive; };
   for (int l = 0; l < laws; ++l) {
     if (contact_[l]) continue;
     int origin = 0;  // a slipping sample to scan from
-    while (origin < samples && states_[origin][l] == State::kStick) ++origin;
+    while (origin < samples && state(origin, l) == State::kStick) ++origin;
     if (origin == samples) continue;
     const double sliding_scale = v_.col(l).cwiseAbs().maxCoeff();
     for (int i = 1; i <= samples; ++i) {
       const int first = (origin + i) % samples, before = (first + samples - 1) % samples;
-      if (states_[first][l] != State::kStick || states_[before][l] == State::kStick) continue;
+      if (state(first, l) != State::kStick || state(before, l) == State::kStick) continue;
       // The run starts where v reaches 0 (the series' v rings into it).
-      const State old_state = states_[before][l];
+      const State old_state = state(before, l);
       const double sign = old_state == State::kSlipPositive ? 1.0 : -1.0;
       int zero = first;
-      while (states_[zero][l] == State::kStick && sign * v_(zero, l) > 0.0 && zero != origin) zero = (zero + 1) % samples;
-      if (states_[zero][l] != State::kStick || zero == origin) zero = first;
-      for (int k = first; k != zero; k = (k + 1) % samples) states_[k][l] = old_state;
-      const double force = holdingForce(l, zero);
+      while (state(zero, l) == State::kStick && sign * v_(zero, l) > 0.0 && zero != origin) zero = (zero + 1) % samples;
+      if (state(zero, l) != State::kStick || zero == origin) zero = first;
+      for (int k = first; k != zero; k = (k + 1) % samples) state(k, l) = old_state;
+      const double force = holdingForce(full, l, zero);
       if (std::abs(force) > limit_[l]) {  // a reversal at v = 0
-        for (int k = zero; states_[k][l] == State::kStick && k != origin; k = (k + 1) % samples)
-          states_[k][l] = opposite(old_state);
+        for (int k = zero; state(k, l) == State::kStick && k != origin; k = (k + 1) % samples)
+          state(k, l) = opposite(old_state);
         continue;
       }
       r_(zero, l) = force;
       const int start = zero;
       int k = (start + 1) % samples;
       for (; k != start; k = (k + 1) % samples) {
-        r_(k, l) = holdingForce(l, k);
+        r_(k, l) = holdingForce(full, l, k);
         if (std::abs(r_(k, l)) > limit_[l]) break;
-        states_[k][l] = State::kStick;
+        state(k, l) = State::kStick;
       }
       // Slip against λ through the series' flicker, up to the first sample
       // that clearly slides (kSlidingFraction of max|v|).
       const State slip = r_(k, l) > 0.0 ? State::kSlipNegative : State::kSlipPositive;
       const double direction = slip == State::kSlipPositive ? 1.0 : -1.0;
-      for (int j = k; j != start && states_[j][l] != opposite(slip); j = (j + 1) % samples) {
+      for (int j = k; j != start && state(j, l) != opposite(slip); j = (j + 1) % samples) {
         if (direction * v_(j, l) > kSlidingFraction * sliding_scale) break;
-        states_[j][l] = slip;
+        state(j, l) = slip;
       }
     }
   }
@@ -203,7 +238,7 @@ void MonodromyStability::findSwitches() {
   for (int k = 0; k < samples; ++k) {
     const int next = (k + 1) % samples;
     for (int l = 0; l < laws; ++l) {
-      const State a = states_[k][l], b = states_[next][l];
+      const State a = state(k, l), b = state(next, l);
       if (a == b) continue;
       double fraction = 0.5;
       if (a == State::kOpen) fraction = crossing(gap_[l] - u_(k, l), gap_[l] - u_(next, l));
@@ -217,43 +252,35 @@ void MonodromyStability::findSwitches() {
   std::stable_sort(switches_.begin(), switches_.end(), [](const Switch& x, const Switch& y) { return x.time < y.time; });
 }
 
-const Eigen::MatrixXd& MonodromyStability::generator(const std::vector<State>& states) {
-  std::vector<bool> key(n_, false);
-  for (size_t l = 0; l < states.size(); ++l) key[dofs_[l]] = key[dofs_[l]] || held(states[l]);
-  auto found = generators_.find(key);
-  if (found != generators_.end()) return found->second;
+const MonodromyStability::Phase& MonodromyStability::phase(const std::vector<State>& states) {
+  phase_key_.assign(n_, false);
+  for (size_t l = 0; l < states.size(); ++l) phase_key_[dofs_[l]] = phase_key_[dofs_[l]] || held(states[l]);
+  auto found = phases_.find(phase_key_);
+  if (found != phases_.end()) return found->second;
   std::vector<int> dofs;
   for (int i = 0; i < n_; ++i)
-    if (key[i]) dofs.push_back(i);
-  const Eigen::MatrixXd q = orbits::holdDofs(dynamics_.mass_inverse, dofs).projector;
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
-  a.topRightCorner(n_, n_).setIdentity();
-  a.bottomLeftCorner(n_, n_) = -q * dynamics_.stiffness;
-  a.bottomRightCorner(n_, n_) = -q * dynamics_.damping;
-  projectors_[key] = q;
-  return generators_[key] = a;
-}
-
-Eigen::VectorXd MonodromyStability::freeForce(const std::vector<State>& states, double t, const Eigen::VectorXd& y) const {
-  Eigen::VectorXd b = -dynamics_.stiffness * y.head(n_) - dynamics_.damping * y.segment(n_, n_);
-  for (const HarmonicLoad& load : model_.structure.loads) b[load.dof] += load.at(model_.omega * t);
-  for (size_t l = 0; l < states.size(); ++l) addSlipForce(static_cast<int>(l), states[l], b);
-  return b;
+    if (phase_key_[i]) dofs.push_back(i);
+  Phase p;
+  p.projector = orbits::holdDofs(dynamics_.mass_inverse, dofs).projector;
+  p.generator = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
+  p.generator.topRightCorner(n_, n_).setIdentity();
+  p.generator.bottomLeftCorner(n_, n_) = -p.projector * dynamics_.stiffness;
+  p.generator.bottomRightCorner(n_, n_) = -p.projector * dynamics_.damping;
+  return phases_.emplace(phase_key_, std::move(p)).first->second;
 }
 
 // [v; Q b] of the full forced system at (t, y) in `states`: b = f(t) − K x
 // − C v + the slip forces; held DOFs take what their constraint needs.
 Eigen::VectorXd MonodromyStability::field(const std::vector<State>& states, double t, const Eigen::VectorXd& y) {
-  generator(states);
-  std::vector<bool> key(n_, false);
-  for (size_t l = 0; l < states.size(); ++l) key[dofs_[l]] = key[dofs_[l]] || held(states[l]);
-  const Eigen::MatrixXd& q = projectors_.at(key);
-  const Eigen::VectorXd b = freeForce(states, t, y);
+  const Phase& p = phase(states);
+  Eigen::VectorXd b = -dynamics_.stiffness * y.head(n_) - dynamics_.damping * y.segment(n_, n_);
+  for (const HarmonicLoad& load : model_.structure.loads) b[load.dof] += load.at(model_.omega * t);
+  for (size_t l = 0; l < states.size(); ++l) addSlipForce(static_cast<int>(l), states[l], b);
   Eigen::VectorXd f(2 * n_);
   f.head(n_) = y.segment(n_, n_);
   for (int i = 0; i < n_; ++i)
-    if (key[i]) f[i] = 0.0;
-  f.tail(n_) = q * b;
+    if (phase_key_[i]) f[i] = 0.0;
+  f.tail(n_) = p.projector * b;
   return f;
 }
 
@@ -264,7 +291,23 @@ Eigen::MatrixXd MonodromyStability::saltation(const Switch& s, const std::vector
   Eigen::MatrixXd out = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
   if (s.from == State::kStick || s.from == State::kClosed) return out;
   const int i = dofs_[s.law];
-  Eigen::VectorXd y = orbits::harmonicState(model_, full, s.time).head(2 * n_);
+  // The orbit's [x; ẋ] at the switch, from the coefficients.
+  const int nb = model_.basis.size();
+  const std::vector<int>& ks = model_.basis.harmonics();
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n_);
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int o = model_.basis.offset(static_cast<int>(h));
+    if (ks[h] == 0) {
+      for (int j = 0; j < n_; ++j) y[j] += full[j * nb + o];
+      continue;
+    }
+    const double kw = ks[h] * model_.omega, c = std::cos(kw * s.time), sn = std::sin(kw * s.time);
+    for (int j = 0; j < n_; ++j) {
+      const double a = full[j * nb + o], b = full[j * nb + o + 1];
+      y[j] += a * c + b * sn;
+      y[n_ + j] += kw * (b * c - a * sn);
+    }
+  }
   const bool slipping = s.from != State::kOpen;
   if (slipping) y[n_ + i] = 0.0;  // the event: the slip velocity vanishes
   Eigen::MatrixXd reset = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
@@ -287,26 +330,29 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
     throwInputError("solution", std::to_string(full.size()) + " coefficients",
                     "must have " + std::to_string(size) + " ([x; lambda] of the full system)");
   model_.omega = omega;
+  ++point_;
   const double period = 2.0 * M_PI / omega;
   classify(full);
-  keepHeldRuns();
+  keepHeldRuns(full);
   findSwitches();
   Eigen::MatrixXd phi = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
   if (switches_.empty()) {
-    phi = (generator(states_[0]) * period).exp();
+    phi = (phase(std::vector<State>(states_.begin(), states_.begin() + dofs_.size())).generator * period).exp();
+    ++work_.exponentials;
   } else {
     // From just after the first switch round the period back to it.
-    std::vector<State> current = states_[0];
-    current[switches_[0].law] = switches_[0].to;
+    current_.assign(states_.begin(), states_.begin() + dofs_.size());
+    current_[switches_[0].law] = switches_[0].to;
     for (size_t j = 0; j < switches_.size(); ++j) {
       const Switch& s = switches_[(j + 1) % switches_.size()];
       const double previous = switches_[j].time;
       const double tau = j + 1 < switches_.size() ? s.time - previous : s.time + period - previous;
-      phi = (generator(current) * tau).exp() * phi;
-      std::vector<State> after = current;
-      after[s.law] = s.to;
-      phi = saltation(s, current, after, full) * phi;
-      current = after;
+      phi = (phase(current_).generator * tau).exp() * phi;
+      ++work_.exponentials;
+      after_ = current_;
+      after_[s.law] = s.to;
+      phi = saltation(s, current_, after_, full) * phi;
+      current_.swap(after_);
     }
   }
   HillResult result;

@@ -61,6 +61,14 @@ class MonodromyStability {
   // Throws InputError if ω is not finite and > 0 or `full` has the wrong size.
   HillResult analyse(double omega, const Eigen::VectorXd& full);
 
+  // Work counters since construction, a cost signal for tests: the FFT
+  // syntheses of the orbit's samples, the holding forces evaluated, and the
+  // matrix exponentials formed.
+  struct Work {
+    long syntheses = 0, holding_forces = 0, exponentials = 0;
+  };
+  const Work& work() const { return work_; }
+
  private:
   enum class State { kSlipPositive, kSlipNegative, kStick, kOpen, kClosed };
   struct Switch {
@@ -68,15 +76,32 @@ class MonodromyStability {
     int law = 0;
     State from = State::kStick, to = State::kStick;
   };
+  // The holding force of law `law` under the held DOFs of one key, as a
+  // function of time: multiplier row · b(t) with b's loads sampled once
+  // (they do not depend on ω) and its orbit part a Fourier series formed per
+  // point from the coefficients and sampled by one synthesis (the structure's
+  // DOFs are not sampled one by one).
+  struct Holding {
+    Eigen::RowVectorXd row;        // the multiplier's row of λ_law
+    Eigen::VectorXd stiffness_row; // Kᵀ row
+    Eigen::VectorXd damping_row;   // Cᵀ row, the held DOF's entry 0 (its velocity is held at 0)
+    Eigen::VectorXd loads;         // row · f(t_k) per sample
+    Eigen::VectorXd samples;       // row · b(t_k) but the slip forces, at the current point
+    long point = -1;               // the point `samples` belongs to
+  };
+  // The phase's generator A_G and projector Q for one set of held DOFs.
+  struct Phase {
+    Eigen::MatrixXd generator, projector;
+  };
+  State& state(int k, int l) { return states_[static_cast<size_t>(k) * dofs_.size() + l]; }
+  State state(int k, int l) const { return states_[static_cast<size_t>(k) * dofs_.size() + l]; }
   void classify(const Eigen::VectorXd& full);
-  void keepHeldRuns();
-  double holdingForce(int law, int sample);
+  void keepHeldRuns(const Eigen::VectorXd& full);
+  double holdingForce(const Eigen::VectorXd& full, int law, int sample);
   // b gains law l's slip force in `state` (∓μN against the slip; none held).
   void addSlipForce(int l, State state, Eigen::VectorXd& b) const;
   void findSwitches();
-  // b = f(t) − K x − C v + the slip forces: all but the holding forces.
-  Eigen::VectorXd freeForce(const std::vector<State>& states, double t, const Eigen::VectorXd& y) const;
-  const Eigen::MatrixXd& generator(const std::vector<State>& states);
+  const Phase& phase(const std::vector<State>& states);
   Eigen::VectorXd field(const std::vector<State>& states, double t, const Eigen::VectorXd& y);
   Eigen::MatrixXd saltation(const Switch& s, const std::vector<State>& before, const std::vector<State>& after,
                             const Eigen::VectorXd& full);
@@ -86,21 +111,24 @@ class MonodromyStability {
   std::unique_ptr<FourierTransform> transform_;
   double unit_tolerance_;
   int n_ = 0;
-  orbits::DenseDynamics dynamics_;  // M⁻¹, C, K
+  long point_ = 0;                                 // analyses so far: stamps Holding::series
+  Work work_;
+  orbits::DenseDynamics dynamics_;                 // M⁻¹, C, K
   std::vector<int> dofs_;                          // per law
   std::vector<double> limit_, rho_, gap_;          // per law: μN (friction), ρ in trial form, g0 (contact)
   std::vector<bool> contact_;
-  Eigen::MatrixXd u_, v_, r_;                      // N x laws: displacement, velocity, force samples
-  Eigen::MatrixXd x_, xdot_;                       // N x n: the structure's samples
+  Eigen::MatrixXd u_, v_, r_;                      // N x laws: displacement (contacts), velocity, force samples
+  Eigen::VectorXd rate_, combined_;                // coefficient buffers (one channel)
   Eigen::MatrixXd load_samples_;                   // N x n: f(t_k), the same at every ω (t_k = kT/N)
-  Eigen::MatrixXd base_force_;                     // N x n: f(t) − K x − C ẋ at the samples
-  Eigen::VectorXd force_;                          // holdingForce's b, kept to allocate once
-  std::vector<int> held_dofs_;                     // holdingForce's held DOFs, likewise
-  std::map<std::vector<int>, Eigen::MatrixXd> multipliers_;  // λ_G = multiplier · b by held DOFs
-  std::vector<std::vector<State>> states_;         // per sample, per law
+  std::vector<int> held_key_;                      // holdingForce's held DOFs and the law's row, kept to allocate once
+  std::map<std::vector<int>, Holding> holdings_;   // by held DOFs + row
+  std::vector<int> last_key_;                      // the key of
+  Holding* last_holding_ = nullptr;                // the last holding looked up
+  std::vector<State> states_;                      // N x laws, row-major by sample
+  std::vector<State> current_, after_;             // the propagation's states before and after a switch
+  std::vector<bool> phase_key_;                    // phase()'s held DOFs, likewise
   std::vector<Switch> switches_;                   // increasing in time, within [0, T)
-  std::map<std::vector<bool>, Eigen::MatrixXd> generators_;    // A_G by held DOFs
-  std::map<std::vector<bool>, Eigen::MatrixXd> projectors_;    // Q by held DOFs
+  std::map<std::vector<bool>, Phase> phases_;      // by held DOFs
 };
 
 }  // namespace eqhb
