@@ -34,7 +34,7 @@ struct SolveArguments {
   std::string linear_algebra = "auto";                      // auto, dense or sparse
   std::string fallback = app::SolverChoice{}.fallback;
   bool stability = false;
-  std::string stability_method = "hill";
+  std::string stability_method = "auto";
   double stability_time_limit = app::SolutionChecks{}.stability_time_limit;  // seconds, 0: none
   AccuracyArguments accuracy;  // --error-estimate, --accuracy (solve only)
   RefineArguments refine;      // --refine shoot (solve only)

@@ -90,7 +90,7 @@ def model(mass, stiffness, damping=None, *, laws=(), forcing=(), preload=(), har
 def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=None, formulation=None, solver="dogleg",
           system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0,
           options=None, linear_algebra="auto", initial=None, cold_start="coarse", fallback="default",
-          from_harmonics=None, repeat=1, stability=False, stability_method="hill", stability_time_limit=0.0,
+          from_harmonics=None, repeat=1, stability=False, stability_method="auto", stability_time_limit=0.0,
           error_estimate=False,
           accuracy=None, max_harmonics=320, accuracy_test="auto", refine=None, restitution=1.0, refine_harmonics=None,
           show=None):
@@ -122,8 +122,9 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     On the answer: stability (Floquet multipliers: the "stability" dict, as
     eqhb.stability; stability_method "hill", "monodromy" (grounded Coulomb
     1D and Signorini laws: the monodromy over the solution with saltation at
-    the switching instants; dense 2n x 2n, so for small structures) or "auto"
-    (the monodromy where it applies on at most 20 DOFs, else Hill)), error_estimate (one more solve at
+    the switching instants; above 20 DOFs on the law DOFs and the slow or
+    weakly damped modes) or "auto" (the default: the monodromy where it
+    applies, else Hill)), error_estimate (one more solve at
     2H: "error_estimate"), accuracy (a relative error in (0, 1): the cheapest
     H, doubling from `harmonics` or 5 up to max_harmonics, and unless rho is
     given the rho among each law's times 1, 0.1, 0.01, whose error of max|x|
@@ -170,7 +171,7 @@ def stability(model, solution, *, omega=None, harmonics=None, samples=None):
 def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmonics=None, samples=None, form=None,
           rho=None, formulation=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
-          max_step=None, stability=False, stability_method="hill", stability_time_limit=0.0, error_estimate=False,
+          max_step=None, stability=False, stability_method="auto", stability_time_limit=0.0, error_estimate=False,
           accuracy=None,
           max_harmonics=320, accuracy_test="auto", peak_dof=None, show=None):
     """A frequency-response curve by continuation in omega, as `eqhb sweep`

@@ -57,8 +57,8 @@ struct HillOptions {
   // means spectral radius < 1 + unit_tolerance.
   double unit_tolerance = 1e-6;
   // "hill" (this file), "monodromy" (monodromy_stability.h: only on the
-  // laws it supports) or "auto" (the monodromy where it applies on up to 20
-  // DOFs, else Hill; curve_stability.h).
+  // laws it supports) or "auto" (the monodromy where it applies, else Hill;
+  // curve_stability.h). The command line and Python default to "auto".
   std::string method = "hill";
   // Seconds for the stability of a whole curve (analyseCurveStability), 0:
   // none. Checked after each point: the points not reached keep no verdict.

@@ -10,6 +10,7 @@
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/laws/coulomb_1d.h"
 #include "eqhb/laws/signorini.h"
+#include "eqhb/stability/interface_reduction.h"
 #include "eqhb/stability/multiplier_stability.h"
 #include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/orbits/shooting.h"
@@ -73,6 +74,29 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
       gap_.push_back(s->gap());
     }
   }
+  // The propagation's structure: the full one on small structures, else
+  // reduced to the law DOFs and the modes that matter (interface_reduction.h).
+  if (n_ > kFullDofs) {
+    int k_max = 1;
+    for (int k : model_.basis.harmonics()) k_max = std::max(k_max, k);
+    const InterfaceReduction reduced = reduceToInterface(Eigen::MatrixXd(model_.structure.mass), dynamics_.damping,
+                                                         dynamics_.stiffness, dofs_, kFastMargin * k_max * model_.omega,
+                                                         2.0 * M_PI / model_.omega);
+    m_ = static_cast<int>(reduced.mass.rows());
+    projection_ = reduced.projection;
+    propagated_.mass_inverse = reduced.mass.inverse();
+    propagated_.damping = reduced.damping;
+    propagated_.stiffness = reduced.stiffness;
+    for (int dof : dofs_)
+      coords_.push_back(static_cast<int>(std::lower_bound(reduced.boundary.begin(), reduced.boundary.end(), dof) -
+                                         reduced.boundary.begin()));
+    load_directions_ = reduced.basis.transpose();
+  } else {
+    m_ = n_;
+    propagated_ = dynamics_;
+    coords_ = dofs_;
+    load_directions_ = Eigen::MatrixXd::Identity(n_, n_);
+  }
 }
 
 MonodromyStability::~MonodromyStability() = default;
@@ -121,8 +145,8 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
 // |λ| <= μN (the series' force rings near the limit and flickers there),
 // then slips against λ until the samples slip the other way.
 void MonodromyStability::addSlipForce(int l, State state, Eigen::VectorXd& b) const {
-  if (state == State::kSlipPositive) b[dofs_[l]] -= limit_[l];
-  if (state == State::kSlipNegative) b[dofs_[l]] += limit_[l];
+  if (state == State::kSlipPositive) b[coords_[l]] -= limit_[l];
+  if (state == State::kSlipNegative) b[coords_[l]] += limit_[l];
 }
 
 // λ = row · b(t_k) with b = f − K x − C ẋ (the held DOF's velocity 0) plus
@@ -148,8 +172,16 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
     auto found = holdings_.find(held_key_);
     if (found == holdings_.end()) {
       Holding h;
-      const std::vector<int> held_dofs(held_key_.begin(), held_key_.end() - 1);
-      h.row = orbits::holdDofs(dynamics_.mass_inverse, held_dofs).multiplier.row(row);
+      // The multiplier's row alone: −e_rowᵀ (P M⁻¹ Pᵀ)⁻¹ P M⁻¹, O(g n) with
+      // g held DOFs, not the projector's O(n² g).
+      const int g = static_cast<int>(held_key_.size()) - 1;
+      Eigen::MatrixXd coupling(g, g), pm(g, n_);
+      for (int a = 0; a < g; ++a) {
+        pm.row(a) = dynamics_.mass_inverse.row(held_key_[a]);
+        for (int b = 0; b < g; ++b) coupling(a, b) = dynamics_.mass_inverse(held_key_[a], held_key_[b]);
+      }
+      const Eigen::VectorXd pick = coupling.ldlt().solve(Eigen::VectorXd::Unit(g, row));  // coupling is symmetric
+      h.row = -(pick.transpose() * pm);
       h.stiffness_row = dynamics_.stiffness.transpose() * h.row.transpose();
       h.damping_row = dynamics_.damping.transpose() * h.row.transpose();
       h.damping_row[held_dof] = 0.0;
@@ -253,19 +285,19 @@ void MonodromyStability::findSwitches() {
 }
 
 const MonodromyStability::Phase& MonodromyStability::phase(const std::vector<State>& states) {
-  phase_key_.assign(n_, false);
-  for (size_t l = 0; l < states.size(); ++l) phase_key_[dofs_[l]] = phase_key_[dofs_[l]] || held(states[l]);
+  phase_key_.assign(m_, false);
+  for (size_t l = 0; l < states.size(); ++l) phase_key_[coords_[l]] = phase_key_[coords_[l]] || held(states[l]);
   auto found = phases_.find(phase_key_);
   if (found != phases_.end()) return found->second;
-  std::vector<int> dofs;
-  for (int i = 0; i < n_; ++i)
-    if (phase_key_[i]) dofs.push_back(i);
+  std::vector<int> coords;
+  for (int i = 0; i < m_; ++i)
+    if (phase_key_[i]) coords.push_back(i);
   Phase p;
-  p.projector = orbits::holdDofs(dynamics_.mass_inverse, dofs).projector;
-  p.generator = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
-  p.generator.topRightCorner(n_, n_).setIdentity();
-  p.generator.bottomLeftCorner(n_, n_) = -p.projector * dynamics_.stiffness;
-  p.generator.bottomRightCorner(n_, n_) = -p.projector * dynamics_.damping;
+  p.projector = orbits::holdDofs(propagated_.mass_inverse, coords).projector;
+  p.generator = Eigen::MatrixXd::Zero(2 * m_, 2 * m_);
+  p.generator.topRightCorner(m_, m_).setIdentity();
+  p.generator.bottomLeftCorner(m_, m_) = -p.projector * propagated_.stiffness;
+  p.generator.bottomRightCorner(m_, m_) = -p.projector * propagated_.damping;
   return phases_.emplace(phase_key_, std::move(p)).first->second;
 }
 
@@ -273,14 +305,14 @@ const MonodromyStability::Phase& MonodromyStability::phase(const std::vector<Sta
 // − C v + the slip forces; held DOFs take what their constraint needs.
 Eigen::VectorXd MonodromyStability::field(const std::vector<State>& states, double t, const Eigen::VectorXd& y) {
   const Phase& p = phase(states);
-  Eigen::VectorXd b = -dynamics_.stiffness * y.head(n_) - dynamics_.damping * y.segment(n_, n_);
-  for (const HarmonicLoad& load : model_.structure.loads) b[load.dof] += load.at(model_.omega * t);
+  Eigen::VectorXd b = -propagated_.stiffness * y.head(m_) - propagated_.damping * y.segment(m_, m_);
+  for (const HarmonicLoad& load : model_.structure.loads) b += load_directions_.col(load.dof) * load.at(model_.omega * t);
   for (size_t l = 0; l < states.size(); ++l) addSlipForce(static_cast<int>(l), states[l], b);
-  Eigen::VectorXd f(2 * n_);
-  f.head(n_) = y.segment(n_, n_);
-  for (int i = 0; i < n_; ++i)
+  Eigen::VectorXd f(2 * m_);
+  f.head(m_) = y.segment(m_, m_);
+  for (int i = 0; i < m_; ++i)
     if (phase_key_[i]) f[i] = 0.0;
-  f.tail(n_) = p.projector * b;
+  f.tail(m_) = p.projector * b;
   return f;
 }
 
@@ -288,9 +320,9 @@ Eigen::VectorXd MonodromyStability::field(const std::vector<State>& states, doub
 // continuous (stick to slip, contact opening).
 Eigen::MatrixXd MonodromyStability::saltation(const Switch& s, const std::vector<State>& before,
                                               const std::vector<State>& after, const Eigen::VectorXd& full) {
-  Eigen::MatrixXd out = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Identity(2 * m_, 2 * m_);
   if (s.from == State::kStick || s.from == State::kClosed) return out;
-  const int i = dofs_[s.law];
+  const int i = coords_[s.law];
   // The orbit's [x; ẋ] at the switch, from the coefficients.
   const int nb = model_.basis.size();
   const std::vector<int>& ks = model_.basis.harmonics();
@@ -308,11 +340,17 @@ Eigen::MatrixXd MonodromyStability::saltation(const Switch& s, const std::vector
       y[n_ + j] += kw * (b * c - a * sn);
     }
   }
+  if (projection_.size() > 0) {
+    Eigen::VectorXd q(2 * m_);
+    q.head(m_) = projection_ * y.head(n_);
+    q.tail(m_) = projection_ * y.tail(n_);
+    y = q;
+  }
   const bool slipping = s.from != State::kOpen;
-  if (slipping) y[n_ + i] = 0.0;  // the event: the slip velocity vanishes
-  Eigen::MatrixXd reset = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
-  if (held(s.to)) reset(n_ + i, n_ + i) = 0.0;
-  const int gradient = slipping ? n_ + i : i;  // g = v_i, or the gap's x_i (sign cancels)
+  if (slipping) y[m_ + i] = 0.0;  // the event: the slip velocity vanishes
+  Eigen::MatrixXd reset = Eigen::MatrixXd::Identity(2 * m_, 2 * m_);
+  if (held(s.to)) reset(m_ + i, m_ + i) = 0.0;
+  const int gradient = slipping ? m_ + i : i;  // g = v_i, or the gap's x_i (sign cancels)
   const Eigen::VectorXd f_before = field(before, s.time, y);
   const Eigen::VectorXd f_after = field(after, s.time, reset * y);
   const double rate = f_before[gradient];
@@ -335,7 +373,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   classify(full);
   keepHeldRuns(full);
   findSwitches();
-  Eigen::MatrixXd phi = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
+  Eigen::MatrixXd phi = Eigen::MatrixXd::Identity(2 * m_, 2 * m_);
   if (switches_.empty()) {
     phi = (phase(std::vector<State>(states_.begin(), states_.begin() + dofs_.size())).generator * period).exp();
     ++work_.exponentials;
@@ -359,7 +397,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   Eigen::EigenSolver<Eigen::MatrixXd> solver(phi, false);
   if (solver.info() != Eigen::Success) {
     result.method = "monodromy";
-    result.state_dimension = result.candidates = result.pencil_size = 2 * n_;
+    result.state_dimension = result.candidates = result.pencil_size = 2 * m_;
     result.failure = "the eigenvalues of the monodromy matrix did not converge";
   } else {
     result = stabilityFromMultipliers(solver.eigenvalues(), period, unit_tolerance_, "monodromy");

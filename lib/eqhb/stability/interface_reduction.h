@@ -1,0 +1,35 @@
+// A structure reduced to its law DOFs and the fixed-interface modes that
+// the monodromy needs (Craig–Bampton): x = T q, q = [x_b; η], with x_b the
+// law (boundary) DOFs kept as they are, the interior following them
+// statically (Ψ = −K_ii⁻¹ K_ib) plus the retained modes Φ of the interior
+// with the boundary held (K_ii φ = ω² M_ii φ, Φᵀ M_ii Φ = I).
+//
+// A mode is dropped only when it is both fast (ω_k above `fast_rate`, the
+// orbit's highest harmonic times a margin) and so damped that its free
+// multiplier over the period, e^{−σ_k T} with σ_k = φᵀ C_ii φ / 2, is below
+// e^{−decay} (decay = 13.8: 1e-6): such a mode neither resonates with the
+// orbit nor carries a multiplier near the unit circle; its static part stays
+// in Ψ. Stuck or closed law DOFs are boundary DOFs, so holding them is exact
+// in q. An undamped or slightly damped structure keeps every mode (T = I in
+// effect, at the full cost).
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace eqhb {
+
+struct InterfaceReduction {
+  Eigen::MatrixXd basis;       // T: n x m
+  Eigen::MatrixXd projection;  // P: m x n, q = P x (P T = I)
+  Eigen::MatrixXd mass, damping, stiffness;  // Tᵀ M T, Tᵀ C T, Tᵀ K T
+  std::vector<int> boundary;   // the law DOFs, sorted: q's first entries
+  int modes_kept = 0, modes_dropped = 0;
+};
+
+// Throws InputError if M or K_ii is not positive definite.
+InterfaceReduction reduceToInterface(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
+                                     const Eigen::MatrixXd& stiffness, std::vector<int> boundary, double fast_rate,
+                                     double period, double decay = 13.8);
+
+}  // namespace eqhb
