@@ -43,6 +43,10 @@ void addModesCommand(CLI::App& app, ModesArguments& a) {
   cmd->add_flag("--csv", a.csv, "Print CSV, one row a point")->excludes(json);
   addHdf5Option(cmd, a.hdf5, "the backbone (per point amplitude, omega, damping, max|x| and coefficients)");
   cmd->add_option("--backend,--solver", a.solve.solver, "Backend name (see `eqhb solvers`)")->capture_default_str();
+  auto* condensed = cmd->add_flag("--condensed", a.modes.condensed,
+                                  "Solve the condensed mode system (unknowns: the law forces, omega and xi; every "
+                                  "A_k factored at each new omega and xi; needs a law and a regular K)");
+  cmd->add_flag("--full", "Solve the full mode system (displacements and forces; default)")->excludes(condensed);
   cmd->add_option("--option", a.solve.backend_options, "Backend-specific option NAME=VALUE");
   cmd->add_option("--tolerance", a.solve.tolerance, "Residual tolerance on the scaled ‖g‖₂")
       ->check(representableNumber())

@@ -16,7 +16,7 @@
 #include "eqhb/laws/law_attachment.h"
 #include "eqhb/modes/backbone.h"
 #include "eqhb/modes/mode_path_system.h"
-#include "eqhb/modes/mode_system.h"
+#include "eqhb/modes/full_mode_system.h"
 #include "eqhb/scenes/scene.h"
 #include "test_support.h"
 
@@ -66,7 +66,7 @@ TEST(ModeSystem, JacobianMatchesFiniteDifferencesInEveryColumn) {
   model.basis = HarmonicSet(HarmonicKind::kAll, 3);
   model.samples = 32;
   const std::vector<LinearMode> modes = linearModes(model);
-  ModeSystem system(model, modes[0].shape);
+  FullModeSystem system(model, modes[0].shape);
   system.setAmplitude(0.4);
   Eigen::VectorXd z = Eigen::VectorXd::LinSpaced(system.size(), -0.3, 0.5);
   z[system.omegaIndex()] = 0.9;
@@ -85,7 +85,7 @@ TEST(ModeSystem, LawOmegaColumnMatchesFiniteDifferencesForAVelocityLaw) {
   // form, on one DOF: the law rows' ω column is analytic.
   HbModel model = oneDof(1.0, 0.0, 1.0, HarmonicKind::kOdd, 3, 64);
   model.laws.push_back({{0}, std::make_shared<Jenkins>(1, 1.0, 5.0, FrictionForm::kProjection, RhoSetting(0.7))});
-  ModeSystem system(model, linearModes(model)[0].shape);
+  FullModeSystem system(model, linearModes(model)[0].shape);
   system.setAmplitude(2.0);
   Eigen::VectorXd z = Eigen::VectorXd::LinSpaced(system.size(), 0.37, -0.21);
   z[0] = 2.0;  // x mostly the fundamental: slips over most of the period
@@ -107,7 +107,7 @@ TEST(ModePathSystem, JacobianMatchesFiniteDifferencesIncludingTheLogAmplitudeCol
   model.laws.push_back({{1}, std::make_shared<CubicStiffness>(0.7)});
   model.basis = HarmonicSet(HarmonicKind::kAll, 3);
   model.samples = 32;
-  ModeSystem mode(model, linearModes(model)[0].shape);
+  FullModeSystem mode(model, linearModes(model)[0].shape);
   ModePathSystem path(mode);
   Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(path.size(), -0.3, 0.5);
   y[mode.omegaIndex()] = 0.9;

@@ -335,8 +335,8 @@ def shoot(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
 
 def modes(model, mode=1, *, branch="auto", start=None, stop=None, points=50, harmonics=None, samples=None, form=None, rho=None,
           formulation=None,
-          solver="dogleg", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0, options=None,
-          linear_algebra="auto", backbone_time_limit=0.0, synthesis=False):
+          solver="dogleg", system="full", tolerance=1e-10, max_iterations=1000, max_evaluations=10000, time_limit=0.0,
+          options=None, linear_algebra="auto", backbone_time_limit=0.0, synthesis=False):
     """The nonlinear mode `mode` (K, from 1, of the structure linearised about
     rest) by the extended periodic motion concept, as `eqhb modes`. `branch`
     ("auto", "held", "sliding", as `eqhb modes --branch`): held starts from
@@ -365,7 +365,10 @@ def modes(model, mode=1, *, branch="auto", start=None, stop=None, points=50, har
     With `synthesis`, the key "synthesis" also holds the forced response the
     mode predicts under the scene's forcing (`eqhb modes --synthesis`): its
     points (omega, amplitude, branch, max_abs), peak, and the forced sweep
-    across that resonance (forced) with their differences (errors)."""
+    across that resonance (forced) with their differences (errors).
+    `system` ("full" or "condensed", as `eqhb modes --condensed`): the
+    condensed mode system has the law forces alone as unknowns and factors
+    every A_k at each new (omega, xi); it needs a law and a regular K."""
     start, stop = _real(start, "start", True), _real(stop, "stop", True)
     for value, field in ((start, "start"), (stop, "stop")):
         if value is not None and not (math.isfinite(value) and value > 0.0):
@@ -376,7 +379,7 @@ def modes(model, mode=1, *, branch="auto", start=None, stop=None, points=50, har
     args.update(mode=_integer(mode, "mode"), branch=_text(branch, "branch"), points=_integer(points, "points"), **{"from": start, "to": stop},
                 backbone_time_limit=_real(backbone_time_limit, "backbone_time_limit"),
                 synthesis=_flag(synthesis, "synthesis"))
-    args.update(_hb_args(solver, "full", tolerance, max_iterations, max_evaluations, time_limit, options,
+    args.update(_hb_args(solver, system, tolerance, max_iterations, max_evaluations, time_limit, options,
                          linear_algebra, "coarse", "none"))
     return _modes(_model(model), args)
 

@@ -299,6 +299,7 @@ py::dict modes(const PyModel& m, const py::dict& args) {
   o.points = args["points"].cast<int>();
   o.backbone_time_limit = args["backbone_time_limit"].cast<double>();
   o.solver = args["solver"].cast<std::string>();
+  o.condensed = condensedSystem(args["system"].cast<std::string>());
   o.solver_options = solverOptions(args);
   const bool synthesis = args["synthesis"].cast<bool>();
   o.synthesis = synthesis;

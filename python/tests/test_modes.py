@@ -76,3 +76,18 @@ def test_synthesis_beside_the_forced_sweep():
     lower = [p for p in s["points"] if p["branch"] == "lower"]
     upper = [p for p in s["points"] if p["branch"] == "upper"]
     assert lower and upper and max(p["omega"] for p in lower) <= min(p["omega"] for p in upper)
+
+
+def test_condensed_system_gives_the_full_systems_backbone():
+    scene = eqhb.load_scene(SCENE)
+    full = eqhb.modes(scene, 1, start=0.5, stop=50, points=6)
+    condensed = eqhb.modes(scene, 1, start=0.5, stop=50, points=6, system="condensed")
+    assert full["system"] == "full" and condensed["system"] == "condensed"
+    assert condensed["complete"]
+    for a, b in zip(full["points"], condensed["points"]):
+        assert b["omega"] == pytest.approx(a["omega"], rel=1e-8)
+        assert b["damping_ratio"] == pytest.approx(a["damping_ratio"], rel=1e-7)
+    with pytest.raises(eqhb.InputError, match="system"):
+        eqhb.modes(rayleigh_chain()[0], 1, system="condensed")  # no law to condense to
+    with pytest.raises(eqhb.InputError, match="system"):
+        eqhb.modes(scene, 1, system="reduced")

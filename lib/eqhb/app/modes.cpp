@@ -198,6 +198,7 @@ ModesRun modes(const SceneSettings& scene, const ModesOptions& o, const Backbone
   const StaticContactState* at_rest = run.scene.at_rest ? &*run.scene.at_rest : nullptr;
   run.options = chosenRange(run.scene.model, o, chosenBranch(run.scene, o, at_rest), at_rest);
   run.options.time_limit = o.backbone_time_limit;
+  run.options.condensed = o.condensed;
   auto solver = makeSolver(o.solver);
   run.backbone = followBackbone(run.scene.model, *solver, o.solver_options, run.options, progress, at_rest);
   return run;

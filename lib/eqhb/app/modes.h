@@ -44,6 +44,9 @@ struct ModesOptions {
   // a scene without first-harmonic forcing is refused before any solve.
   bool synthesis = false;
   std::string solver = "dogleg";   // a registered backend
+  // The condensed mode system (the law forces alone; every A_k factored at
+  // each new ω and ξ) instead of the full one (BackboneOptions::condensed).
+  bool condensed = false;
   SolverOptions solver_options;    // tolerance, limits, backend settings
 
   // False with a message naming the field, its value and the rule.

@@ -56,11 +56,12 @@ Backbone followBackbone(const HbModel& model, Solver& solver, const SolverOption
   Backbone backbone;
   backbone.start = modes[o.mode - 1];
   backbone.branch = o.branch;
-  ModeSystem system(model, backbone.start.shape, at_rest != nullptr);
+  backbone.condensed = o.condensed;
+  const auto system = makeModeSystem(model, backbone.start.shape, at_rest != nullptr, o.condensed);
   if (o.branch == ModeBranch::kSliding)
-    traceSlidingBranch(system, solver, solver_options, o, progress, at_rest, &backbone);
+    traceSlidingBranch(*system, solver, solver_options, o, progress, at_rest, &backbone);
   else
-    tracePath(system, solver, solver_options, o, progress, at_rest, &backbone);
+    tracePath(*system, solver, solver_options, o, progress, at_rest, &backbone);
   backbone.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return backbone;
 }

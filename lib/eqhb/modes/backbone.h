@@ -34,6 +34,9 @@ enum class ModeBranch {
 struct BackboneOptions {
   int mode = 1;          // K: the linearised structure's K-th mode by frequency, >= 1
   ModeBranch branch = ModeBranch::kHeld;
+  // The condensed mode system (condensed_mode_system.h: the law forces
+  // alone) instead of the full one; needs a law and a regular K.
+  bool condensed = false;
   double from = 0.0;     // smallest modal amplitude, > 0 (modes.h chooses one when not given)
   double to = 0.0;       // largest, > from
   int points = 50;       // >= 2
@@ -73,6 +76,7 @@ struct BackboneStop {
 struct Backbone {
   LinearMode start;                  // the linear mode it started from
   ModeBranch branch = ModeBranch::kHeld;
+  bool condensed = false;  // the system it was solved on
   // In the order of the path; a sliding branch's in increasing amplitude
   // (its path runs down from `to`).
   std::vector<BackbonePoint> points;

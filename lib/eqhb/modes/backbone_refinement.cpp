@@ -20,14 +20,15 @@ Eigen::VectorXd unknowns(const BackbonePoint& p) {
 
 int refineBackbone(const HbModel& model, Solver& solver, const SolverOptions& solver_options,
                    const StaticContactState* at_rest, double from, double to, int per_interval, Backbone* backbone) {
-  ModeSystem system(model, backbone->start.shape, at_rest != nullptr);
+  const auto mode_system = makeModeSystem(model, backbone->start.shape, at_rest != nullptr, backbone->condensed);
+  ModeSystem& system = *mode_system;
   std::vector<BackbonePoint> refined;
   int added = 0;
   const BackbonePoint* previous = nullptr;
   for (const BackbonePoint& p : backbone->points) {
     if (p.converged && previous && p.amplitude != previous->amplitude && previous->amplitude >= from &&
         previous->amplitude <= to && p.amplitude >= from && p.amplitude <= to) {
-      const Eigen::VectorXd z0 = unknowns(*previous), z1 = unknowns(p);
+      const Eigen::VectorXd z0 = system.fromFullPoint(unknowns(*previous)), z1 = system.fromFullPoint(unknowns(p));
       const double s0 = std::log(previous->amplitude), s1 = std::log(p.amplitude);
       for (int j = 1; j <= per_interval; ++j) {
         const double t = static_cast<double>(j) / (per_interval + 1);

@@ -9,21 +9,14 @@
 
 namespace eqhb {
 
-namespace {
-// Displacement unknowns of the mode system: the first n·nb of z.
-int displacementCount(const ModeSystem& system) {
-  return system.model().structure.dofs() * system.model().basis.size();
-}
-}  // namespace
-
 PathWeights PathWeights::at(const ModeSystem& system, const Eigen::VectorXd& y, double omega_unit, double s_unit) {
-  const int nx = displacementCount(system), inner = system.size(), nl = system.omegaIndex() - nx;
+  const int nx = system.motionCount(), inner = system.size(), nl = system.omegaIndex() - nx;
   const double shape = std::max(y.head(nx).norm(), 1e-300);
   const double forces = std::max(y.segment(nx, nl).norm(), 1e-300);
   PathWeights p;
   p.w = Eigen::VectorXd::Zero(inner + 1);
   p.w.head(nx).setConstant(1.0 / (0.01 * shape * shape));
-  if (nl > 0) p.w.segment(nx, nl).setConstant(1.0 / (0.01 * forces * forces));
+  if (nl > 0 && nx > 0) p.w.segment(nx, nl).setConstant(1.0 / (0.01 * forces * forces));
   p.w[system.omegaIndex()] = 1.0 / (omega_unit * omega_unit);
   p.w[system.xiIndex()] = 1.0 / (omega_unit * omega_unit);
   p.w[inner] = 1.0 / (s_unit * s_unit);
@@ -35,6 +28,7 @@ ModePathSystem::ModePathSystem(ModeSystem& mode, const Eigen::VectorXd& offset)
   offset_ = offset.size() ? offset : Eigen::VectorXd::Zero(mode.omegaIndex());
   if (offset_.size() != mode.omegaIndex()) throw std::invalid_argument("ModePathSystem: one offset per coefficient");
   z_.setZero(inner_);
+  amplitude_column_.setZero(inner_);
   constraint_.setZero(size_);
   mode_jacobian_ = mode_.jacobianPattern();
   buildPattern();
@@ -130,7 +124,8 @@ bool ModePathSystem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen:
       ds[mode_jacobian_.innerIndexPtr()[p]] += mode_values[p] * (z_[j] - offset_[j]);  // ∂g/∂z_q · (a q)
     }
   }
-  ds[mode_.omegaIndex()] -= a;  // the amplitude row: φᵀ M x̂₁ − eˢ
+  mode_.amplitudeDerivative(amplitude_column_);  // ∂g/∂a, times ∂a/∂s = a
+  for (int r = 0; r < inner_; ++r) ds[r] += a * amplitude_column_[r];
   for (int c = 0; c < size_; ++c) values[row_slots_[c]] = constraint_[c];
   return std::isfinite(g[inner_]);
 }

@@ -15,7 +15,7 @@
 // to the tangent τ. The weights measure a step in units of the path's
 // resolution (PathWeights); the law forces weigh nothing, being set by the
 // motion. The Jacobian is the mode system's, chain-ruled:
-//   ∂g/∂q = a ∂g/∂z_q,   ∂g/∂s = ∂g/∂z_q · (a q) − a e_amplitude,
+//   ∂g/∂q = a ∂g/∂z_q,   ∂g/∂s = ∂g/∂z_q · (a q) + a ∂g/∂a,
 // sparse on a pattern fixed at construction.
 #pragma once
 
@@ -30,8 +30,12 @@
 namespace eqhb {
 
 // w_i = 1 / u_i² with u the change that counts as one unit of path: a tenth
-// of the shape's size for each displacement, 5 % of the linear frequency for
-// ω and ξ, one grid step of log a for s; 0 for the law forces.
+// of the shape's size for each displacement and of the forces' for each law
+// force, 5 % of the linear frequency for ω and ξ, one grid step of log a for
+// s. A system without displacement unknowns (the condensed one) weighs its
+// law forces nothing: they are zero while a contact is open, where a tenth
+// of their size would make any step look infinite (damper's condensed path
+// then turned back at a = 67 and retraced the backbone down to `from`).
 struct PathWeights {
   Eigen::VectorXd w;
   static PathWeights at(const ModeSystem& system, const Eigen::VectorXd& y, double omega_unit, double s_unit);
@@ -70,6 +74,7 @@ class ModePathSystem : public SquareSystem {
   ModeSystem& mode_;
   int inner_, size_;  // inner_: the mode system's size (q, ω, ξ)
   Eigen::VectorXd constraint_, z_, values_;  // constraint_: w ∘ τ
+  Eigen::VectorXd amplitude_column_;          // the mode system's ∂g/∂a
   double constraint_at_prediction_ = 0.0;     // ⟨τ, y_pred⟩
   Eigen::VectorXd offset_;                                // c, one per coefficient
   SparseMatrix pattern_, mode_jacobian_;

@@ -24,7 +24,8 @@ Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, do
   int fundamental = 0;
   for (size_t h = 0; h < model.basis.harmonics().size(); ++h)
     if (model.basis.harmonics()[h] == 1) fundamental = model.basis.offset(static_cast<int>(h));
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(system.size());
+  const int coefficients = (n + model.lawComponents()) * nb;  // the full system's [x̂; λ̂]
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(coefficients + 2);
   for (int i = 0; i < n; ++i) z[i * nb + fundamental] = a * mode.shape[i];
   const double w = mode.omega, xi = 2.0 * mode.damping_ratio * mode.omega;
   const LinearStructure& s = model.structure;
@@ -35,10 +36,10 @@ Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, do
     z[(n + c) * nb + fundamental] = cos_forces[c];
     z[(n + c) * nb + fundamental + 1] = sin_forces[c];
   }
-  if (at_rest) z.head(system.omegaIndex()) += operatingPoint(model, *at_rest);
-  z[system.omegaIndex()] = w;
-  z[system.xiIndex()] = xi;
-  return z;
+  if (at_rest) z.head(coefficients) += operatingPoint(model, *at_rest);
+  z[coefficients] = w;
+  z[coefficients + 1] = xi;
+  return system.fromFullPoint(z);
 }
 
 namespace {
@@ -67,7 +68,7 @@ class PathTracer {
              const BackboneProgress& progress, const StaticContactState* at_rest, Backbone* backbone)
       : at_rest_(at_rest),
         system_(system),
-        path_(system, at_rest ? operatingPoint(system.model(), *at_rest) : Eigen::VectorXd()),
+        path_(system, at_rest ? system.fromFullCoefficients(operatingPoint(system.model(), *at_rest)) : Eigen::VectorXd()),
         solver_(solver),
         solver_options_(solver_options),
         o_(o),

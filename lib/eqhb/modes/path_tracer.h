@@ -17,6 +17,8 @@ BackbonePoint describeModePoint(const ModeSystem& system, const Eigen::VectorXd&
 // The linear mode at amplitude a as a start of `system`: x̂ = a φ cos ωt,
 // the laws' forces those that supply its reaction (lawForcesFor), ω and
 // ξ = 2ζω of `mode`, plus the static state's constant terms when `at_rest`.
+// On a system other than the full one, as it takes such a guess
+// (ModeSystem::fromFullPoint).
 Eigen::VectorXd linearStart(const ModeSystem& system, const LinearMode& mode, double a,
                             const StaticContactState* at_rest);
 

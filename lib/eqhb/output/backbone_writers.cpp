@@ -45,6 +45,7 @@ nlohmann::json backboneJson(const app::ModesRun& run) {
   return {{"scene", run.scene.name},
           {"mode", run.options.mode},
           {"branch", branchName(b.branch)},
+          {"system", b.condensed ? "condensed" : "full"},
           {"solver", run.solver},
           {"from", run.options.from},
           {"to", run.options.to},
@@ -79,8 +80,8 @@ void writeBackboneCsv(std::ostream& out, const app::ModesRun& run) {
 void writeBackboneText(std::ostream& out, const app::ModesRun& run) {
   const Backbone& b = run.backbone;
   char line[256];
-  std::snprintf(line, sizeof line, "%s mode %d (%s branch): linear omega = %.8g, zeta = %.6g; %d points, %d failed, %.3g s\n",
-                run.scene.name.c_str(), run.options.mode, branchName(b.branch), b.start.omega, b.start.damping_ratio,
+  std::snprintf(line, sizeof line, "%s mode %d (%s branch, %s system): linear omega = %.8g, zeta = %.6g; %d points, %d failed, %.3g s\n",
+                run.scene.name.c_str(), run.options.mode, branchName(b.branch), b.condensed ? "condensed" : "full", b.start.omega, b.start.damping_ratio,
                 static_cast<int>(b.points.size()), b.failed_points, b.seconds);
   out << line;
   for (const BackboneFold& f : b.folds) {
