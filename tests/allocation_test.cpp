@@ -15,6 +15,8 @@
 #include "eqhb/harmonic_balance/hb_systems.h"
 #include "eqhb/laws/signorini.h"
 #include "eqhb/laws/stribeck.h"
+#include "eqhb/modes/linear_modes.h"
+#include "eqhb/modes/mode_system.h"
 #include "observed_new.h"
 #include "test_support.h"
 
@@ -79,6 +81,33 @@ TEST(Allocation, ResidualAndJacobianAllocateNothing) {
       for (int i = 0; i < 3; ++i) system->residualAndSparseJacobian(z, g, sparse);
       EXPECT_EQ(allocations.load() - before_sparse, 0) << label << ", sparse Jacobian";
     }
+}
+
+// The nonlinear mode's systems, full and condensed, at a new ω and ξ each
+// call (the condensed one then factors every A_k again, in its own buffers).
+TEST(Allocation, ModeSystemsAllocateNothingAtANewOmegaAndXi) {
+  HbModel model = test::chainWithFriction(7.2, CoulombForm::kMinMax, 10, 0.4, 128, HarmonicKind::kAll);
+  model.laws.push_back({{0}, std::make_shared<CubicStiffness>(0.5)});
+  const Eigen::VectorXd shape = linearModes(model)[0].shape;
+  for (bool condensed : {true, false}) {
+    auto system = makeModeSystem(model, shape, false, condensed);
+    system->setAmplitude(3.0);
+    Eigen::VectorXd z = Eigen::VectorXd::Constant(system->size(), 0.3);
+    z[system->omegaIndex()] = 1.2;
+    z[system->xiIndex()] = 0.05;
+    Eigen::VectorXd g(system->size()), column(system->size());
+    Eigen::MatrixXd j(system->size(), system->size());
+    system->residualAndJacobian(z, g, j);  // warm-up
+    const long before = allocations.load();
+    for (int i = 1; i <= 3; ++i) {
+      z[system->omegaIndex()] += 0.01;
+      z[system->xiIndex()] += 0.001;
+      system->residual(z, g);
+      system->residualAndJacobian(z, g, j);
+      system->amplitudeDerivative(column);
+    }
+    EXPECT_EQ(allocations.load() - before, 0) << (condensed ? "condensed" : "full");
+  }
 }
 
 }  // namespace
