@@ -7,18 +7,15 @@
 #include "eqhb/round_trip.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/output/solution_json.h"
+#include "eqhb/output/solve_effort_json.h"
 
 namespace eqhb::output {
 
 namespace {
 nlohmann::json pointJson(const HbModel& model, const BackbonePoint& p) {
-  nlohmann::json out = {{"amplitude", p.amplitude},
-                        {"converged", p.converged},
-                        {"termination", p.termination},
-                        {"iterations", p.iterations},
-                        {"residual_evaluations", p.residual_evaluations},
-                        {"jacobian_evaluations", p.jacobian_evaluations},
-                        {"seconds", p.seconds}};
+  nlohmann::json out = solveEffortJson(p);
+  out["amplitude"] = p.amplitude;
+  out["converged"] = p.converged;
   if (!p.converged) return out;
   out["omega"] = p.omega;
   out["xi"] = p.xi;

@@ -3,24 +3,28 @@
 #include "eqhb/accuracy/accuracy_sweep.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/output/solution_json.h"
+#include "eqhb/output/solve_effort_json.h"
 
 namespace eqhb {
 
 namespace {
 
+// The attempt at one ω: where, how the solve ended, its residual and effort;
+// all that a failed point reports, and the start of a converged one.
+nlohmann::json attemptJson(const CurvePoint& p) {
+  nlohmann::json out = output::solveEffortJson(p);
+  out["omega"] = p.omega;
+  out["residual_norm"] = p.residual_norm;
+  return out;
+}
+
 nlohmann::json pointJson(const CurvePoint& p, const CurveRun& run, const HillResult* hill) {
-  nlohmann::json point = {{"omega", p.omega},
-                          {"converged", p.converged},
-                          {"termination", p.termination},
-                          {"iterations", p.iterations},
-                          {"residual_evaluations", p.residual_evaluations},
-                          {"jacobian_evaluations", p.jacobian_evaluations},
-                          {"residual_norm", p.residual_norm},
-                          {"seconds", p.seconds},
-                          {"fold", p.fold},
-                          {"energy", p.energy},
-                          {"max_abs", p.max_abs},
-                          {"first_harmonic", p.first_harmonic}};
+  nlohmann::json point = attemptJson(p);
+  point["converged"] = p.converged;
+  point["fold"] = p.fold;
+  point["energy"] = p.energy;
+  point["max_abs"] = p.max_abs;
+  point["first_harmonic"] = p.first_harmonic;
   if (!p.fallback.empty()) point["fallback"] = p.fallback;
   if (p.error_estimate) point["error_estimate"] = *p.error_estimate;
   if (p.accuracy) {
@@ -55,16 +59,6 @@ nlohmann::json pointJson(const CurvePoint& p, const CurveRun& run, const HillRes
   return point;
 }
 
-nlohmann::json failedJson(const CurvePoint& p) {
-  return {{"omega", p.omega},
-          {"termination", p.termination},
-          {"iterations", p.iterations},
-          {"residual_evaluations", p.residual_evaluations},
-          {"jacobian_evaluations", p.jacobian_evaluations},
-          {"residual_norm", p.residual_norm},
-          {"seconds", p.seconds}};
-}
-
 }  // namespace
 
 nlohmann::json curveJson(const Curve& curve, const CurveRun& run) {
@@ -73,7 +67,7 @@ nlohmann::json curveJson(const Curve& curve, const CurveRun& run) {
   for (size_t i = 0; i < curve.points.size(); ++i) {
     const CurvePoint& p = curve.points[i];
     if (p.converged) points.push_back(pointJson(p, run, run.stability ? &run.stability->points[i] : nullptr));
-    else failed.push_back(failedJson(p));
+    else failed.push_back(attemptJson(p));
   }
   const HbModel& model = *run.model;
   nlohmann::json out = {{"scene", run.scene},

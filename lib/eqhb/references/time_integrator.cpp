@@ -6,6 +6,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
+#include "eqhb/references/theta_step.h"
 
 namespace eqhb {
 
@@ -33,6 +34,71 @@ void stateAtZero(const HarmonicSet& basis, const double* c, double omega, double
   }
 }
 
+double periodOf(const HbModel& model) { return 2.0 * M_PI / model.omega; }
+
+// Steps per period T of about options.step each, bounded by kMaxStepsPerPeriod.
+int stepsPerPeriod(const HbModel& model, const TimeOptions& options) {
+  const double period = periodOf(model);
+  const double wanted = std::ceil(period / options.step);  // checked before it becomes an int
+  if (wanted > kMaxStepsPerPeriod)
+    throwInputError("step", formatNumber(options.step),
+                    "gives " + formatNumber(wanted) + " steps per period T = " + formatNumber(period) +
+                        ", more than " + formatNumber(kMaxStepsPerPeriod));
+  return std::max(1, static_cast<int>(wanted));
+}
+
+// The record of one period: `steps` samples of x, v and the laws' forces.
+TimeReference emptyReference(const HbModel& model, int steps, double h) {
+  TimeReference ref;
+  ref.step = h;
+  ref.steps_per_period = steps;
+  ref.displacement.resize(steps, model.structure.dofs());
+  ref.velocity.resize(steps, model.structure.dofs());
+  ref.force.resize(steps, model.lawComponents());
+  return ref;
+}
+
+// Sample (k + 1) mod steps is t = (k + 1) h: the period recorded last
+// overwrites the ones before.
+void recordSample(int sample, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                  const std::vector<LocalVector>& lambda, TimeReference* ref) {
+  ref->displacement.row(sample) = x.transpose();
+  ref->velocity.row(sample) = v.transpose();
+  int q = 0;
+  for (const LocalVector& force : lambda)
+    for (int a = 0; a < force.size(); ++a, ++q) ref->force(sample, q) = force[a];
+}
+
+// How far the state moved over the period, relative to the period's largest
+// displacement and velocity.
+double periodicityError(const TimeReference& ref, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                        const Eigen::VectorXd& x_start, const Eigen::VectorXd& v_start) {
+  const double scale = std::max({ref.displacement.cwiseAbs().maxCoeff(), ref.velocity.cwiseAbs().maxCoeff(), 1e-300});
+  return std::max((x - x_start).cwiseAbs().maxCoeff(), (v - v_start).cwiseAbs().maxCoeff()) / scale;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The Fourier coefficients of the last period recorded on the model's basis,
+// DOFs then law components.
+void projectLastPeriod(const HbModel& model, TimeReference* ref) {
+  const int steps = ref->steps_per_period, n = model.structure.dofs(), components = model.lawComponents();
+  const int nb = model.basis.size();
+  FourierTransform transform(model.basis, steps);
+  ref->coefficients.setZero((n + components) * nb);
+  Eigen::VectorXd column(steps);
+  for (int i = 0; i < n; ++i) {
+    column = ref->displacement.col(i);
+    transform.project(column.data(), ref->coefficients.data() + i * nb);
+  }
+  for (int q = 0; q < components; ++q) {
+    column = ref->force.col(q);
+    transform.project(column.data(), ref->coefficients.data() + (n + q) * nb);
+  }
+}
+
 }  // namespace
 
 TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& options,
@@ -40,143 +106,39 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
   model.validate();
   options.validate();
   const auto start_clock = std::chrono::steady_clock::now();
-  const LinearStructure& s = model.structure;
-  const int n = s.dofs();
-  const double period = 2.0 * M_PI / model.omega;
-  const double wanted = std::ceil(period / options.step);  // checked before it becomes an int
-  if (wanted > kMaxStepsPerPeriod)
-    throwInputError("step", formatNumber(options.step),
-                    "gives " + formatNumber(wanted) + " steps per period T = " + formatNumber(period) +
-                        ", more than " + formatNumber(kMaxStepsPerPeriod));
-  const int steps = std::max(1, static_cast<int>(wanted));
-  const double h = period / steps, theta = options.theta;
-
-  // Constant operators of the step.
-  const Eigen::MatrixXd iteration_matrix = Eigen::MatrixXd(s.mass + h * theta * s.damping + h * h * theta * theta * s.stiffness);
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(iteration_matrix);
-  const int laws = static_cast<int>(model.laws.size());
-  std::vector<Eigen::MatrixXd> response(laws);  // Y_l = h Ŵ⁻¹ W_l s_l (n x d_l)
-  for (int l = 0; l < laws; ++l) {
-    const auto& attached = model.laws[l];
-    response[l] = h * lu.solve(attached.attachment.transposeDense(n, attached.law->forceSign()));
-  }
-  // coupling[l][m] = W_l Y_m (the Delassus blocks): velocity of law l's
-  // components per unit force of law m.
-  std::vector<std::vector<LocalMatrix>> coupling(laws, std::vector<LocalMatrix>(laws));
-  for (int l = 0; l < laws; ++l)
-    for (int m = 0; m < laws; ++m) {
-      const int dl = model.laws[l].law->dimension(), dm = model.laws[m].law->dimension();
-      coupling[l][m].resize(dl, dm);
-      for (int a = 0; a < dl; ++a) coupling[l][m].row(a) = model.laws[l].attachment.rowTimes(response[m], a);
-    }
-
-  auto forcing = [&](double t, Eigen::VectorXd& f) {
-    f.setZero();
-    for (const auto& load : s.loads) f[load.dof] += load.at(model.omega * t);
-  };
+  const int n = model.structure.dofs();
+  const int steps = stepsPerPeriod(model, options);
+  const double h = periodOf(model) / steps;
+  ThetaStep step(model, options, h);
 
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), v = Eigen::VectorXd::Zero(n);
   const int nb = model.basis.size();
   if (initial_full.size() > 0)
     for (int i = 0; i < n; ++i) stateAtZero(model.basis, initial_full.data() + i * nb, model.omega, &x[i], &v[i]);
+  std::vector<LocalVector> lambda;
+  for (const auto& attached : model.laws) lambda.push_back(LocalVector::Zero(attached.law->dimension()));
+  TimeReference ref = emptyReference(model, steps, h);
 
-  int components = model.lawComponents();
-  TimeReference ref;
-  ref.step = h;
-  ref.steps_per_period = steps;
-  ref.displacement.resize(steps, n);
-  ref.velocity.resize(steps, n);
-  ref.force.resize(steps, components);
-
-  std::vector<LocalVector> lambda(laws);
-  for (int l = 0; l < laws; ++l) lambda[l] = LocalVector::Zero(model.laws[l].law->dimension());
-  std::vector<LocalVector> lambda_start = lambda;
-  Eigen::VectorXd f0(n), f1(n), rhs(n), v_free(n), v_new(n);
-  StepProblem problem;
-  problem.h = h;
-  problem.theta = theta;
-  problem.restitution = options.restitution;
-  double t = 0.0;
-
+  // Period after period until the state repeats (periodic), diverges, or the
+  // time allowed runs out.
   for (int p = 0; p < options.max_periods; ++p) {
     const Eigen::VectorXd x_period_start = x, v_period_start = v;
     for (int k = 0; k < steps; ++k) {
-      t = (static_cast<double>(p) * steps + k) * h;
-      forcing(t, f0);
-      forcing(t + h, f1);
-      rhs.noalias() = s.mass * v;
-      rhs += h * (theta * f1 + (1.0 - theta) * f0);
-      rhs.noalias() -= h * (1.0 - theta) * (s.damping * v);
-      rhs.noalias() -= h * (s.stiffness * x);
-      rhs.noalias() -= h * h * theta * (1.0 - theta) * (s.stiffness * v);
-      v_free = lu.solve(rhs);
-      // Local problems: exact for one law, block Gauss–Seidel for several.
-      lambda_start = lambda;  // internal states (a slider) start from the previous step
-      const int sweeps = laws > 1 ? 100 : 1;
-      for (int sweep = 0; sweep < sweeps; ++sweep) {
-        double change = 0.0;
-        for (int l = 0; l < laws; ++l) {
-          const auto& attached = model.laws[l];
-          const int d = attached.law->dimension();
-          problem.x_start.resize(d);
-          problem.v_start.resize(d);
-          problem.u_free.resize(d);
-          for (int a = 0; a < d; ++a) {
-            problem.x_start[a] = attached.attachment.gather(x, a);
-            problem.v_start[a] = attached.attachment.gather(v, a);
-            problem.u_free[a] = attached.attachment.gather(v_free, a);
-          }
-          for (int m = 0; m < laws; ++m)
-            if (m != l) problem.u_free += coupling[l][m] * lambda[m];
-          problem.delassus = coupling[l][l];
-          problem.force_start = lambda_start[l];
-          const LocalVector next = attached.law->solveStep(problem);
-          change = std::max(change, (next - lambda[l]).cwiseAbs().maxCoeff());
-          lambda[l] = next;
-        }
-        if (change <= 1e-14) break;
-      }
-      v_new = v_free;
-      for (int l = 0; l < laws; ++l) v_new.noalias() += response[l] * lambda[l];
-      x += h * (theta * v_new + (1.0 - theta) * v);
-      v = v_new;
-      // Record the last period: sample (k + 1) mod steps is t = (k+1) h.
-      const int sample = (k + 1) % steps;
-      ref.displacement.row(sample) = x.transpose();
-      ref.velocity.row(sample) = v.transpose();
-      for (int l = 0, q = 0; l < laws; ++l)
-        for (int a = 0; a < lambda[l].size(); ++a, ++q) ref.force(sample, q) = lambda[l][a];
+      step.advance((static_cast<double>(p) * steps + k) * h, x, v, lambda);
+      recordSample((k + 1) % steps, x, v, lambda, &ref);
     }
     ref.periods = p + 1;
-    const double scale = std::max({ref.displacement.cwiseAbs().maxCoeff(), ref.velocity.cwiseAbs().maxCoeff(), 1e-300});
-    ref.periodicity_error =
-        std::max((x - x_period_start).cwiseAbs().maxCoeff(), (v - v_period_start).cwiseAbs().maxCoeff()) / scale;
+    ref.periodicity_error = periodicityError(ref, x, v, x_period_start, v_period_start);
     if (on_period) on_period(ref.periods, ref.periodicity_error);
-    if (!std::isfinite(ref.periodicity_error)) break;
-    if (p > 0 && ref.periodicity_error <= options.periodic_tolerance) {
-      ref.periodic = true;
-      break;
-    }
-    if (options.max_seconds > 0.0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count() >= options.max_seconds) {
-      ref.timed_out = true;
-      break;
-    }
+    const bool diverged = !std::isfinite(ref.periodicity_error);
+    if (diverged) break;
+    ref.periodic = p > 0 && ref.periodicity_error <= options.periodic_tolerance;
+    if (ref.periodic) break;
+    ref.timed_out = options.max_seconds > 0.0 && secondsSince(start_clock) >= options.max_seconds;
+    if (ref.timed_out) break;
   }
-
-  // Fourier coefficients of the last period on the model's basis.
-  FourierTransform transform(model.basis, steps);
-  ref.coefficients.setZero((n + components) * nb);
-  Eigen::VectorXd column(steps);
-  for (int i = 0; i < n; ++i) {
-    column = ref.displacement.col(i);
-    transform.project(column.data(), ref.coefficients.data() + i * nb);
-  }
-  for (int q = 0; q < components; ++q) {
-    column = ref.force.col(q);
-    transform.project(column.data(), ref.coefficients.data() + (n + q) * nb);
-  }
-  ref.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
+  projectLastPeriod(model, &ref);
+  ref.seconds = secondsSince(start_clock);
   return ref;
 }
 

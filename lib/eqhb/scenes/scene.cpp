@@ -22,6 +22,7 @@
 #include "eqhb/structures/node_table.h"
 #include "eqhb/scenes/dof_choice.h"
 #include "eqhb/scenes/element_frame.h"
+#include "eqhb/scenes/load_readers.h"
 #include "eqhb/scenes/scene_document.h"
 #include "eqhb/scenes/structure_readers.h"
 #include "eqhb/scenes/table_reader.h"
@@ -34,39 +35,16 @@ namespace eqhb {
 namespace {
 
 using scene_reading::applyOverride;
+using scene_reading::arrayOfTables;
 using scene_reading::bounded;
 using scene_reading::readSceneText;
 using scene_reading::describe;
 using scene_reading::NodeMap;
 using scene_reading::ReadStructure;
-using scene_reading::relativeToScene;
 using scene_reading::TableReader;
-
-
 
 // [output] dofs = [7, "w10"], peak = "w10": what the outputs show and the
 // DOF that defines a peak (scenes/dof_choice.h); each key optional.
-// The DOF (from 0) a load names: `dof` by number from 1 or by name as
-// [output] names DOFs ("w8", "thetay3", "x5"), or `node`, a beam's node
-// (its deflection).
-int loadDof(TableReader& f, const std::string& field, const std::string& source, const HbModel& model, int nodes) {
-  if (f.has("dof") && f.raw("dof").is_string()) {
-    int dof = -1;
-    bounded(source, [&] { dof = resolveDof(model, f.raw("dof").as_string().str, field + ".dof"); });
-    return dof;
-  }
-  const bool by_node = f.has("node");
-  const int number = f.integer(by_node ? "node" : "dof");
-  const int count = by_node ? nodes : model.structure.dofs();
-  if (by_node && count == 0)
-    f.fail(field + ".node", std::to_string(number), "this structure has no nodes (only beams have): use dof");
-  if (number < 1 || number > count)
-    f.fail(field + (by_node ? ".node" : ".dof"), std::to_string(number),
-           std::string(by_node ? "no such node" : "no such DOF") + " (the structure has " + std::to_string(count) +
-               ", numbered from 1)");
-  return by_node ? beamTransverseDof(number) : number - 1;
-}
-
 DofChoice readOutputChoice(TableReader& top, const std::string& source, const HbModel& model) {
   DofChoice choice = defaultDofChoice(model);
   if (!top.has("output")) return choice;
@@ -90,12 +68,6 @@ DofChoice readOutputChoice(TableReader& top, const std::string& source, const Hb
   }
   o.requireKnownKeys();
   return choice;
-}
-
-const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
-  const toml::value& v = top.raw(key);
-  if (!v.is_array()) top.fail(key, describe(v), "must be an array of tables ([[" + key + "]])");
-  return v.as_array();
 }
 
 // A law's table as its registered parser reads it (laws/law_table.h).
@@ -228,16 +200,10 @@ AttachedLaw readLaw(const toml::value& value, const std::string& field, const st
   return attached;
 }
 
-Scene buildScene(toml::value root, const std::string& source,
-                 const std::vector<std::string>& overrides) {
-  for (const auto& assignment : overrides) applyOverride(root, assignment);
-  TableReader top(root, "", source);
-  Scene scene;
-  scene.source = source;
-  scene.name = top.text("name");
-  scene.description = top.text("description", std::string());
-  // The harmonic-balance settings first: with them the model's size is known
-  // from the structure's sizes alone, before the structure is built.
+// [harmonic_balance]: the harmonic set, samples and ω, read first: with them
+// the model's size is known from the structure's sizes alone, before the
+// structure is built.
+void readHarmonicBalance(TableReader& top, const std::string& source, HbModel* model) {
   TableReader hb(top.raw("harmonic_balance"), "harmonic_balance", source);
   const int harmonics = hb.integer("harmonics", std::nullopt, kMaxHarmonics);
   const std::string set = hb.text("set", std::string("odd"));
@@ -247,16 +213,66 @@ Scene buildScene(toml::value root, const std::string& source,
     hb.fail("harmonic_balance.harmonics", std::to_string(harmonics),
             "must be >= 1 for set = \"odd\"");
   if (harmonics < 0) hb.fail("harmonic_balance.harmonics", std::to_string(harmonics), "must be >= 0");
-  scene.model.basis = HarmonicSet(HarmonicSet::parseKind(set), harmonics);
-  scene.model.samples = hb.integer("samples", std::nullopt, kMaxSamples);
-  if (scene.model.samples < scene.model.basis.minimumSamples())
-    hb.fail("harmonic_balance.samples", std::to_string(scene.model.samples),
-            "must be >= 2 k_max + 1 = " + std::to_string(scene.model.basis.minimumSamples()) +
-                " (highest harmonic k_max = " + std::to_string(scene.model.basis.highest()) + ")");
-  scene.model.omega = hb.number("omega");
-  if (!(scene.model.omega > 0.0))
-    hb.fail("harmonic_balance.omega", formatNumber(scene.model.omega), "must be > 0");
+  model->basis = HarmonicSet(HarmonicSet::parseKind(set), harmonics);
+  model->samples = hb.integer("samples", std::nullopt, kMaxSamples);
+  if (model->samples < model->basis.minimumSamples())
+    hb.fail("harmonic_balance.samples", std::to_string(model->samples),
+            "must be >= 2 k_max + 1 = " + std::to_string(model->basis.minimumSamples()) +
+                " (highest harmonic k_max = " + std::to_string(model->basis.highest()) + ")");
+  model->omega = hb.number("omega");
+  if (!(model->omega > 0.0))
+    hb.fail("harmonic_balance.omega", formatNumber(model->omega), "must be > 0");
   hb.requireKnownKeys();
+}
+
+// [sweep]: the range `eqhb sweep` takes by default.
+void readSweep(TableReader& top, const std::string& source, Scene* scene) {
+  if (!top.has("sweep")) return;
+  TableReader sweep(top.raw("sweep"), "sweep", source);
+  scene->sweep_from = sweep.number("from");
+  scene->sweep_to = sweep.number("to");
+  // Either direction: a sweep may run down from above a resonance.
+  if (!(*scene->sweep_from > 0.0) || !(*scene->sweep_to > 0.0) || *scene->sweep_to == *scene->sweep_from)
+    sweep.fail("sweep", formatNumber(*scene->sweep_from) + ".." + formatNumber(*scene->sweep_to),
+               "need from > 0, to > 0 and from != to");
+  sweep.requireKnownKeys();
+}
+
+// [time_reference]: the time integration's defaults, each key optional.
+void readTimeReference(TableReader& top, const std::string& source, TimeReferenceDefaults* defaults) {
+  if (!top.has("time_reference")) return;
+  TableReader t(top.raw("time_reference"), "time_reference", source);
+  t.allow({"step", "theta", "periods", "periodic_tolerance"});
+  TimeReferenceDefaults& d = *defaults;
+  if (t.has("step")) {
+    d.step = t.number("step");
+    if (!(*d.step > 0.0)) t.fail("time_reference.step", formatNumber(*d.step), "must be > 0");
+  }
+  if (t.has("theta")) {
+    d.theta = t.number("theta");
+    if (!(*d.theta >= 0.5 && *d.theta <= 1.0))
+      t.fail("time_reference.theta", formatNumber(*d.theta), "must be in [0.5, 1]");
+  }
+  if (t.has("periods")) {
+    d.periods = t.integer("periods");
+    if (*d.periods < 1) t.fail("time_reference.periods", std::to_string(*d.periods), "must be >= 1");
+  }
+  if (t.has("periodic_tolerance")) {
+    d.periodic_tolerance = t.number("periodic_tolerance");
+    if (!(*d.periodic_tolerance > 0.0))
+      t.fail("time_reference.periodic_tolerance", formatNumber(*d.periodic_tolerance), "must be > 0");
+  }
+  t.requireKnownKeys();
+}
+
+Scene buildScene(toml::value root, const std::string& source, const std::vector<std::string>& overrides) {
+  for (const auto& assignment : overrides) applyOverride(root, assignment);
+  TableReader top(root, "", source);
+  Scene scene;
+  scene.source = source;
+  scene.name = top.text("name");
+  scene.description = top.text("description", std::string());
+  readHarmonicBalance(top, source, &scene.model);
 
   ModelSizes settings;
   settings.coefficients = scene.model.basis.size();
@@ -266,109 +282,16 @@ Scene buildScene(toml::value root, const std::string& source,
   scene.model.dof_names = structure.dof_names;
   const int dofs = scene.model.structure.dofs();
 
-  if (top.has("forcing")) {
-    const auto& loads = arrayOfTables(top, "forcing");
-    for (size_t i = 0; i < loads.size(); ++i) {
-      const std::string field = "forcing[" + std::to_string(i) + "]";
-      TableReader f(loads[i], field, source);
-      HarmonicLoad load;
-      load.harmonic = f.integer("harmonic", 1);
-      if (load.harmonic < 0) f.fail(field + ".harmonic", std::to_string(load.harmonic), "must be >= 0");
-      const int given = int(f.has("dof")) + int(f.has("node")) + int(f.has("file"));
-      if (given != 1) f.fail(field, "(" + std::to_string(given) + " of dof, node, file)", "give exactly one of dof, node or file");
-      if (f.has("file")) {
-        // A load vector (Matrix Market, n x 1) scaled by cos and sin.
-        const std::string path = relativeToScene(source, f.text("file"));
-        // Its length by the size line, before its entries are read.
-        MatrixMarketSize declared;
-        bounded(source + ": " + field + ".file", [&] { declared = readMatrixMarketSize(path); });
-        const long length = declared.rows == 1 ? declared.cols : declared.rows;
-        if (declared.rows != 1 && declared.cols != 1)
-          f.fail(field + ".file", "\"" + path + "\"",
-                 "a load vector must be n x 1 or 1 x n, its size line says " + std::to_string(declared.rows) +
-                     " x " + std::to_string(declared.cols));
-        if (length != dofs)
-          f.fail(field + ".file", "\"" + path + "\"",
-                 "has " + std::to_string(length) + " entries, the structure has " + std::to_string(dofs) + " DOFs");
-        Eigen::VectorXd shape;
-        bounded(source + ": " + field + ".file", [&] { shape = readMatrixMarketVector(path); });
-        const double c = f.number("cos", 1.0), s_ = f.number("sin", 0.0);
-        f.requireKnownKeys();
-        for (int i = 0; i < dofs; ++i) {
-          if (shape[i] == 0.0) continue;
-          HarmonicLoad entry = load;
-          entry.dof = i;
-          entry.cos_amplitude = c * shape[i];
-          entry.sin_amplitude = s_ * shape[i];
-          scene.model.structure.loads.push_back(entry);
-        }
-        continue;
-      }
-      load.dof = loadDof(f, field, source, scene.model, structure.nodes);
-      load.cos_amplitude = f.number("cos", 0.0);
-      load.sin_amplitude = f.number("sin", 0.0);
-      f.requireKnownKeys();
-      scene.model.structure.loads.push_back(load);
-    }
-  }
-  if (top.has("preload")) {
-    const auto& loads = arrayOfTables(top, "preload");
-    for (size_t i = 0; i < loads.size(); ++i) {
-      const std::string field = "preload[" + std::to_string(i) + "]";
-      TableReader f(loads[i], field, source);
-      if (f.has("dof") == f.has("node")) f.fail(field, "(dof and node)", "give exactly one of dof or node");
-      HarmonicLoad load;
-      load.harmonic = 0;
-      load.dof = loadDof(f, field, source, scene.model, structure.nodes);
-      load.cos_amplitude = f.number("force");
-      f.requireKnownKeys();
-      if (!scene.model.basis.contains(0))
-        f.fail(field, "(harmonic_balance.set = \"odd\")", "a static load needs the constant term: set = \"all\"");
-      scene.preload.push_back(load);
-      scene.model.structure.loads.push_back(load);
-    }
-  }
+  scene_reading::readForcing(top, source, structure.nodes, &scene.model);
+  scene_reading::readPreload(top, source, structure.nodes, &scene.model, &scene.preload);
   if (top.has("law")) {
     const auto& laws = arrayOfTables(top, "law");
     for (size_t i = 0; i < laws.size(); ++i)
       scene.model.laws.push_back(readLaw(laws[i], "law[" + std::to_string(i) + "]", source, dofs,
                                          NodeMap{dofs, structure.nodes, &structure.node_table}));
   }
-
-  if (top.has("sweep")) {
-    TableReader sweep(top.raw("sweep"), "sweep", source);
-    scene.sweep_from = sweep.number("from");
-    scene.sweep_to = sweep.number("to");
-    // Either direction: a sweep may run down from above a resonance.
-    if (!(*scene.sweep_from > 0.0) || !(*scene.sweep_to > 0.0) || *scene.sweep_to == *scene.sweep_from)
-      sweep.fail("sweep", formatNumber(*scene.sweep_from) + ".." + formatNumber(*scene.sweep_to),
-                 "need from > 0, to > 0 and from != to");
-    sweep.requireKnownKeys();
-  }
-  if (top.has("time_reference")) {
-    TableReader t(top.raw("time_reference"), "time_reference", source);
-    t.allow({"step", "theta", "periods", "periodic_tolerance"});
-    TimeReferenceDefaults& d = scene.time_reference;
-    if (t.has("step")) {
-      d.step = t.number("step");
-      if (!(*d.step > 0.0)) t.fail("time_reference.step", formatNumber(*d.step), "must be > 0");
-    }
-    if (t.has("theta")) {
-      d.theta = t.number("theta");
-      if (!(*d.theta >= 0.5 && *d.theta <= 1.0))
-        t.fail("time_reference.theta", formatNumber(*d.theta), "must be in [0.5, 1]");
-    }
-    if (t.has("periods")) {
-      d.periods = t.integer("periods");
-      if (*d.periods < 1) t.fail("time_reference.periods", std::to_string(*d.periods), "must be >= 1");
-    }
-    if (t.has("periodic_tolerance")) {
-      d.periodic_tolerance = t.number("periodic_tolerance");
-      if (!(*d.periodic_tolerance > 0.0))
-        t.fail("time_reference.periodic_tolerance", formatNumber(*d.periodic_tolerance), "must be > 0");
-    }
-    t.requireKnownKeys();
-  }
+  readSweep(top, source, &scene);
+  readTimeReference(top, source, &scene.time_reference);
   scene.output = readOutputChoice(top, source, scene.model);
   top.allow({"forcing", "preload", "law"});
   top.requireKnownKeys();

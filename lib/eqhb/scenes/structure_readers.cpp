@@ -191,6 +191,18 @@ void boundAssembly(const std::string& source, const ModelSizes& settings, const 
   checkModelBeforeBuilding(source, settings, field, value, dofs, 3.0 * entries);
 }
 
+// A beam's or frame's `elements`, its M, C and K bounded before they are
+// built: `dofs_per_node` DOFs a node, `entries_per_element` entries an
+// element in M and K (and C).
+int readElementCount(TableReader& s, const std::string& source, const ModelSizes& settings, const std::string& what,
+                     double dofs_per_node, double entries_per_element) {
+  const int elements = s.integer("elements");
+  const double e = std::max(elements, 0);
+  boundAssembly(source, settings, "structure.elements", std::to_string(elements), what, dofs_per_node * e,
+                entries_per_element * e);
+  return elements;
+}
+
 // An element assembly's structure: M and K from `assemble` (run bounded, so
 // that a refusal names the scene), C from the damping keys.
 template <class Assemble>
@@ -213,11 +225,7 @@ std::vector<std::vector<int>> firstThreeDofs(int nodes, const DofOf& dof_of) {
 // A cantilever Euler–Bernoulli beam (structures/beam.h), with a damping model.
 void readBeam(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
   BeamParameters beam;
-  beam.elements = s.integer("elements");
-  // Two DOFs per node, 16 entries per element in M and K (and C).
-  const double e = std::max(beam.elements, 0);
-  boundAssembly(source, settings, "structure.elements", std::to_string(beam.elements), "a beam's sparse M, C and K",
-                2.0 * e, 16.0 * e);
+  beam.elements = readElementCount(s, source, settings, "a beam's sparse M, C and K", 2.0, 16.0);
   beam.youngs_modulus = s.number("E");
   beam.second_moment = s.number("I");
   beam.mass_per_length = s.number("rhoA");
@@ -233,11 +241,7 @@ void readBeam(TableReader& s, const std::string& source, const ModelSizes& setti
 // A cantilever plane frame (structures/frame.h): node i → its DOFs [u, w, θ].
 void readFrame(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
   FrameParameters frame;
-  frame.elements = s.integer("elements");
-  // Three DOFs per node, 20 entries per element in M and K (and C).
-  const double e = std::max(frame.elements, 0);
-  boundAssembly(source, settings, "structure.elements", std::to_string(frame.elements),
-                "a frame's sparse M, C and K", 3.0 * e, 20.0 * e);
+  frame.elements = readElementCount(s, source, settings, "a frame's sparse M, C and K", 3.0, 20.0);
   frame.section.youngs_modulus = s.number("E");
   frame.section.area = s.number("A");
   frame.section.second_moment = s.number("I");
@@ -253,11 +257,7 @@ void readFrame(TableReader& s, const std::string& source, const ModelSizes& sett
 // translations [u, v, w]; the rotations are reached by DOF name or number.
 void readSpaceFrame(TableReader& s, const std::string& source, const ModelSizes& settings, ReadStructure* read) {
   SpaceFrameParameters frame;
-  frame.elements = s.integer("elements");
-  // Six DOFs per node, 40 entries per element in M and K (and C).
-  const double e = std::max(frame.elements, 0);
-  boundAssembly(source, settings, "structure.elements", std::to_string(frame.elements),
-                "a space frame's sparse M, C and K", 6.0 * e, 40.0 * e);
+  frame.elements = readElementCount(s, source, settings, "a space frame's sparse M, C and K", 6.0, 40.0);
   SpaceFrameSection& section = frame.section;
   section.youngs_modulus = s.number("E");
   section.shear_modulus = s.number("G");

@@ -144,6 +144,13 @@ class TableReader {
   mutable std::set<std::string> asked_;  // keys asked about with has()
 };
 
+// [[key]]: an array of tables, else a clear error naming the key.
+inline const toml::array& arrayOfTables(TableReader& top, const std::string& key) {
+  const toml::value& v = top.raw(key);
+  if (!v.is_array()) top.fail(key, describe(v), "must be an array of tables ([[" + key + "]])");
+  return v.as_array();
+}
+
 // A path in a scene file is relative to the scene file's folder.
 inline std::string relativeToScene(const std::string& source, const std::string& path) {
   if (!path.empty() && path[0] == '/') return path;

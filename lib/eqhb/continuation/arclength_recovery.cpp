@@ -1,0 +1,218 @@
+// Where an arclength sweep (arclength_sweep.h) cannot follow the curve from
+// the current point: the corrector with ω held, a bridge to a point further
+// on, the switch to the full system, a secant tangent at the start, and the
+// landing on an end of the range the corrector stepped past.
+#include <algorithm>
+#include <cmath>
+
+#include "eqhb/continuation/arclength_sweep.h"
+#include "eqhb/error.h"
+
+namespace eqhb::arclength {
+namespace {
+
+// The bordered corrector and the tangent are dense: the full system takes
+// over from a condensed one (switchToFullSystem) only up to this size (an LU
+// of 2000 unknowns, ~3 GFLOP and 32 MB; a beam's full system of 10⁵ would
+// need 80 GB).
+constexpr int kMostDenseUnknowns = 2000;
+
+// A point found with ω held lies within this many steps of the current one.
+constexpr double kLocalReach = 2.0;
+
+}  // namespace
+
+// The bordered corrector can stall just above the tolerance where a
+// nonsmooth law switches: measured on the beam dampers, it ends at
+// ‖g‖ ≈ 1e-9 for a tolerance of 1e-10 on most steps, whatever the step,
+// while the same point solved with ω held converges to 1e-16 in one to
+// five iterations. Where ω moves with the curve (|τ_ω| >= kLocalOmega),
+// ω is then the curve's local parameter (Rheinboldt's local
+// parametrisation): the corrector holds ω at the predicted value and
+// solves g(z, ω) = 0 from the predicted z, `step` along `tangent` from
+// `current`. Returns the result in the scaled unknowns ŷ, like the
+// bordered corrector's.
+SolverResult ArclengthSweep::correctAtFixedOmega(const ArcScales& s, const Eigen::VectorXd& current,
+                                                 const Eigen::VectorXd& tangent, double step) {
+  const Eigen::VectorXd predicted = current + step * tangent;
+  SolverResult r;
+  r.termination = Termination::kEvaluationFailed;
+  const double omega = predicted[n_] * s.omega;
+  try {
+    system_->setOmega(omega);
+  } catch (const std::exception& e) {
+    r.native_message = e.what();
+    return r;
+  }
+  r = solver_.solve(*system_, predicted.head(n_) * s.z, solver_options_);
+  r.solution = s.scaled(r.solution, omega);
+  // Near a fold ω held may land on the branch the curve came from, or far
+  // off: the point must lie ahead of the current one, within two steps.
+  const Eigen::VectorXd ahead = r.solution - current;
+  if (r.converged() && (ahead.dot(tangent) <= 0.0 || ahead.norm() > kLocalReach * step)) {
+    r.termination = Termination::kNotProgressing;
+    r.native_message = "omega held: the point found is not ahead on the curve";
+  }
+  return r;
+}
+
+// The corrector failed even at the smallest step (the curve's Jacobian
+// breaks down there, as at a nonsmooth law's switch): solve with ω fixed a
+// little further in the direction of travel, from the current point and
+// then by the fallback chain, and go on from there along a new tangent.
+// The point found is marked (fallback "bridge"): the curve between the two
+// points is not traced, and the jump is said in the stop reason.
+bool ArclengthSweep::bridge() {
+  const double heading = folds_.direction() != 0.0 ? folds_.direction() : direction_;
+  for (double fraction : kBridgeFractions) {
+    const double target = std::clamp(current_.omega + heading * fraction * (hi_ - lo_), lo_, hi_);
+    if (target == current_.omega) return false;
+    try {
+      system_->setOmega(target);
+    } catch (const std::exception&) {
+      continue;  // singular at this ω: try further
+    }
+    SolverResult r = solver_.solve(*system_, current_.z, solver_options_);
+    std::string taken = "bridge";
+    if (!r.converged()) {
+      FallbackReport tried;
+      r = solveWithFallbacks(*system_, solver_, solver_options_, r, false, options_.fallbacks, &tried);
+      if (!r.converged()) continue;
+      taken += " (" + tried.taken + ")";
+    }
+    const ArcScales s = ArcScales::at(r.solution, scaleFloor(r.solution.norm()), hi_ - lo_);
+    // Landed back on the path traced (a heading reversed by a spurious fold,
+    // or past a fold onto the branch that led to it): no way on.
+    if (traced_.retraces(s, s.scaled(current_.z, current_.omega), s.scaled(r.solution, target)) ||
+        wholeCurve().retraces(s, s.scaled(current_.z, current_.omega), s.scaled(r.solution, target)))
+      continue;
+    Eigen::VectorXd ahead = Eigen::VectorXd::Zero(n_ + 1), tangent;
+    ahead[n_] = heading;
+    if (!tangentAt(*system_, s, s.scaled(r.solution, target), ahead, &tangent))
+      tangent = (s.scaled(r.solution, target) - s.scaled(current_.z, current_.omega)).normalized();  // the jump's
+    if (!tangent.allFinite()) continue;
+    const double from = current_.omega;
+    current_ = {r.solution, target, s.physicalDirection(tangent)};
+    largest_norm_ = std::max(largest_norm_, current_.z.norm());
+    bridged_.push_back(formatNumber(from) + " -> " + formatNumber(target));
+    record(current_, r, tangent[n_], taken);
+    return true;
+  }
+  return false;
+}
+
+// Every point recorded, in the current system's unknowns, each bridge's
+// jump left out: a bridge may land on the curve far behind the last
+// points traced_ keeps (stribeck at H = 40: past its second fold, 527
+// points back on the branch before the first, which it then retraced
+// to the start of the range).
+TracedPath ArclengthSweep::wholeCurve() const {
+  TracedPath whole(curve_.points.size());
+  for (const CurvePoint& p : curve_.points) {
+    if (!p.converged || p.full.size() == 0) continue;
+    if (p.fallback.rfind("bridge", 0) == 0) whole.breakPath();
+    whole.add(system_->fromFullCoefficients(p.full), p.omega);
+  }
+  return whole;
+}
+
+// While every law is idle (a contact not yet reached: ‖z‖ below the scale
+// floor) the condensed
+// unknowns, the law forces, are all zero: at the first touch the curve's
+// tangent there holds nothing of the motion that brought it, and where
+// the curve turns back at once (a stiff contact closing) no point lies
+// ahead of it. The full system's unknowns keep x: the curve goes on there,
+// from the same point (once, when the fallback chain has its "full" step).
+bool ArclengthSweep::switchToFullSystem() {
+  const auto& steps = options_.fallbacks.steps;
+  if (!system_->condensed() || std::find(steps.begin(), steps.end(), "full") == steps.end()) return false;
+  if (current_.z.norm() > scaleFloor(0.0)) return false;  // a law acts: bridging is the remedy there
+  const HbModel& m = system_->model();
+  if ((m.structure.dofs() + m.lawComponents()) * static_cast<double>(m.basis.size()) > kMostDenseUnknowns) return false;
+  std::unique_ptr<HbSystem> full_system;
+  Eigen::VectorXd full, full_before;
+  try {
+    system_->setOmega(current_.omega);  // the condensed x follows from λ at this ω
+    full = system_->fullCoefficients(current_.z);
+    model_.omega = current_.omega;
+    full_system = makeHbSystem(model_, false, solver_options_.linear_algebra);
+  } catch (const std::exception&) {
+    return false;  // the full system does not fit, or is singular here
+  }
+  const Eigen::VectorXd z = full_system->fromFullCoefficients(full);
+  const ArcScales s = ArcScales::at(z, std::max(kScaleFloorFraction * full_system->unknownScale(), 1e-300), hi_ - lo_);
+  // Oriented along the way the curve came (the secant from the point before).
+  Eigen::VectorXd came = Eigen::VectorXd::Zero(z.size() + 1), tangent;
+  came[z.size()] = folds_.direction() != 0.0 ? folds_.direction() : direction_;
+  if (curve_.points.size() >= 2) {
+    const CurvePoint& before = curve_.points[curve_.points.size() - 2];
+    came = s.scaled(z, current_.omega) - s.scaled(full_system->fromFullCoefficients(before.full), before.omega);
+  }
+  if (!tangentAt(*full_system, s, s.scaled(z, current_.omega), came, &tangent)) tangent = came.normalized();
+  if (!tangent.allFinite()) return false;
+  system_ = std::move(full_system);
+  n_ = system_->size();
+  unknown_scale_ = system_->unknownScale();
+  current_ = {z, current_.omega, s.physicalDirection(tangent)};
+  largest_norm_ = z.norm();
+  by_omega_ = false;
+  traced_.clear();
+  full_from_ = formatNumber(current_.omega);
+  return true;
+}
+
+// Where the bordered Jacobian is singular at the current point (a friction
+// slider stuck over the whole period leaves its mean undetermined): the
+// secant to the solution with ω fixed a little further on, heading `heading`.
+bool ArclengthSweep::secantTangent(const ArcScales& s, double heading, Eigen::VectorXd* tangent) {
+  const double target = std::clamp(current_.omega + heading * kBridgeFractions[0] * (hi_ - lo_), lo_, hi_);
+  if (target == current_.omega) return false;
+  try {
+    system_->setOmega(target);
+  } catch (const std::exception&) {
+    return false;
+  }
+  const SolverResult r = solver_.solve(*system_, current_.z, solver_options_);
+  try {
+    system_->setOmega(current_.omega);  // back to the point the curve is at (its x is read from the system)
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (!r.converged()) return false;
+  *tangent = (s.scaled(r.solution, target) - s.scaled(current_.z, current_.omega)).normalized();
+  return tangent->allFinite();
+}
+
+// The corrector left the range between ŷ and ŷ_new: solve at the end it
+// crossed with ω fixed, from the chord's point there. Accepted only near
+// the chord (within one step), so that it cannot land on another branch.
+bool ArclengthSweep::landOnTheEnd(const ArcScales& s, const Eigen::VectorXd& y, const Eigen::VectorXd& y_new,
+                                  double step) {
+  const double omega_new = y_new[n_] * s.omega;
+  const double end = omega_new > hi_ ? hi_ : lo_;
+  const double fraction = (end - current_.omega) / (omega_new - current_.omega);
+  const Eigen::VectorXd chord = y + fraction * (y_new - y);
+  try {
+    system_->setOmega(end);
+  } catch (const std::exception&) {
+    return false;
+  }
+  const SolverResult r = solver_.solve(*system_, chord.head(n_) * s.z, solver_options_);
+  if (!r.converged()) return false;
+  const Eigen::VectorXd landed = s.scaled(r.solution, end);
+  if ((landed - chord).norm() > step) return false;
+  Eigen::VectorXd tangent;
+  const Eigen::VectorXd heading = (y_new - y).normalized();
+  const double tangent_omega = tangentAt(*system_, s, landed, heading, &tangent) ? tangent[n_] : NAN;
+  record({r.solution, end, {}}, r, tangent_omega);
+  if (end == options_.to) {
+    finishAtTheEnd();
+    return true;
+  }
+  stop("the curve turned back and left the range at its start, " + at(end) +
+       (curve_.fold_omegas.empty() ? "" : " (after the fold at " + at(curve_.fold_omegas.back()) + ")") +
+       ": not complete");
+  return true;
+}
+
+}  // namespace eqhb::arclength
