@@ -45,6 +45,13 @@ CondensedModeSystem::CondensedModeSystem(const HbModel& model, const Eigen::Vect
   mass_ = Eigen::MatrixXd(m.structure.mass);
   damping_ = Eigen::MatrixXd(m.structure.damping);
   stiffness_ = Eigen::MatrixXd(m.structure.stiffness);
+  attachLaws();
+  condenseStaticHarmonic();
+  sizeBuffers();
+}
+
+void CondensedModeSystem::attachLaws() {
+  const HbModel& m = full_.model();
   reads_.setZero(m_, n_);
   loads_.setZero(n_, m_);
   for (int l = 0; l < static_cast<int>(m.laws.size()); ++l)
@@ -67,7 +74,9 @@ CondensedModeSystem::CondensedModeSystem(const HbModel& model, const Eigen::Vect
   bordered_.setZero(n_ + 1, n_ + 1);
   bordered_.col(n_).head(n_) = mass_shape_.cast<Complex>();
   bordered_.row(n_).head(n_) = mass_shape_.transpose().cast<Complex>();
+}
 
+void CondensedModeSystem::condenseStaticHarmonic() {
   static_coupling_.setZero(m_, m_);
   static_offset_.setZero(m_);
   static_load_.setZero(n_);
@@ -78,12 +87,15 @@ CondensedModeSystem::CondensedModeSystem(const HbModel& model, const Eigen::Vect
       throwInputError("structure.stiffness", "(matrix)",
                       "is singular: the condensed mode system solves the static harmonic K x0 = f0 + W^T lambda0; "
                       "a structure free to move as a rigid body needs the full system");
-    const Eigen::VectorXd f = forcingCoefficients(m);
+    const Eigen::VectorXd f = forcingCoefficients(full_.model());
     for (int i = 0; i < n_; ++i) static_load_[i] = f[i * nb_ + offset_[h]];
     const Eigen::MatrixXd reads = reads_.real();
     static_coupling_ = reads * static_lu_.solve(Eigen::MatrixXd(loads_.real()));
     static_offset_ = reads * static_lu_.solve(static_load_);
   }
+}
+
+void CondensedModeSystem::sizeBuffers() {
   coupling_.assign(harmonic_.size(), Eigen::MatrixXcd::Zero(m_, m_));
   coupling_omega_ = coupling_;
   coupling_xi_ = coupling_;

@@ -72,6 +72,11 @@ class CondensedModeSystem : public ModeSystem {
 
  private:
   using Complex = std::complex<double>;
+  // The construction's steps: W and S Wᵀ with the fundamental's border;
+  // W K⁻¹ S Wᵀ and W K⁻¹ f₀ (throws for a singular K); every buffer.
+  void attachLaws();
+  void condenseStaticHarmonic();
+  void sizeBuffers();
   // B_k, b₁, m₁, h₁ (and with `derivatives` their ∂/∂ω, ∂/∂ξ) at (ω, ξ),
   // kept until they change. False where some A_k (or the bordered A₁) is
   // singular.
