@@ -43,7 +43,8 @@ bool MonodromyStability::supports(const HbModel& model) {
   return true;
 }
 
-MonodromyStability::MonodromyStability(const HbModel& model, double unit_tolerance)
+MonodromyStability::MonodromyStability(const HbModel& model, double unit_tolerance,
+                                       const MonodromyReduction& reduction)
     : model_(model), unit_tolerance_(unit_tolerance) {
   model_.validate();
   if (!supports(model_))
@@ -76,12 +77,12 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   }
   // The propagation's structure: the full one on small structures, else
   // reduced to the law DOFs and the modes that matter (interface_reduction.h).
-  if (n_ > kFullDofs) {
+  if (n_ > reduction.full_dofs) {
     int k_max = 1;
     for (int k : model_.basis.harmonics()) k_max = std::max(k_max, k);
     const InterfaceReduction reduced = reduceToInterface(Eigen::MatrixXd(model_.structure.mass), dynamics_.damping,
                                                          dynamics_.stiffness, dofs_, kFastMargin * k_max * model_.omega,
-                                                         2.0 * M_PI / model_.omega);
+                                                         2.0 * M_PI / model_.omega, reduction.decay);
     m_ = static_cast<int>(reduced.mass.rows());
     projection_ = reduced.projection;
     propagated_.mass_inverse = reduced.mass.inverse();

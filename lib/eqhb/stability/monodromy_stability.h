@@ -31,16 +31,19 @@
 // zero of v). Hill's method stays the reference; "auto" (the command line's
 // default) takes this method wherever it applies.
 //
-// Structures of more than kFullDofs DOFs are propagated reduced to the law
-// DOFs and the fixed-interface modes that are slow or weakly damped
-// (interface_reduction.h): beam-damper's 120 DOFs become 6 (5 law DOFs and
-// one mode), 0.11 ms a point against 1.6 s for the full 240 x 240
-// exponentials, whose stiff modes also made the result depend on rounding:
-// radius at ω = 2.8 0.956 in the physical coordinates, 0.830 in the reduced
-// ones keeping every mode, 0.2442, 0.2442, 0.2455, 0.2516 keeping the modes
-// whose free multiplier is above e^-13.8, e^-30, e^-100, e^-1000 (Hill:
-// 0.499; shooting this beam takes more than 100 s). The holding forces stay
-// on the full structure.
+// Structures of more than MonodromyReduction::full_dofs (20) DOFs are
+// propagated reduced to the law DOFs and the fixed-interface modes that are
+// slow or weakly damped (interface_reduction.h): beam-damper's 120 DOFs
+// become 6 (5 law DOFs and one mode), 0.11 ms a point against 1.2-1.6 s for
+// the full 240 x 240 exponentials. The full propagation is no reference on
+// such a beam: its stiff, heavily damped modes make the product depend on
+// rounding (ω = 2.8: radius 0.956 in the physical coordinates, 0.830 in the
+// reduced ones keeping every mode), while keeping the modes whose free
+// multiplier is above e^-13.8, e^-30, e^-100, e^-1000 gives 0.2442, 0.2442,
+// 0.2455, 0.2516. Hill's radius there is 0.499; the time-domain orbit
+// started from the harmonic-balance one settles at 0.196 a period (periods
+// 2 to 12), which the reduced radius matches and 0.499 does not (tested).
+// The holding forces stay on the full structure.
 //
 // Supported: grounded Coulomb 1D in an exact form (minmax, projection) and
 // Signorini laws, one DOF each, with a positive definite mass (the phases
@@ -61,10 +64,19 @@ namespace eqhb {
 
 class FourierTransform;
 
+// Where the propagation is reduced (interface_reduction.h); the defaults
+// are what every stability analysis uses, other values are for measuring
+// the reduction against the full structure.
+struct MonodromyReduction {
+  int full_dofs = 20;    // structures of more DOFs are propagated reduced
+  double decay = 13.8;   // a fast mode is dropped when its free multiplier is below e^-decay
+};
+
 class MonodromyStability {
  public:
   // Throws InputError if the model is invalid or not supported.
-  explicit MonodromyStability(const HbModel& model, double unit_tolerance = HillOptions().unit_tolerance);
+  explicit MonodromyStability(const HbModel& model, double unit_tolerance = HillOptions().unit_tolerance,
+                              const MonodromyReduction& reduction = MonodromyReduction());
   ~MonodromyStability();
   MonodromyStability(const MonodromyStability&) = delete;
   MonodromyStability& operator=(const MonodromyStability&) = delete;
@@ -80,6 +92,8 @@ class MonodromyStability {
     long syntheses = 0, holding_forces = 0, exponentials = 0;
   };
   const Work& work() const { return work_; }
+  // The propagation's DOFs: the structure's, or the reduced coordinates.
+  int propagatedDofs() const { return m_; }
 
  private:
   enum class State { kSlipPositive, kSlipNegative, kStick, kOpen, kClosed };
@@ -125,8 +139,6 @@ class MonodromyStability {
   int n_ = 0;
   long point_ = 0;                                 // analyses so far: stamps Holding::series
   Work work_;
-  // Structures of more DOFs are propagated reduced (interface_reduction.h).
-  static constexpr int kFullDofs = 20;
   // Modes faster than this many times the highest harmonic may be dropped.
   static constexpr double kFastMargin = 3.0;
   orbits::DenseDynamics dynamics_;                 // M⁻¹, C, K of the full structure (holding forces)
