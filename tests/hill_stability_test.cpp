@@ -205,7 +205,8 @@ TEST(HillStability, DuffingCurveAgreesWithShootingAndTheMiddleBranchIsUnstable) 
 
 // A curve's stability under a time limit: the points reached get their
 // verdicts, the rest none, and the result says how many were analysed; no
-// limit analyses every converged point. A limit below zero or not finite is
+// limit analyses every converged point; progress is told of each point
+// analysed. A limit below zero or not finite is
 // refused naming it.
 TEST(HillStability, ACurvesStabilityStopsAtItsTimeLimit) {
   const Scene scene = loadScene(test::problem("cubic.toml"));
@@ -215,14 +216,24 @@ TEST(HillStability, ACurvesStabilityStopsAtItsTimeLimit) {
   int converged = 0;
   for (const CurvePoint& p : curve.points) converged += p.converged;
   ASSERT_GT(converged, 20);
-  const CurveStability all = analyseCurveStability(scene.model, curve);
+  // Progress after each point analysed: the points done so far of the curve's.
+  std::vector<int> done;
+  auto progress = [&](int d, int total) {
+    EXPECT_EQ(total, static_cast<int>(curve.points.size()));
+    EXPECT_TRUE(done.empty() || d > done.back()) << d;
+    done.push_back(d);
+  };
+  const CurveStability all = analyseCurveStability(scene.model, curve, {}, progress);
   EXPECT_FALSE(all.time_limited);
   EXPECT_EQ(all.analysed, converged);
+  EXPECT_EQ(static_cast<int>(done.size()), converged);
   HillOptions limited;
   limited.time_limit = 1e-9;  // out of time at the first check
-  const CurveStability some = analyseCurveStability(scene.model, curve, limited);
+  done.clear();
+  const CurveStability some = analyseCurveStability(scene.model, curve, limited, progress);
   EXPECT_TRUE(some.time_limited);
   EXPECT_LT(some.analysed, converged);
+  EXPECT_EQ(static_cast<int>(done.size()), some.analysed);
   int verdicts = 0;
   for (const CurvePoint& p : curve.points) verdicts += p.stable.has_value();
   EXPECT_EQ(verdicts, some.analysed);
