@@ -6,6 +6,8 @@
 
 
 #include "eqhb/backends/registry.h"
+#include "eqhb/error.h"
+#include "eqhb/solvers/option_check.h"
 
 namespace eqhb {
 namespace {
@@ -80,6 +82,37 @@ TEST_P(EveryBackend, InvalidOptionsAreRejectedBeforeAnyEvaluation) {
   options.backend["no_such_option"] = "1";
   r = makeSolver(GetParam())->solve(system, Eigen::VectorXd::Zero(3), options);
   EXPECT_EQ(r.termination, Termination::kInvalidOptions);
+}
+
+// The check a sweep or a study makes before it starts: every backend takes
+// its own defaults and a valid setting of its own, and refuses a name it does
+// not know with its own message (a sweep then exits 2 instead of failing
+// every point with invalid_options).
+TEST_P(EveryBackend, OptionCheckTakesItsDefaultsAndRefusesAnUnknownName) {
+  auto solver = makeSolver(GetParam());
+  EXPECT_NO_THROW(checkSolverOptions(*solver, {}));
+  SolverOptions options;
+  options.backend["no_such_option"] = "1";
+  try {
+    checkSolverOptions(*solver, options);
+    ADD_FAILURE() << GetParam() << " took an unknown option";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_option"), std::string::npos) << e.what();
+  }
+}
+
+TEST(OptionCheck, TakesTheDoglegSettingsAndRefusesABadValueNamingIt) {
+  auto solver = makeSolver("dogleg");
+  SolverOptions options;
+  options.backend = {{"factorisation", "lu"}, {"update", "refresh"}};
+  EXPECT_NO_THROW(checkSolverOptions(*solver, options));
+  options.backend = {{"factorisation", "bogus"}};
+  try {
+    checkSolverOptions(*solver, options);
+    ADD_FAILURE() << "factorisation = bogus taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("factorisation = \"bogus\""), std::string::npos) << e.what();
+  }
 }
 
 std::vector<std::string> registeredNames() {

@@ -2,6 +2,7 @@
 every legal layout (duplicates, unsorted indices) mean the matrix scipy
 means; corrupt ones, non-real arrays, oversized arrays and arguments of the
 wrong type raise eqhb.InputError naming the argument."""
+import os
 import subprocess
 import sys
 import textwrap
@@ -172,3 +173,13 @@ def test_wrong_types_raise_input_error_naming_the_argument(call, argument):
     with pytest.raises(eqhb.InputError) as error:
         call()
     assert str(error.value).startswith(argument)
+
+
+# A backend option the backend refuses is bad input before the sweep starts,
+# as for solve: not a curve of invalid_options points.
+@pytest.mark.parametrize("method", ["sequential", "arclength"])
+def test_sweep_with_a_refused_backend_option_raises_naming_it(method):
+    problems = os.environ.get("EQHB_PROBLEMS_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "problems"))
+    scene = eqhb.load_scene(os.path.join(problems, "friction-1d.toml"))
+    with pytest.raises(eqhb.InputError, match='factorisation = "bogus"'):
+        eqhb.sweep(scene, method=method, options={"factorisation": "bogus"})

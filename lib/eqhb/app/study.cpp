@@ -11,6 +11,7 @@
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/scenes/dof_choice.h"
+#include "eqhb/solvers/option_check.h"
 #include "eqhb/studies/study_journal.h"
 #include "eqhb/studies/study_scheduler.h"
 
@@ -104,7 +105,8 @@ StudySetup setupStudy(const SceneSettings& scene_settings, const StudyOptions& o
   std::string why;
   if (!o.solver_options.isValid(&why)) throw InputError(why);
   settings.solver_options = o.solver_options;
-  makeSolver(o.solver);  // an unknown name is an input error now, not per sample
+  // An unknown name, or options the backend refuses, is an input error now, not per sample.
+  checkSolverOptions(*makeSolver(o.solver), o.solver_options);
   const std::string solver_name = o.solver;
   settings.make_solver = [solver_name] { return makeSolver(solver_name); };
   const std::string fallback = o.fallback;

@@ -7,6 +7,7 @@
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
 #include "eqhb/preload/operating_point.h"
+#include "eqhb/solvers/option_check.h"
 
 namespace eqhb::app {
 
@@ -77,7 +78,12 @@ SweepPlan planSweep(const SceneSettings& settings, const SweepOptions& o) {
   // Every option checked before any count is derived from them.
   if (o.arclength) c.validate();
   else c.validateGrid();
-  plan.solver_name = makeSolver(o.solver)->name();
+  const auto solver = makeSolver(o.solver);
+  plan.solver_name = solver->name();
+  // Options the backend refuses are input, not a point that failed: every
+  // point would fail the same way (the fallback steps run other backends
+  // on their own defaults and are not asked).
+  checkSolverOptions(*solver, o.solver_options);
   const OwnedFallbackChain fallbacks(o.fallback, o.solver, "fallback");  // an unknown step fails here
   return plan;
 }
