@@ -52,17 +52,15 @@ CondensedModeSystem::CondensedModeSystem(const HbModel& model, const Eigen::Vect
 
 void CondensedModeSystem::attachLaws() {
   const HbModel& m = full_.model();
-  reads_.setZero(m_, n_);
+  reads_transpose_.setZero(n_, m_);
   loads_.setZero(n_, m_);
-  for (int l = 0; l < static_cast<int>(m.laws.size()); ++l)
-    for (int a = 0; a < m.laws[l].law->dimension(); ++a) {
-      const int q = m.componentIndex(l, a);
-      for (const AttachmentTerm& term : m.laws[l].attachment.row(a)) {
-        reads_(q, term.dof) += term.weight;
-        loads_(term.dof, q) += m.laws[l].law->forceSign() * term.weight;
-      }
-    }
-  reads_transpose_ = reads_.transpose();
+  for (int l = 0; l < static_cast<int>(m.laws.size()); ++l) {
+    const int first = m.componentIndex(l, 0), d = m.laws[l].law->dimension();
+    const Eigen::MatrixXd w = m.laws[l].attachment.transposeDense(n_);
+    reads_transpose_.middleCols(first, d) = w.cast<Complex>();
+    loads_.middleCols(first, d) = (m.laws[l].law->forceSign() * w).cast<Complex>();
+  }
+  reads_ = reads_transpose_.transpose();
   mode_at_laws_ = (reads_.real() * shape_).cwiseAbs().maxCoeff();
   mass_shape_ = mass_ * shape_;
   border_loads_.setZero(n_ + 1, m_ + 1);
@@ -308,17 +306,18 @@ void CondensedModeSystem::borderRows(const Eigen::Ref<const Eigen::VectorXd>& z,
                                      Eigen::Ref<Eigen::MatrixXd>* jacobian) {
   // μ = m₁ Λ₁ + h₁ a, Λ₁ = λ_c − i λ_s: Re μ and Im μ.
   const int o = fundamental_, re = coefficients_, im = coefficients_ + 1;
-  Complex mu = defect_gain_ * amplitude_, mu_omega = defect_gain_omega_ * amplitude_,
-          mu_xi = defect_gain_xi_ * amplitude_;
-  for (int c = 0; c < m_; ++c) {
-    const Complex force(z[c * nb_ + o], -z[c * nb_ + o + 1]);
-    mu += defect_row_[c] * force;
-    mu_omega += defect_row_omega_[c] * force;
-    mu_xi += defect_row_xi_[c] * force;
-  }
+  // row Λ₁ + gain a: μ itself, or its derivative with the derivatives' row and gain.
+  const auto applied = [&](const Eigen::RowVectorXcd& row, Complex gain) {
+    Complex sum = gain * amplitude_;
+    for (int c = 0; c < m_; ++c) sum += row[c] * Complex(z[c * nb_ + o], -z[c * nb_ + o + 1]);
+    return sum;
+  };
+  const Complex mu = applied(defect_row_, defect_gain_);
   g[re] = mu.real();
   g[im] = mu.imag();
   if (!jacobian) return;
+  const Complex mu_omega = applied(defect_row_omega_, defect_gain_omega_);
+  const Complex mu_xi = applied(defect_row_xi_, defect_gain_xi_);
   Eigen::Ref<Eigen::MatrixXd>& j = *jacobian;
   for (int c = 0; c < m_; ++c) {
     const Complex r = defect_row_[c];  // ∂μ/∂λ_c = r, ∂μ/∂λ_s = −i r
