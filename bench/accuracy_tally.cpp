@@ -10,6 +10,7 @@
 #include "eqhb/accuracy/accuracy_target.h"
 #include "eqhb/app/rho_candidates.h"
 #include "eqhb/app/solve_options.h"
+#include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
 #include "eqhb/error.h"
 #include "eqhb/orbits/shooting.h"
@@ -64,9 +65,11 @@ Measured measure(const TallyCase& c, const TallyOptions& o) {
   try {
     const app::RhoCandidates candidates = app::rhoCandidates(scene);
     auto solver = makeSolver(defaults.solver);
+    const OwnedFallbackChain fallbacks(defaults.fallback, defaults.solver, "fallback");
     const AccuracyChoice choice =
         chooseDiscretisation(candidates.models, o.tolerance, std::min(5, candidates.models.front().basis.count()),
-                             o.max_harmonics, *solver, defaults.solver_options, defaults.condensed, test);
+                             o.max_harmonics, *solver, defaults.solver_options, defaults.condensed, test,
+                             fallbacks.chain());
     m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     m.solved = choice.result.converged();
     m.reached = choice.reached;

@@ -112,6 +112,28 @@ TEST(AccuracyExactTest, TheExactTestReachesTheLargestHItself) {
   EXPECT_NE(estimate.failure.find("x safety factor"), std::string::npos) << estimate.failure;
 }
 
+// A penalty wall at ω = 0.5 with k_n = 100: the first rung's solve from zero
+// stalls (not_progressing); the default path's steps (here the cold one: the
+// coarse start) converge it, and the ladder then climbs to the tolerance
+// against the exact orbit. Without a chain the ladder makes no claim.
+TEST(AccuracyExactTest, AFirstRungThatFailsFromZeroTakesTheFallbackSteps) {
+  auto solver = makeSolver("dogleg");
+  const HbModel m = scene("penalty-contact.toml", 0.5, {"law[0].stiffness=100"});
+  const AccuracyChoice alone = chooseHarmonics(m, 1e-3, 5, 320, *solver, tightOptions(), true);
+  EXPECT_FALSE(alone.reached);
+  EXPECT_FALSE(alone.ladder.front().converged);
+  EXPECT_NE(alone.failure.find("H = 5 did not converge"), std::string::npos) << alone.failure;
+  EXPECT_EQ(alone.failure.find("fallback"), std::string::npos) << alone.failure;
+
+  const FallbackChain chain = FallbackChain::standard(nullptr);
+  const AccuracyChoice helped = chooseHarmonics(m, 1e-3, 5, 320, *solver, tightOptions(), true, {}, chain);
+  ASSERT_TRUE(helped.reached) << helped.failure;
+  EXPECT_TRUE(helped.ladder.front().converged);
+  EXPECT_FALSE(helped.ladder.front().fallback.empty());
+  EXPECT_EQ(helped.test, AccuracyTest::kExactOrbit);
+  EXPECT_LE(trueError(helped), 1e-3);
+}
+
 TEST(AccuracyExactTest, NamesTheTestChoice) {
   EXPECT_EQ(parseAccuracyTestChoice("auto"), AccuracyTestChoice::kAuto);
   EXPECT_EQ(parseAccuracyTestChoice("estimate"), AccuracyTestChoice::kEstimate);

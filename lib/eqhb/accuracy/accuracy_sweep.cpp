@@ -58,7 +58,7 @@ AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tol
   std::vector<HbModel> at_first = candidates;
   for (HbModel& m : at_first) m.omega = options.from;
   out.first = chooseDiscretisation(at_first, tolerance, start_harmonics, max_harmonics, solver, solver_options,
-                                   options.condensed, test);
+                                   options.condensed, test, options.fallbacks);
   // Not reached at the first frequency: the curve runs on the last rung with
   // an estimate (or the first H if even that failed) and its points say so.
   out.model = out.first.model;
@@ -84,7 +84,7 @@ AccurateCurve sweepToAccuracy(const std::vector<HbModel>& candidates, double tol
       solved.termination = Termination::kConverged;
       solved.seconds = p.seconds;
       const AccuracyChoice c = refineToAccuracy(at, p.full, solved, tolerance, max_harmonics, solver,
-                                                solver_options, options.condensed, test);
+                                                solver_options, options.condensed, test, options.fallbacks);
       takeChoice(c, tolerance, &p);
     }
     if (!p.accuracy->met) out.not_met.push_back(p.omega);

@@ -31,6 +31,8 @@ struct Ladder {
   const SolverOptions& options;
   bool condensed;
   AccuracyTestOptions test;
+  const FallbackChain& fallbacks;  // the first rung's
+  FallbackChain above = fallbacks.withOwnBackendOnly();  // the rungs above it
   double seconds = 0.0;  // every solve and shot of every candidate
 };
 
@@ -58,13 +60,17 @@ void drop(Climber& c, const std::string& why) {
 
 std::string atH(int harmonics) { return "H = " + std::to_string(harmonics); }
 
+std::string nothingConverged(const FallbackChain& tried) {
+  return tried.steps.empty() ? "" : ", nor did any fallback step";
+}
+
 // The candidate's solution at 2H, from its solution at H padded with zeros
 // (estimateError, which also compares the two): the estimate of the rung
 // and the start of the next. Drops the candidate when that solve fails.
 bool solveAbove(Ladder& in, Climber& c) {
   AccuracyChoice& s = c.state;
   if (s.estimate.refined_harmonics == 2 * s.model.basis.count()) return s.estimate.available;  // solved already
-  s.estimate = estimateError(s.model, s.full, in.solver, in.options, in.condensed);
+  s.estimate = estimateError(s.model, s.full, in.solver, in.options, in.condensed, &in.above);
   in.seconds += s.estimate.refined.seconds;
   AccuracyRung& rung = s.ladder.back();
   rung.estimate = s.estimate.max_abs;
@@ -74,11 +80,12 @@ bool solveAbove(Ladder& in, Climber& c) {
   above.samples = s.estimate.refined_samples;
   above.converged = s.estimate.available;
   above.seconds = s.estimate.refined.seconds;
+  above.fallback = s.estimate.fallback;
   s.ladder.push_back(above);
   if (!s.estimate.available)
     drop(c, "the solve at " + atH(s.estimate.refined_harmonics) + " (started from the solution at " +
                 atH(s.model.basis.count()) + ") did not converge (" +
-                terminationName(s.estimate.refined.termination) + ")");
+                terminationName(s.estimate.refined.termination) + ")" + nothingConverged(in.above));
   return s.estimate.available;
 }
 
@@ -193,6 +200,21 @@ AccuracyChoice finish(const Ladder& in, const std::vector<Climber>& climbers, si
   return out;
 }
 
+// The first rung's solve from zero, then the fallback steps if it failed
+// (`fallback`: the step that converged, if one did).
+SolverResult solveFirstRung(HbSystem& system, const Ladder& in, std::string* fallback) {
+  SolverResult result = in.solver.solve(system, Eigen::VectorXd::Zero(system.size()), in.options);
+  if (result.converged() || in.fallbacks.steps.empty()) return result;
+  FallbackReport report;
+  const double first_seconds = result.seconds;
+  // From zero is not the cold start of a solve (the coarse one): the chain's
+  // "cold" step applies.
+  result = solveWithFallbacks(system, in.solver, in.options, result, false, in.fallbacks, &report);
+  result.seconds = first_seconds + report.seconds;
+  *fallback = report.taken;
+  return result;
+}
+
 AccuracyRung firstRung(const HbModel& model, const SolverResult& result) {
   AccuracyRung rung;
   rung.harmonics = model.basis.count();
@@ -206,29 +228,31 @@ AccuracyRung firstRung(const HbModel& model, const SolverResult& result) {
 
 AccuracyChoice chooseHarmonics(const HbModel& scene_model, double tolerance, int start_harmonics, int max_harmonics,
                                Solver& solver, const SolverOptions& options, bool condensed,
-                               const AccuracyTestOptions& test) {
+                               const AccuracyTestOptions& test, const FallbackChain& fallbacks) {
   return chooseDiscretisation({scene_model}, tolerance, start_harmonics, max_harmonics, solver, options, condensed,
-                              test);
+                              test, fallbacks);
 }
 
 AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics,
                                     int max_harmonics, Solver& solver, const SolverOptions& options, bool condensed,
-                                    const AccuracyTestOptions& test) {
+                                    const AccuracyTestOptions& test, const FallbackChain& fallbacks) {
   checkLadderArguments(tolerance, start_harmonics, max_harmonics, test);
   if (candidates.empty()) throw std::invalid_argument("chooseDiscretisation: no candidate model");
-  Ladder in{tolerance, max_harmonics, solver, options, condensed, test};
+  Ladder in{tolerance, max_harmonics, solver, options, condensed, test, fallbacks};
   std::vector<Climber> climbers;
   for (const HbModel& candidate : candidates) {
     Climber c = startClimber(withHarmonics(candidate, start_harmonics), test);
     AccuracyChoice& s = c.state;
     auto system = makeHbSystem(s.model, condensed, options.linear_algebra);
-    s.result = solver.solve(*system, Eigen::VectorXd::Zero(system->size()), options);
+    std::string fallback;
+    s.result = solveFirstRung(*system, in, &fallback);
     s.full = system->fullCoefficients(s.result.solution);
     in.seconds += s.result.seconds;
     s.ladder.push_back(firstRung(s.model, s.result));
+    s.ladder.back().fallback = fallback;
     if (!s.result.converged())
       drop(c, "the solve at " + atH(start_harmonics) + " did not converge (" +
-                  terminationName(s.result.termination) + ")");
+                  terminationName(s.result.termination) + ")" + nothingConverged(in.fallbacks));
     climbers.push_back(std::move(c));
   }
   return finish(in, climbers, climb(in, climbers));
@@ -236,9 +260,9 @@ AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, doub
 
 AccuracyChoice refineToAccuracy(const HbModel& model, const Eigen::VectorXd& full, const SolverResult& result,
                                 double tolerance, int max_harmonics, Solver& solver, const SolverOptions& options,
-                                bool condensed, const AccuracyTestOptions& test) {
+                                bool condensed, const AccuracyTestOptions& test, const FallbackChain& fallbacks) {
   checkLadderArguments(tolerance, model.basis.count(), max_harmonics, test);
-  Ladder in{tolerance, max_harmonics, solver, options, condensed, test};
+  Ladder in{tolerance, max_harmonics, solver, options, condensed, test, fallbacks};
   std::vector<Climber> climbers{startClimber(model, test)};
   AccuracyChoice& s = climbers[0].state;
   s.full = full;

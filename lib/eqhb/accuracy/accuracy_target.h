@@ -12,6 +12,7 @@
 
 #include "eqhb/accuracy/error_estimate.h"
 #include "eqhb/accuracy/rung_test.h"
+#include "eqhb/continuation/fallback_chain.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/solvers/solver.h"
 
@@ -28,6 +29,7 @@ struct AccuracyRung {
   AccuracyTest test = AccuracyTest::kEstimate;
   double error = 0.0;        // the tested value: the true error, or the safety factor × the estimate
   double test_seconds = 0.0; // the shot of the exact test (the estimate's solve is the next rung's)
+  std::string fallback;      // the fallback step that converged this rung's solve (empty: none needed)
 };
 
 // Which tests a ladder may use (rung_test.h).
@@ -76,18 +78,24 @@ struct AccuracyChoice {
 // dropped; the choice fails when every candidate has. The ladder stops when
 // the next rung could not be tested below max_harmonics (2H for the exact
 // test, 4H for the estimate's solve).
+// A rung's solve that fails gets `fallbacks`' steps (the default path of a
+// solve, fallback_chain.h) before its candidate is dropped: the first rung
+// starts from zero, where a penalty wall at ω = 0.5 (k_n = 100) needs the
+// coarse start and ω = 0.7 another backend; the rungs above get the steps
+// of the chain that rerun the own backend (withOwnBackendOnly); an empty
+// chain drops a candidate at its first failed solve.
 constexpr int kPruneFromHarmonics = 20;
 constexpr double kPruneFactor = 2.0;
 AccuracyChoice chooseDiscretisation(const std::vector<HbModel>& candidates, double tolerance, int start_harmonics,
                                     int max_harmonics, Solver& solver, const SolverOptions& options, bool condensed,
-                                    const AccuracyTestOptions& test = {});
+                                    const AccuracyTestOptions& test = {}, const FallbackChain& fallbacks = {});
 
 // One candidate: chooseDiscretisation({model}).
 // tolerance in (0, 1), 1 <= start_harmonics <= max_harmonics; throws
 // InputError naming accuracy or max_harmonics otherwise.
 AccuracyChoice chooseHarmonics(const HbModel& model, double tolerance, int start_harmonics, int max_harmonics,
                                Solver& solver, const SolverOptions& options, bool condensed,
-                               const AccuracyTestOptions& test = {});
+                               const AccuracyTestOptions& test = {}, const FallbackChain& fallbacks = {});
 
 // The same ladder from a solution already at hand (`full`, from `result`, on
 // `model`'s H and N): test it and climb from there. The given solve is
@@ -95,6 +103,7 @@ AccuracyChoice chooseHarmonics(const HbModel& model, double tolerance, int start
 // the model's H as the first H.
 AccuracyChoice refineToAccuracy(const HbModel& model, const Eigen::VectorXd& full, const SolverResult& result,
                                 double tolerance, int max_harmonics, Solver& solver, const SolverOptions& options,
-                                bool condensed, const AccuracyTestOptions& test = {});
+                                bool condensed, const AccuracyTestOptions& test = {},
+                                const FallbackChain& fallbacks = {});
 
 }  // namespace eqhb

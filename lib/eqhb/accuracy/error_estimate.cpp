@@ -91,14 +91,21 @@ ErrorEstimate compareWithRefined(const HbModel& model, const Eigen::VectorXd& fu
 }
 
 ErrorEstimate estimateError(const HbModel& model, const Eigen::VectorXd& full, Solver& solver,
-                            const SolverOptions& options, bool condensed) {
+                            const SolverOptions& options, bool condensed, const FallbackChain* fallbacks) {
   const HbModel refined_model = withHarmonics(model, 2 * model.basis.count());
   auto system = makeHbSystem(refined_model, condensed, options.linear_algebra);
   const Eigen::VectorXd z0 = system->fromFullCoefficients(transferCoefficients(model, refined_model, full));
-  const SolverResult refined = solver.solve(*system, z0, options);
+  SolverResult refined = solver.solve(*system, z0, options);
+  FallbackReport report;
+  if (!refined.converged() && fallbacks && !fallbacks->steps.empty()) {
+    const double first_seconds = refined.seconds;
+    refined = solveWithFallbacks(*system, solver, options, refined, false, *fallbacks, &report);
+    refined.seconds = first_seconds + report.seconds;  // the failed solve and every step
+  }
   ErrorEstimate e = compareWithRefined(model, full, refined_model, system->fullCoefficients(refined.solution));
   e.available = refined.converged();
   e.refined = refined;
+  e.fallback = report.taken;
   return e;
 }
 

@@ -15,6 +15,9 @@
 
 #include <Eigen/Dense>
 
+#include <string>
+
+#include "eqhb/continuation/fallback_chain.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/solvers/solver.h"
 
@@ -51,15 +54,19 @@ struct ErrorEstimate {
   int refined_harmonics = 0;
   int refined_samples = 0;
   SolverResult refined;         // the solve at 2H
+  std::string fallback;         // the fallback step that converged it (empty: none needed or none did)
   Eigen::VectorXd refined_full; // its coefficients, FullSystem layout on withHarmonics(model, 2H)
 };
 
 // Solves `model` at 2H from `full` (its solution at H, padded with zero
 // harmonics) with `solver` on the condensed or full system, and compares.
-// If the refined solve does not converge, `available` is false and the
-// numbers are those of its last iterate.
+// If the refined solve does not converge, `fallbacks`' steps are tried
+// (none when it is null or empty; the warm start is not a cold one, so the
+// chain's "cold" step applies); if none converges, `available` is false and
+// the numbers are those of its last iterate.
 ErrorEstimate estimateError(const HbModel& model, const Eigen::VectorXd& full, Solver& solver,
-                            const SolverOptions& options, bool condensed);
+                            const SolverOptions& options, bool condensed,
+                            const FallbackChain* fallbacks = nullptr);
 
 // The same comparison when the solution on twice the harmonics is already known.
 ErrorEstimate compareWithRefined(const HbModel& model, const Eigen::VectorXd& full, const HbModel& refined_model,

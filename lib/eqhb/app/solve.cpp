@@ -152,9 +152,11 @@ AccuracyReport chooseDiscretisationFor(const SceneSettings& scene, const SolveOp
   report.candidates = rhoCandidates(scene);
   const int start = scene.harmonics ? *scene.harmonics : std::min(5, report.candidates.models.front().basis.count());
   auto solver = makeSolver(o.solver);
+  const OwnedFallbackChain fallbacks(o.fallback, o.solver, "fallback");
   report.choice = chooseDiscretisation(report.candidates.models, *o.accuracy, start, o.max_harmonics, *solver,
                                        o.solver_options, o.condensed,
-                                       AccuracyTestOptions{parseAccuracyTestChoice(o.accuracy_test)});
+                                       AccuracyTestOptions{parseAccuracyTestChoice(o.accuracy_test)},
+                                       fallbacks.chain());
   return report;
 }
 

@@ -206,6 +206,18 @@ FallbackChain FallbackChain::forWarmPoints() const {
   return chain;
 }
 
+FallbackChain FallbackChain::withOwnBackendOnly() const {
+  FallbackChain chain = *this;
+  chain.steps.clear();
+  chain.solvers.clear();
+  for (size_t i = 0; i < steps.size(); ++i)
+    if (steps[i] == kCold || steps[i] == kFull || steps[i] == kCondensed) {
+      chain.steps.push_back(steps[i]);
+      chain.solvers.push_back(solvers[i]);
+    }
+  return chain;
+}
+
 FallbackChain FallbackChain::parse(const std::string& text, const std::string& field,
                                    const std::function<Solver*(const std::string&)>& solver_for) {
   FallbackChain chain;

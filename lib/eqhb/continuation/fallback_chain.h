@@ -69,6 +69,12 @@ struct FallbackChain {
   // point its default sweep 3x slower (75 s for 244 s), each rescuing no
   // point that the next point did not.
   FallbackChain forWarmPoints() const;
+  // The steps that run the failed solve's own backend again (cold, full,
+  // condensed): for the rungs of an accuracy ladder above its first, warm
+  // from the rung below at H >= 10, where another backend's solve or the
+  // forcing homotopy costs minutes (full:ceres-lm on contact at H = 160:
+  // more than 10 minutes and 2 GB before it was stopped).
+  FallbackChain withOwnBackendOnly() const;
   // Parses "cold,full,condensed,forcing,NAME,full:NAME" (or "none"); `solver_for` returns the backend for a
   // NAME that is neither cold nor full, or null for an unknown one. Throws
   // InputError naming `field` for an unknown, empty or repeated step.

@@ -140,6 +140,7 @@ nlohmann::json ladderJson(const std::vector<AccuracyRung>& rungs) {
     rung["test"] = r.tested ? nlohmann::json(accuracyTestName(r.test)) : nlohmann::json(nullptr);
     rung["error"] = r.tested ? nlohmann::json(r.error) : nlohmann::json(nullptr);
     if (r.test_seconds > 0.0) rung["test_seconds"] = r.test_seconds;
+    if (!r.fallback.empty()) rung["fallback"] = r.fallback;
     ladder.push_back(rung);
   }
   return ladder;
