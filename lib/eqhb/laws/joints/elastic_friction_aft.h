@@ -46,8 +46,16 @@
 // radial return when the structure is rigid). The slider's state rides on
 // the previous step's force: w = u_t − T/k_t at the step's start, and an
 // open contact (T = 0) leaves the slider at u_t, released.
+//
+// Jenkins on a plane (constant_limit set: the `jenkins` law on 2 DOFs in the
+// AFT form): no normal component; the slider's limit is μN throughout, the
+// law's components are the tangents alone, and λ is the force on the
+// structure as the other jenkins forms have it, λ = −T (forceSign +1), so
+// Ψ_a = λ_a + T_a and the Jacobian's signs turn with it. Its time reference
+// is the equality-form Jenkins' step on the same plane.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "eqhb/laws/joints/contact_friction.h"
@@ -61,6 +69,9 @@ struct ElasticFrictionParameters {
   double k_t = 0.0;      // tangential stiffness, > 0
   double k_n = 0.0;      // normal penalty stiffness, > 0
   double gap = 0.0;      // g0, the wall's position along n, finite
+  // Set: no normal component, a constant limit μN (>= 0, finite): Jenkins on
+  // a plane (the header); k_n and gap unused.
+  std::optional<double> constant_limit;
 };
 
 class ElasticFrictionAft : public Law {
@@ -70,12 +81,13 @@ class ElasticFrictionAft : public Law {
   // Throws InputError naming the field: mu >= 0, k_t > 0, k_n > 0, gap, all
   // finite; tangents 1 or 2.
   explicit ElasticFrictionAft(const ElasticFrictionParameters& parameters);
-  std::string type() const override { return "elastic-friction"; }
-  int dimension() const override { return 1 + p_.tangents; }
-  double forceSign() const override { return -1.0; }
+  std::string type() const override { return onPlane() ? "jenkins" : "elastic-friction"; }
+  int dimension() const override { return firstTangent() + p_.tangents; }
+  double forceSign() const override { return onPlane() ? 1.0 : -1.0; }
   bool usesDisplacement() const override { return true; }
   bool usesVelocity() const override { return false; }
-  bool needsConstantTerm() const override { return true; }
+  bool needsConstantTerm() const override { return !onPlane(); }
+  double forceLevel() const override { return onPlane() ? *p_.constant_limit : 0.0; }
   double displacementLevel() const override;
   // One term per sample: on one sample (the static step, linear modes) 1.
   int historyTerms() const override { return 1; }
@@ -95,11 +107,15 @@ class ElasticFrictionAft : public Law {
   // w = 0 to the displacement of `rest` (the return map of one sample).
   std::shared_ptr<Law> anchoredAt(const LawSamples& rest) const override;
   const ElasticFrictionParameters& parameters() const { return p_; }
+  // Jenkins on a plane: no normal component (the header).
+  bool onPlane() const { return p_.constant_limit.has_value(); }
+  // The law component of the first tangent: 0 on a plane, else 1.
+  int firstTangent() const { return onPlane() ? 0 : 1; }
   const std::vector<double>& anchor() const { return anchor_; }
 
  private:
   ElasticFrictionParameters p_;
-  ContactFriction step_law_;  // the same element as contact-friction, for solveStep
+  std::optional<ContactFriction> step_law_;  // the same element as contact-friction, for solveStep (none on a plane)
   std::vector<double> anchor_;  // the slider's static position; empty: start at ū_t
 };
 

@@ -1,4 +1,5 @@
 // jenkins: a Coulomb slider behind a spring k_t, on 1 or 2 DOFs (laws/joints/jenkins.h).
+#include "eqhb/laws/joints/elastic_friction_aft.h"
 #include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/laws/joints/jenkins_aft.h"
 #include "eqhb/laws/registry/entry_support.h"
@@ -13,7 +14,8 @@ LawEntry jenkinsEntry() {
                           {"k_t", "", "> 0", "tangential stiffness"},
                           {"form", "minmax (1 DOF), max (2)", "minmax|projection|max", "minmax: one DOF"},
                           {"formulation", "aft on 1 DOF without form or rho, else equality", "equality|aft",
-                           "aft: the force by the return map over the period (1 DOF; form and ρ unused)"}});
+                           "aft: the force by the return map over the period (a radial return on the disc of "
+                           "radius muN on 2 DOFs; form and ρ unused)"}});
   e.parse = [](LawTable& t) -> std::shared_ptr<Law> {
     const double mu_n = t.frictionLimit("muN");
     const double k_t = t.positive("k_t", std::nullopt);
@@ -29,24 +31,34 @@ LawEntry jenkinsEntry() {
   // NLvib's example 07 the arclength sweep completes where the equality
   // form's kinks stop it).
   e.aft_by_default = [](const LawTable& t) { return t.components() == 1; };
-  e.in_aft_form = [](const Law& law) { return dynamic_cast<const JenkinsAft*>(&law) != nullptr; };
+  e.in_aft_form = [](const Law& law) {
+    return dynamic_cast<const JenkinsAft*>(&law) != nullptr || dynamic_cast<const ElasticFrictionAft*>(&law) != nullptr;
+  };
   e.parse_aft = [](LawTable& t) -> std::shared_ptr<Law> {
     const double mu_n = t.frictionLimit("muN");
     const double k_t = t.positive("k_t", std::nullopt);
     // form and ρ belong to the equality form; read (and checked) so that a
     // scene switches formulation by one key.
     t.rho();
-    t.form("minmax");
-    if (t.components() != 1)
-      t.fail(t.path(t.componentsKey()), t.dofsText(), "the aft formulation of a jenkins law acts on 1 DOF");
-    return std::make_shared<JenkinsAft>(std::vector<JenkinsAft::Slider>{{mu_n, k_t}});
+    const int m = t.components();
+    t.form(m == 1 ? "minmax" : "max");
+    if (m != 1 && m != 2) t.fail(t.path(t.componentsKey()), t.dofsText(), "a jenkins law acts on 1 or 2 DOFs");
+    if (m == 1) return std::make_shared<JenkinsAft>(std::vector<JenkinsAft::Slider>{{mu_n, k_t}});
+    // On a plane: elastic-friction's tangential return map with the limit
+    // held at muN (laws/joints/elastic_friction_aft.h).
+    ElasticFrictionParameters plane;
+    plane.tangents = 2;
+    plane.k_t = k_t;
+    plane.constant_limit = mu_n;
+    return std::make_shared<ElasticFrictionAft>(plane);
   };
   e.examples = {{"jenkins1_minmax", 1, "muN = 1.2\nk_t = 2.0\nform = \"minmax\"\nrho = 0.9"},
                 {"jenkins1_projection", 1, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"},
                 {"jenkins2_max", 2, "muN = 1.2\nk_t = 2.0\nform = \"max\"\nrho = 0.9"},
                 {"jenkins2_projection", 2, "muN = 1.2\nk_t = 2.0\nform = \"projection\"\nrho = 0.9"},
                 // The return map over the period (JenkinsAft): its Jacobian across samples.
-                {"jenkins1_aft", 1, "muN = 1.2\nk_t = 2.0\nformulation = \"aft\""}};
+                {"jenkins1_aft", 1, "muN = 1.2\nk_t = 2.0\nformulation = \"aft\""},
+                {"jenkins2_aft", 2, "muN = 1.2\nk_t = 2.0\nformulation = \"aft\""}};
   // On one DOF: a slider behind a spring, closed form between events.
   e.piecewise_linear_flow = [](const Law& law) -> std::optional<PiecewiseLinearSite> {
     PiecewiseLinearSite site;
@@ -55,8 +67,9 @@ LawEntry jenkinsEntry() {
       site.stiffness = aft->sliders().front().k_t;
       return site;
     }
-    const auto& jenkins = static_cast<const Jenkins&>(law);
-    if (jenkins.dimension() != 1) return std::nullopt;
+    const auto* jenkins_pointer = dynamic_cast<const Jenkins*>(&law);
+    if (!jenkins_pointer || jenkins_pointer->dimension() != 1) return std::nullopt;  // a plane: no 1-D site
+    const Jenkins& jenkins = *jenkins_pointer;
     site.limit = jenkins.muN();
     site.stiffness = jenkins.stiffness();
     return site;
