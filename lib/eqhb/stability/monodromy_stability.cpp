@@ -12,6 +12,7 @@
 #include "eqhb/laws/signorini.h"
 #include "eqhb/stability/interface_reduction.h"
 #include "eqhb/stability/multiplier_stability.h"
+#include "eqhb/stability/spring_law_monodromy.h"
 #include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/orbits/shooting.h"
 
@@ -36,6 +37,7 @@ double crossing(double a, double b) {
 
 bool MonodromyStability::supports(const HbModel& model) {
   if (model.laws.empty()) return false;
+  if (SpringLawMonodromy::supports(model)) return true;
   for (const AttachedLaw& a : model.laws) {
     if (!a.attachment.grounded() || a.law->dimension() != 1) return false;
     if (!exactCoulomb(*a.law) && !dynamic_cast<const Signorini*>(a.law.get())) return false;
@@ -49,7 +51,8 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   model_.validate();
   if (!supports(model_))
     throwInputError("stability_method", "\"monodromy\"",
-                    "needs grounded Coulomb 1D (minmax or projection form) or Signorini laws only; use hill");
+                    "needs grounded Coulomb 1D (minmax or projection form) or Signorini laws only, or penalty "
+                    "contact and one-slider jenkins (aft) laws only; use hill");
   n_ = model_.structure.dofs();
   transform_ = std::make_unique<FourierTransform>(model_.basis, model_.samples);
   // The loads at the samples: harmonic h at t_k = kT/N has the phase
@@ -60,7 +63,15 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   rate_.resize(model_.basis.size());
   combined_.resize(model_.basis.size());
   dynamics_ = orbits::DenseDynamics(model_.structure);  // throws unless M > 0
+  const bool springs = SpringLawMonodromy::supports(model_);
+  // The DOFs kept by a reduction: every DOF an attachment touches.
+  std::vector<int> boundary;
+  for (const AttachedLaw& a : model_.laws)
+    for (int dof : a.attachment.dofs()) boundary.push_back(dof);
+  std::sort(boundary.begin(), boundary.end());
+  boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
   for (const AttachedLaw& a : model_.laws) {
+    if (springs) break;
     dofs_.push_back(a.attachment.dof(0));
     if (const auto* c = dynamic_cast<const Coulomb1D*>(a.law.get())) {
       contact_.push_back(false);
@@ -81,14 +92,14 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
     int k_max = 1;
     for (int k : model_.basis.harmonics()) k_max = std::max(k_max, k);
     const InterfaceReduction reduced = reduceToInterface(Eigen::MatrixXd(model_.structure.mass), dynamics_.damping,
-                                                         dynamics_.stiffness, dofs_, kFastMargin * k_max * model_.omega,
+                                                         dynamics_.stiffness, boundary, kFastMargin * k_max * model_.omega,
                                                          2.0 * M_PI / model_.omega, reduction.decay);
     m_ = static_cast<int>(reduced.mass.rows());
     projection_ = reduced.projection;
     propagated_.mass_inverse = reduced.mass.inverse();
     propagated_.damping = reduced.damping;
     propagated_.stiffness = reduced.stiffness;
-    for (int dof : dofs_)
+    for (int dof : dofs_)  // reduced.boundary is `boundary`, sorted
       coords_.push_back(static_cast<int>(std::lower_bound(reduced.boundary.begin(), reduced.boundary.end(), dof) -
                                          reduced.boundary.begin()));
     load_directions_ = reduced.basis.transpose();
@@ -97,6 +108,12 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
     propagated_ = dynamics_;
     coords_ = dofs_;
     load_directions_ = Eigen::MatrixXd::Identity(n_, n_);
+  }
+  if (springs) {
+    std::vector<int> coordinate(n_, -1);
+    for (size_t j = 0; j < boundary.size(); ++j) coordinate[boundary[j]] = projection_.size() > 0 ? static_cast<int>(j) : boundary[j];
+    springs_ = std::make_unique<SpringLawMonodromy>(model_, propagated_.mass_inverse, propagated_.damping,
+                                                    propagated_.stiffness, coordinate);
   }
 }
 
@@ -371,6 +388,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   model_.omega = omega;
   ++point_;
   const double period = 2.0 * M_PI / omega;
+  if (springs_) return multipliers(springs_->monodromy(omega, full, work_.exponentials, work_.syntheses), period, start);
   classify(full);
   keepHeldRuns(full);
   findSwitches();
@@ -394,11 +412,16 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
       current_.swap(after_);
     }
   }
+  return multipliers(phi, period, start);
+}
+
+HillResult MonodromyStability::multipliers(const Eigen::MatrixXd& phi, double period,
+                                           std::chrono::steady_clock::time_point start) const {
   HillResult result;
   Eigen::EigenSolver<Eigen::MatrixXd> solver(phi, false);
   if (solver.info() != Eigen::Success) {
     result.method = "monodromy";
-    result.state_dimension = result.candidates = result.pencil_size = 2 * m_;
+    result.state_dimension = result.candidates = result.pencil_size = static_cast<int>(phi.rows());
     result.failure = "the eigenvalues of the monodromy matrix did not converge";
   } else {
     result = stabilityFromMultipliers(solver.eigenvalues(), period, unit_tolerance_, "monodromy");

@@ -1,0 +1,198 @@
+#include "eqhb/stability/spring_law_monodromy.h"
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <algorithm>
+#include <cmath>
+
+#include "eqhb/harmonic_balance/fourier_transform.h"
+#include "eqhb/laws/joints/jenkins_aft.h"
+#include "eqhb/laws/penalty_contact.h"
+
+namespace eqhb {
+
+namespace {
+
+const JenkinsAft* oneSlider(const Law& law) {
+  const auto* j = dynamic_cast<const JenkinsAft*>(&law);
+  return j && j->sliders().size() == 1 ? j : nullptr;
+}
+
+// The fraction in [0, 1] of a sample interval where the linear interpolant
+// of a quantity going from a to b vanishes (0.5 when it does not change).
+double crossing(double a, double b) {
+  const double d = a - b;
+  if (d == 0.0 || !std::isfinite(a / d)) return 0.5;
+  return std::clamp(a / d, 0.0, 1.0);
+}
+
+}  // namespace
+
+bool SpringLawMonodromy::supports(const HbModel& model) {
+  if (model.laws.empty()) return false;
+  for (const AttachedLaw& a : model.laws) {
+    if (a.law->dimension() != 1) return false;
+    if (!oneSlider(*a.law) && !dynamic_cast<const PenaltyContact*>(a.law.get())) return false;
+  }
+  return true;
+}
+
+SpringLawMonodromy::SpringLawMonodromy(const HbModel& model, const Eigen::MatrixXd& mass_inverse,
+                                       const Eigen::MatrixXd& damping, const Eigen::MatrixXd& stiffness,
+                                       const std::vector<int>& coordinate)
+    : model_(model), mass_inverse_(mass_inverse), damping_(damping), stiffness_(stiffness) {
+  m_ = static_cast<int>(mass_inverse.rows());
+  laws_ = static_cast<int>(model_.laws.size());
+  transform_ = std::make_unique<FourierTransform>(model_.basis, model_.samples);
+  const int samples = model_.samples, nb = model_.basis.size();
+  for (const AttachedLaw& a : model_.laws) {
+    // w in q: the attachment's weights at its DOFs' coordinates (they are
+    // boundary coordinates of the reduction, kept as they are).
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(m_);
+    for (const AttachmentTerm& t : a.attachment.row(0)) w[coordinate[t.dof]] += t.weight;
+    direction_.push_back(w);
+    if (const auto* c = dynamic_cast<const PenaltyContact*>(a.law.get())) {
+      contact_.push_back(true);
+      spring_.push_back(c->stiffness());
+      gap_.push_back(c->gap());
+    } else {
+      contact_.push_back(false);
+      spring_.push_back(oneSlider(*a.law)->sliders().front().k_t);
+      gap_.push_back(0.0);
+    }
+    LawSamples s;
+    s.resize(samples, 1, a.law->historyTerms());
+    samples_.push_back(std::move(s));
+  }
+  // Ω: the fastest rate with every spring in (the norm of M⁻¹K).
+  Eigen::MatrixXd k = stiffness_;
+  for (int l = 0; l < laws_; ++l) k.noalias() += spring_[l] * direction_[l] * direction_[l].transpose();
+  scale_ = std::sqrt(std::max((mass_inverse_ * k).lpNorm<Eigen::Infinity>(), 1e-300));
+  u_.resize(samples, laws_);
+  rate_.resize(samples, laws_);
+  force_.resize(samples, laws_);
+  buffer_.resize(nb);
+  derivative_.resize(nb);
+  slot_.assign(laws_, -1);
+}
+
+SpringLawMonodromy::~SpringLawMonodromy() = default;
+
+// u, u̇ and the force per sample, and the state per sample by the law's own
+// rule (header).
+void SpringLawMonodromy::classify(double omega, const Eigen::VectorXd& full, long& syntheses) {
+  const int nb = model_.basis.size(), samples = model_.samples, n = model_.structure.dofs();
+  active_.assign(static_cast<size_t>(samples) * laws_, 0);
+  sliders_ = 0;
+  for (int l = 0; l < laws_; ++l) {
+    const AttachedLaw& a = model_.laws[l];
+    a.attachment.gatherCoefficients(full.data(), nb, 0, buffer_.data());
+    transform_->synthesize(buffer_.data(), u_.col(l).data());
+    transform_->differentiate(buffer_.data(), omega, derivative_.data());
+    transform_->synthesize(derivative_.data(), rate_.col(l).data());
+    transform_->synthesize(full.data() + static_cast<std::ptrdiff_t>(n + model_.componentIndex(l, 0)) * nb,
+                           force_.col(l).data());
+    syntheses += 3;
+    slot_[l] = -1;
+    if (contact_[l]) {
+      for (int k = 0; k < samples; ++k) active_[static_cast<size_t>(k) * laws_ + l] = u_(k, l) > gap_[l];
+      continue;
+    }
+    // The slider's state from its return map over u, as the harmonic
+    // balance evaluates it: stuck where ∂Ψ/∂u = k_t; its force F = λ − Ψ.
+    LawSamples& s = samples_[l];
+    s.displacement.col(0) = u_.col(l);
+    s.force.col(0) = force_.col(l);
+    a.law->evaluate(s, true);
+    bool slips = false;
+    for (int k = 0; k < samples; ++k) {
+      const bool stuck = s.dpsi_ddisplacement(k, 0) > 0.0;
+      active_[static_cast<size_t>(k) * laws_ + l] = stuck;
+      slips = slips || !stuck;
+      force_(k, l) -= s.psi(k, 0);
+    }
+    if (slips) slot_[l] = sliders_++;
+  }
+}
+
+void SpringLawMonodromy::findSwitches(double omega) {
+  const int samples = model_.samples;
+  const double step = 2.0 * M_PI / omega / samples;
+  switches_.clear();
+  for (int k = 0; k < samples; ++k) {
+    const int next = (k + 1) % samples;
+    for (int l = 0; l < laws_; ++l) {
+      const bool a = active_[static_cast<size_t>(k) * laws_ + l], b = active_[static_cast<size_t>(next) * laws_ + l];
+      if (a == b) continue;
+      double fraction = 0.5;
+      if (contact_[l]) {
+        fraction = crossing(u_(k, l) - gap_[l], u_(next, l) - gap_[l]);
+      } else if (a) {
+        // Slip onset: the stuck force's trial value at the next sample
+        // against the limit.
+        const double limit = oneSlider(*model_.laws[l].law)->muN();
+        const double trial = force_(k, l) - spring_[l] * (u_(next, l) - u_(k, l));
+        fraction = crossing(std::abs(force_(k, l)) - limit, std::abs(trial) - limit);
+      } else {
+        fraction = crossing(rate_(k, l), rate_(next, l));  // stick onset: u̇ = 0
+      }
+      switches_.push_back({(k + fraction) * step, l, b});
+    }
+  }
+  std::stable_sort(switches_.begin(), switches_.end(), [](const Switch& x, const Switch& y) { return x.time < y.time; });
+}
+
+// A of (1) (header) for the laws' states `active` and the current slots.
+const Eigen::MatrixXd& SpringLawMonodromy::generator(const std::vector<char>& active) {
+  auto key = std::make_pair(active, slot_);
+  auto found = generators_.find(key);
+  if (found != generators_.end()) return found->second;
+  const int d = 2 * m_ + sliders_;
+  Eigen::MatrixXd k = stiffness_;
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(d, d);
+  for (int l = 0; l < laws_; ++l) {
+    if (!active[l]) continue;
+    k.noalias() += spring_[l] * direction_[l] * direction_[l].transpose();
+    if (slot_[l] >= 0) a.block(m_, 2 * m_ + slot_[l], m_, 1) = spring_[l] * (mass_inverse_ * direction_[l]);
+  }
+  // In [δq; δq̇/Ω; δz] (a similarity: the multipliers are the same) the
+  // blocks are of one size, which the exponential's scaling and squaring
+  // needs: unscaled, the stiff contact springs on light interface DOFs
+  // (‖M⁻¹K‖ ~ 4e14 on the lap joint) made it overflow.
+  a.block(m_, 2 * m_, m_, sliders_) /= scale_;
+  a.block(0, m_, m_, m_).diagonal().setConstant(scale_);
+  a.block(m_, 0, m_, m_) = -mass_inverse_ * k / scale_;
+  a.block(m_, m_, m_, m_) = -mass_inverse_ * damping_;
+  return generators_.emplace(std::move(key), std::move(a)).first->second;
+}
+
+const Eigen::MatrixXd& SpringLawMonodromy::monodromy(double omega, const Eigen::VectorXd& full, long& exponentials,
+                                                     long& syntheses) {
+  const double period = 2.0 * M_PI / omega;
+  classify(omega, full, syntheses);
+  findSwitches(omega);
+  const int d = 2 * m_ + sliders_;
+  phi_ = Eigen::MatrixXd::Identity(d, d);
+  current_.assign(active_.begin(), active_.begin() + laws_);
+  if (switches_.empty()) {
+    phi_ = (generator(current_) * period).exp();
+    ++exponentials;
+    return phi_;
+  }
+  // From just after the first switch round the period back to it.
+  current_[switches_[0].law] = switches_[0].to_active;
+  for (size_t j = 0; j < switches_.size(); ++j) {
+    const Switch& s = switches_[(j + 1) % switches_.size()];
+    const double previous = switches_[j].time;
+    const double tau = j + 1 < switches_.size() ? s.time - previous : s.time + period - previous;
+    phi_ = (generator(current_) * tau).exp() * phi_;
+    ++exponentials;
+    // (4): a stick onset sets the anchor's perturbation to wᵀδq.
+    if (!contact_[s.law] && s.to_active && slot_[s.law] >= 0)
+      phi_.row(2 * m_ + slot_[s.law]) = direction_[s.law].transpose() * phi_.topRows(m_);
+    current_[s.law] = s.to_active;
+  }
+  return phi_;
+}
+
+}  // namespace eqhb

@@ -1,0 +1,107 @@
+// The monodromy of the linearised dynamics over a harmonic-balance orbit for
+// laws that act by springs: penalty contact (laws/penalty_contact.h) and
+// elastic dry friction in the AFT form with one slider (Jenkins,
+// laws/joints/jenkins_aft.h), each on one relative coordinate u = w·x
+// (grounded: one DOF; between two nodes: both). Used by MonodromyStability
+// (monodromy_stability.h) when every law of a model is one of these.
+//
+// Per law and sample the state is read from the solution as the law itself
+// reads it: a penalty contact is closed where u > g0; a Jenkins slider
+// sticks where its return map over the samples of u (JenkinsAft::evaluate,
+// the same passes and anchors as the harmonic balance) leaves the trial
+// force inside ±μN. Between two switching instants every law is in one
+// state and a perturbation y = [δq; δq̇; δz] obeys
+//   M δq̈ + C δq̇ + (K + Σ_closed k_n w wᵀ + Σ_stuck k_t w wᵀ) δq = Σ_stuck k_t w δz,
+// δż = 0,                                                               (1)
+// whose transition over a phase of length τ is exp(A τ) exactly.
+//
+// z is the slider's anchor: stuck, the force is −k_t (u − z) with z set at
+// the stick onset; slipping, it is the constant ±μN and z = u ∓ μN/k_t
+// follows u (ż = u̇). The exact flow of [x; v; z] is continuous in x and v
+// at every switch (the forces are continuous), so the only saltation is in
+// z. With S = I + (f⁺ − f⁻) ∇gᵀ / ġ⁻:
+//   stick → slip, g = −k_t (u − z) ∓ μN, ∇g = −k_t [wᵀ 0 −1], ġ⁻ = −k_t u̇,
+//     f⁺ − f⁻ = [0; 0; u̇]  ⇒  δz⁺ = δz + (wᵀδx − δz) = wᵀ δx;        (2)
+//   slip → stick, g = u̇: ż = u̇ = 0 on both sides, S = I.             (3)
+// By (2) a slipping slider's perturbation is δz = wᵀδx: its δz carries
+// nothing of its own while it slips, so it is not propagated there (its row
+// of (1) is 0 and its force term absent) and is set at the stick onset,
+//   δz := wᵀ δx  at slip → stick,                                       (4)
+// which is (3) applied to the slaved δz. A penalty contact's field is
+// continuous at u = g0: S = I. A slider that never slips keeps the anchor
+// the harmonic balance gives it (the period's mean of u, or its static
+// position): it is a spring k_t without a z, as in the harmonic balance's
+// Jacobian, so an orbit that never slips nor opens has the linear
+// structure's multipliers (the neutral drift of a stuck anchor, a
+// multiplier 1, is left out as Hill's method leaves it out). A slider that
+// slips has one z: the multipliers are 2m + (sliders that slip), one of
+// them 0 per such slider (δz is forgotten while it slips).
+//
+// Switching instants lie between two samples, placed by linear
+// interpolation of what vanishes there: u − g0 (contact), u̇ (stick onset),
+// |trial force| − μN (slip onset). A slider whose slip turns over between
+// two slipping samples (a stick shorter than a sample) is taken as slipping.
+#pragma once
+
+#include <Eigen/Dense>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "eqhb/harmonic_balance/hb_model.h"
+#include "eqhb/laws/law.h"
+
+namespace eqhb {
+
+class FourierTransform;
+
+class SpringLawMonodromy {
+ public:
+  // `projection` (m x n, q = P x, P T = I on the law DOFs) and the
+  // propagation's dynamics (m x m) come from MonodromyStability: the full
+  // structure (P = I) or its interface reduction. `coordinate(dof)` of
+  // every DOF an attachment touches is its place in q.
+  SpringLawMonodromy(const HbModel& model, const Eigen::MatrixXd& mass_inverse, const Eigen::MatrixXd& damping,
+                     const Eigen::MatrixXd& stiffness, const std::vector<int>& law_coordinates_of_dofs);
+  ~SpringLawMonodromy();
+  SpringLawMonodromy(const SpringLawMonodromy&) = delete;
+  SpringLawMonodromy& operator=(const SpringLawMonodromy&) = delete;
+  // True when every law is a penalty contact or a one-slider Jenkins AFT
+  // law of dimension 1 (grounded or relative), and there is one at least.
+  static bool supports(const HbModel& model);
+  // The monodromy of `full` ([x; λ] on the model's basis) at ω, square of
+  // size 2m + the sliders that slip. `exponentials` counts those formed.
+  const Eigen::MatrixXd& monodromy(double omega, const Eigen::VectorXd& full, long& exponentials, long& syntheses);
+
+ private:
+  struct Switch {
+    double time = 0.0;
+    int law = 0;
+    bool to_active = false;  // stuck or closed after it
+  };
+  void classify(double omega, const Eigen::VectorXd& full, long& syntheses);
+  void findSwitches(double omega);
+  const Eigen::MatrixXd& generator(const std::vector<char>& active);
+
+  HbModel model_;
+  std::unique_ptr<FourierTransform> transform_;
+  int m_ = 0, laws_ = 0;
+  double scale_ = 1.0;                      // Ω of the scaled velocities (generator())
+  Eigen::MatrixXd mass_inverse_, damping_, stiffness_;
+  std::vector<Eigen::VectorXd> direction_;  // per law: w in q (m)
+  std::vector<double> spring_;              // per law: k_n or k_t
+  std::vector<bool> contact_;
+  std::vector<double> gap_;                 // g0 (contacts)
+  std::vector<int> slot_;                   // per law: its z's index among the slipping sliders, or -1
+  int sliders_ = 0;                         // z's at this point
+  std::vector<LawSamples> samples_;         // per law, the law's own evaluation
+  Eigen::MatrixXd u_, rate_, force_;        // N x laws
+  Eigen::VectorXd buffer_, derivative_;     // coefficient buffers (one channel)
+  std::vector<char> active_;                // N x laws, row-major: stuck or closed
+  std::vector<Switch> switches_;
+  std::vector<char> current_;
+  std::map<std::pair<std::vector<char>, std::vector<int>>, Eigen::MatrixXd> generators_;
+  Eigen::MatrixXd phi_;
+};
+
+}  // namespace eqhb
