@@ -12,6 +12,7 @@
 #include "eqhb/laws/signorini.h"
 #include "eqhb/stability/interface_reduction.h"
 #include "eqhb/stability/multiplier_stability.h"
+#include "eqhb/stability/switch_crossing.h"
 #include "eqhb/stability/spring_law_monodromy.h"
 #include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/orbits/shooting.h"
@@ -23,14 +24,6 @@ namespace {
 bool exactCoulomb(const Law& law) {
   const auto* c = dynamic_cast<const Coulomb1D*>(&law);
   return c && (c->form() == CoulombForm::kMinMax || c->form() == CoulombForm::kProjection);
-}
-
-// The fraction in [0, 1] of a sample interval where the linear interpolant
-// of a quantity going from a to b vanishes (0.5 when it does not change).
-double crossing(double a, double b) {
-  const double d = a - b;
-  if (d == 0.0 || !std::isfinite(a / d)) return 0.5;
-  return std::clamp(a / d, 0.0, 1.0);
 }
 
 }  // namespace
@@ -291,11 +284,11 @@ void MonodromyStability::findSwitches() {
       const State a = state(k, l), b = state(next, l);
       if (a == b) continue;
       double fraction = 0.5;
-      if (a == State::kOpen) fraction = crossing(gap_[l] - u_(k, l), gap_[l] - u_(next, l));
-      else if (a == State::kClosed) fraction = crossing(r_(k, l), r_(next, l));
+      if (a == State::kOpen) fraction = switchCrossing(gap_[l] - u_(k, l), gap_[l] - u_(next, l));
+      else if (a == State::kClosed) fraction = switchCrossing(r_(k, l), r_(next, l));
       else if (a == State::kStick)
-        fraction = crossing(std::abs(r_(k, l)) - limit_[l], std::abs(r_(next, l)) - limit_[l]);
-      else fraction = crossing(v_(k, l), v_(next, l));
+        fraction = switchCrossing(std::abs(r_(k, l)) - limit_[l], std::abs(r_(next, l)) - limit_[l]);
+      else fraction = switchCrossing(v_(k, l), v_(next, l));
       switches_.push_back({(k + fraction) * step, l, a, b});
     }
   }

@@ -8,6 +8,7 @@
 #include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/laws/joints/jenkins_aft.h"
 #include "eqhb/laws/penalty_contact.h"
+#include "eqhb/stability/switch_crossing.h"
 
 namespace eqhb {
 
@@ -16,14 +17,6 @@ namespace {
 const JenkinsAft* oneSlider(const Law& law) {
   const auto* j = dynamic_cast<const JenkinsAft*>(&law);
   return j && j->sliders().size() == 1 ? j : nullptr;
-}
-
-// The fraction in [0, 1] of a sample interval where the linear interpolant
-// of a quantity going from a to b vanishes (0.5 when it does not change).
-double crossing(double a, double b) {
-  const double d = a - b;
-  if (d == 0.0 || !std::isfinite(a / d)) return 0.5;
-  return std::clamp(a / d, 0.0, 1.0);
 }
 
 }  // namespace
@@ -126,15 +119,15 @@ void SpringLawMonodromy::findSwitches(double omega) {
       if (a == b) continue;
       double fraction = 0.5;
       if (contact_[l]) {
-        fraction = crossing(u_(k, l) - gap_[l], u_(next, l) - gap_[l]);
+        fraction = switchCrossing(u_(k, l) - gap_[l], u_(next, l) - gap_[l]);
       } else if (a) {
         // Slip onset: the stuck force's trial value at the next sample
         // against the limit.
         const double limit = oneSlider(*model_.laws[l].law)->muN();
         const double trial = force_(k, l) - spring_[l] * (u_(next, l) - u_(k, l));
-        fraction = crossing(std::abs(force_(k, l)) - limit, std::abs(trial) - limit);
+        fraction = switchCrossing(std::abs(force_(k, l)) - limit, std::abs(trial) - limit);
       } else {
-        fraction = crossing(rate_(k, l), rate_(next, l));  // stick onset: u̇ = 0
+        fraction = switchCrossing(rate_(k, l), rate_(next, l));  // stick onset: u̇ = 0
       }
       switches_.push_back({(k + fraction) * step, l, b});
     }
