@@ -6,6 +6,7 @@
 
 #include "eqhb/backends/default_path.h"
 #include "eqhb/backends/registry.h"
+#include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
 #include "check_support.h"
@@ -184,21 +185,32 @@ TEST(FallbackChain, TheDefaultTriesLevenbergMarquardtOnTheFullSystemBeforeTheFor
   const OwnedFallbackChain with_dogleg("default", "dogleg", "fallback");
   const std::vector<std::string>& steps = with_dogleg.chain().steps;
   ASSERT_GE(steps.size(), 2u);
-  EXPECT_EQ(steps[steps.size() - 2], "full:ceres-lm");
-  EXPECT_EQ(steps.back(), "forcing");
-  EXPECT_EQ(with_dogleg.chain().solvers[steps.size() - 2]->name(), "ceres-lm");
+  ASSERT_GE(steps.size(), 3u);
+  EXPECT_EQ(steps[steps.size() - 3], "full:ceres-lm");
+  EXPECT_EQ(steps[steps.size() - 2], "forcing");
+  EXPECT_EQ(steps.back(), "omega");
+  EXPECT_EQ(with_dogleg.chain().solvers[steps.size() - 3]->name(), "ceres-lm");
   const OwnedFallbackChain with_lm("default", "ceres-lm", "fallback");
   const std::vector<std::string>& own = with_lm.chain().steps;
   EXPECT_EQ(std::find(own.begin(), own.end(), "full:ceres-lm"), own.end());
   EXPECT_THROW(OwnedFallbackChain("cold,full:nonsense", "dogleg", "fallback"), InputError);
 }
 
-TEST(FallbackChain, ParsesTheForcingStepAndPutsItLast) {
+TEST(FallbackChain, ParsesTheForcingAndOmegaStepsAndPutsThemLast) {
   auto none = [](const std::string&) -> Solver* { return nullptr; };
   EXPECT_EQ(FallbackChain::parse("forcing,cold", "fallback", none).steps,
             (std::vector<std::string>{"forcing", "cold"}));
   EXPECT_THROW(FallbackChain::parse("forcing,forcing", "fallback", none), InputError);
-  EXPECT_EQ(FallbackChain::standard(nullptr).steps.back(), "forcing");
+  EXPECT_EQ(FallbackChain::parse("omega,cold", "fallback", none).steps,
+            (std::vector<std::string>{"omega", "cold"}));
+  EXPECT_THROW(FallbackChain::parse("omega,omega", "fallback", none), InputError);
+  const std::vector<std::string>& standard = FallbackChain::standard(nullptr).steps;
+  ASSERT_GE(standard.size(), 2u);
+  EXPECT_EQ(standard[standard.size() - 2], "forcing");
+  EXPECT_EQ(standard.back(), "omega");
+  // An arclength bridge goes without continuation in omega, and only without it.
+  EXPECT_EQ(FallbackChain::standard(nullptr).withoutOmegaContinuation().steps,
+            (std::vector<std::string>{"cold", "full", "condensed", "forcing"}));
   // A sweep's warm points go without it, and without a backend on the full system.
   const FallbackChain warm = FallbackChain::standard(nullptr).forWarmPoints();
   EXPECT_EQ(warm.steps, (std::vector<std::string>{"cold", "full", "condensed"}));
@@ -218,7 +230,49 @@ TEST(FallbackChain, ParsesTheCondensedStepAndRefusesItTwice) {
             (std::vector<std::string>{"cold", "condensed"}));
   EXPECT_THROW(FallbackChain::parse("condensed,condensed", "fallback", none), InputError);
   EXPECT_EQ(FallbackChain::standard(nullptr).steps,
-            (std::vector<std::string>{"cold", "full", "condensed", "forcing"}));
+            (std::vector<std::string>{"cold", "full", "condensed", "forcing", "omega"}));
+}
+
+// penalty-contact at ω = 0.7, below its hardening peak (0.79): the own
+// dogleg stalls from rest, and so do the cold start, the full system and the
+// forcing homotopy (|g| 0.45), while the sequential sweep from 0.3 passes 0.7
+// converged. The chain's "omega" step, continuation in ω from a frequency
+// where the cold start converges, solves it, and its answer is the sweep's
+// point at 0.7.
+TEST(FallbackChain, APenaltyContactBelowItsPeakIsSolvedByContinuationInOmega) {
+  const Scene scene = loadScene(test::problem("penalty-contact.toml"));
+  HbModel at = scene.model;
+  at.omega = 0.7;
+  auto condensed = makeHbSystem(at, true);
+  auto solver = makeSolver("dogleg");
+  const SolverOptions options;
+  const SolverResult failed = solveFromRest(*condensed, *solver, options);
+  ASSERT_FALSE(failed.converged());
+  auto none = [](const std::string&) -> Solver* { return nullptr; };
+  const FallbackChain without = FallbackChain::parse("cold,full,condensed,forcing", "fallback", none);
+  EXPECT_FALSE(solveWithFallbacks(*condensed, *solver, options, failed, true, without, nullptr).converged());
+
+  FallbackReport report;
+  const SolverResult r =
+      solveWithFallbacks(*condensed, *solver, options, failed, true, FallbackChain::standard(nullptr), &report);
+  ASSERT_TRUE(r.converged()) << describeFallbacks(report);
+  EXPECT_EQ(report.taken, "omega");
+  EXPECT_LE(scaledResidualNorm(*condensed, r.solution), options.residual_tolerance);
+  // It says where it came from.
+  EXPECT_NE(describeFallbacks(report).find("from omega = "), std::string::npos) << describeFallbacks(report);
+  // The sweep from the scene's start reaches 0.7 on its grid (101 points).
+  ContinuationOptions sweep;
+  sweep.from = 0.3;
+  sweep.to = 0.7;
+  sweep.step = 0.004;
+  const Curve curve = sweepSequential(scene.model, *solver, options, sweep);
+  ASSERT_TRUE(curve.complete) << curve.stop_reason;
+  const CurvePoint& reference = curve.points.back();
+  ASSERT_NEAR(reference.omega, 0.7, 1e-12);
+  const CurvePoint answer = describePoint(at, condensed->fullCoefficients(r.solution));
+  ASSERT_EQ(answer.max_abs.size(), reference.max_abs.size());
+  for (size_t i = 0; i < answer.max_abs.size(); ++i)
+    EXPECT_NEAR(answer.max_abs[i], reference.max_abs[i], 1e-8 * reference.max_abs[i]) << "DOF " << i;
 }
 
 }  // namespace

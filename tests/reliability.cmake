@@ -196,6 +196,15 @@ endif()
 add_test(NAME cli.contact_h40_default_path_takes_the_forcing_homotopy
          COMMAND ${EXPECT_EXIT} 0 "forcing \\(dogleg: converged\\); the result above is forcing's"
                  ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/contact.toml --omega 0.5 --harmonics 40)
+# penalty-contact at omega = 0.7, below its hardening peak: every step before
+# it stalls (|g| 0.45); the chain's last step, continuation in omega, solves it.
+add_test(NAME cli.penalty_contact_default_path_takes_omega_continuation
+         COMMAND ${EXPECT_EXIT} 0 "omega \\(dogleg: converged; [^)]*from omega = [0-9.]+ in [0-9]+ steps\\); the result above is omega's"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/penalty-contact.toml --omega 0.7)
+add_test(NAME cli.penalty_contact_without_omega_continuation_fails
+         COMMAND ${EXPECT_EXIT} 1 "did not converge"
+                 ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/penalty-contact.toml --omega 0.7
+                 --fallback cold,full,condensed,forcing)
 
 # Field suite (problems/field/, bench/field_suite.py): the sequential sweep of
 # each field scene on eqhb's defaults (own dogleg, 101 points over its range)

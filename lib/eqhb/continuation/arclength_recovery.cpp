@@ -64,6 +64,7 @@ SolverResult ArclengthSweep::correctAtFixedOmega(const ArcScales& s, const Eigen
 // points is not traced, and the jump is said in the stop reason.
 bool ArclengthSweep::bridge() {
   const double heading = folds_.direction() != 0.0 ? folds_.direction() : direction_;
+  const FallbackChain bridge_fallbacks = options_.fallbacks.withoutOmegaContinuation();
   for (double fraction : kBridgeFractions) {
     const double target = std::clamp(current_.omega + heading * fraction * (hi_ - lo_), lo_, hi_);
     if (target == current_.omega) return false;
@@ -76,7 +77,7 @@ bool ArclengthSweep::bridge() {
     std::string taken = "bridge";
     if (!r.converged()) {
       FallbackReport tried;
-      r = solveWithFallbacks(*system_, solver_, solver_options_, r, false, options_.fallbacks, &tried);
+      r = solveWithFallbacks(*system_, solver_, solver_options_, r, false, bridge_fallbacks, &tried);
       if (!r.converged()) continue;
       taken += " (" + tried.taken + ")";
     }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "eqhb/continuation/coarse_start.h"
+#include "eqhb/continuation/omega_fallback.h"
 #include "eqhb/error.h"
 #include "eqhb/preload/operating_point.h"
 
@@ -17,10 +18,11 @@ constexpr const char* kCold = "cold";
 constexpr const char* kFull = "full";
 constexpr const char* kCondensed = "condensed";
 constexpr const char* kForcing = "forcing";
+constexpr const char* kOmega = "omega";
 // "full:NAME": the backend NAME on the full system.
 constexpr const char* kFullWith = "full:";
 // What a step may be, for the messages that refuse one.
-constexpr const char* kStepKinds = "cold, full, condensed, forcing, a backend name or full:NAME";
+constexpr const char* kStepKinds = "cold, full, condensed, forcing, omega, a backend name or full:NAME";
 
 bool isFullWith(const std::string& step) { return step.rfind(kFullWith, 0) == 0; }
 
@@ -191,6 +193,11 @@ FallbackChain FallbackChain::standard(Solver* backup, Solver* full_backup) {
   // rescue every point they rescued before it existed at the same cost.
   chain.steps.push_back(kForcing);
   chain.solvers.push_back(nullptr);
+  // After it: continuation in ω walks a dozen solves or more, and every step
+  // before it keeps the points it rescued, at the same cost (the solves that
+  // converged before it existed are the same solves).
+  chain.steps.push_back(kOmega);
+  chain.solvers.push_back(nullptr);
   return chain;
 }
 
@@ -199,7 +206,19 @@ FallbackChain FallbackChain::forWarmPoints() const {
   chain.steps.clear();
   chain.solvers.clear();
   for (size_t i = 0; i < steps.size(); ++i)
-    if (steps[i] != kForcing && !isFullWith(steps[i])) {
+    if (steps[i] != kForcing && steps[i] != kOmega && !isFullWith(steps[i])) {
+      chain.steps.push_back(steps[i]);
+      chain.solvers.push_back(solvers[i]);
+    }
+  return chain;
+}
+
+FallbackChain FallbackChain::withoutOmegaContinuation() const {
+  FallbackChain chain = *this;
+  chain.steps.clear();
+  chain.solvers.clear();
+  for (size_t i = 0; i < steps.size(); ++i)
+    if (steps[i] != kOmega) {
       chain.steps.push_back(steps[i]);
       chain.solvers.push_back(solvers[i]);
     }
@@ -228,7 +247,7 @@ FallbackChain FallbackChain::parse(const std::string& text, const std::string& f
     if (std::find(chain.steps.begin(), chain.steps.end(), step) != chain.steps.end())
       throwInputError(field, text, "names " + step + " twice");
     Solver* backend = nullptr;
-    if (step != kCold && step != kFull && step != kCondensed && step != kForcing) {
+    if (step != kCold && step != kFull && step != kCondensed && step != kForcing && step != kOmega) {
       backend = solver_for(isFullWith(step) ? step.substr(std::string(kFullWith).size()) : step);
       if (!backend)
         throwInputError(field, text, "has an unknown step " + step + " (steps: " + kStepKinds + ", or none)");
@@ -270,12 +289,14 @@ SolverResult solveWithFallbacks(HbSystem& system, Solver& solver, const SolverOp
             chain.steps.end())
       continue;
     if (options.time_limit > 0.0 && elapsed() >= options.time_limit) break;
-    FallbackAttempt attempt{step, SolverResult()};
+    FallbackAttempt attempt{step, SolverResult(), ""};
     try {
       if (step == kCold) attempt.result = solveCold(solver, system, remaining(), rest_full);
       else if (step == kFull) attempt.result = solveOnFullSystem(solver, system, remaining(), rest_full);
       else if (step == kCondensed) attempt.result = solveOnCondensedSystem(solver, system, remaining(), rest_full);
       else if (step == kForcing) attempt.result = solveByForcingHomotopy(solver, system, remaining(), rest_full);
+      else if (step == kOmega)
+        attempt.result = solveByOmegaContinuation(solver, system, remaining(), chain.at_rest.get(), &attempt.note);
       else if (isFullWith(step) && system.condensed())
         attempt.result = solveOnFullSystem(*chain.solvers[i], system,
                                            forBackend(*chain.solvers[i], solver, remaining()), rest_full);
@@ -308,7 +329,7 @@ SolverResult solveWhereCondensationIsSingular(const HbModel& model, double omega
   result.native_message = "the condensed system is singular at this omega and the fallbacks have no full step";
   if (std::find(chain.steps.begin(), chain.steps.end(), kFull) == chain.steps.end()) return result;
   const auto start = std::chrono::steady_clock::now();
-  FallbackAttempt attempt{kFull, SolverResult()};
+  FallbackAttempt attempt{kFull, SolverResult(), ""};
   try {
     HbModel at = model;
     at.omega = omega;
@@ -331,7 +352,8 @@ std::string describeFallbacks(const FallbackReport& report) {
   for (const FallbackAttempt& a : report.attempts) {
     if (!out.empty()) out += ", ";
     out += a.step + " (" + a.result.solver + ": " + terminationName(a.result.termination) +
-           (a.result.converged() ? "" : " after " + std::to_string(a.result.iterations) + " iterations") + ")";
+           (a.result.converged() ? "" : " after " + std::to_string(a.result.iterations) + " iterations") +
+           (a.note.empty() ? "" : "; " + a.note) + ")";
   }
   return out.empty() ? "no fallback step applied" : out;
 }

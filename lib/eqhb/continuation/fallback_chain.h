@@ -23,6 +23,13 @@
 //             failure): where ‖g‖ has a local minimum that every backend
 //             stalls in from rest (contact at ω = 0.5, H = 40), the load
 //             raised in steps keeps each solve near its answer.
+//   7. omega  continuation in ω from ω/2 up, else from 2ω down, each side
+//             started cold there (omega_fallback.h, which says why these):
+//             where the answer lies on a resonant branch bent by the
+//             nonlinearity that no cold solve at ω reaches (penalty-contact
+//             at ω = 0.7: every step above stalls, |g| 0.45; from 0.35 up
+//             in 11 steps it is the sweep's point). Last: the steps before
+//             it converge what they did at the same cost.
 //
 // Measured on the shipped scenes' sequential sweeps with the own dogleg: the
 // points that failed from the previous point (Duffing and the cubic chain
@@ -45,7 +52,7 @@
 namespace eqhb {
 
 struct FallbackChain {
-  // Steps in order: "cold", "full", "condensed", "forcing", a backend supplied in
+  // Steps in order: "cold", "full", "condensed", "forcing", "omega", a backend supplied in
   // `solvers` by its Solver::name(), or "full:" and that name (the backend on
   // the full system; on the full system itself, the same as its name, skipped
   // where the chain names that too). Empty: no fallback.
@@ -59,9 +66,9 @@ struct FallbackChain {
   std::shared_ptr<const StaticContactState> at_rest;
 
   // The default order: cold, full, condensed, `backup` (may be null: no
-  // backend step), full:`full_backup` (may be null), forcing.
+  // backend step), full:`full_backup` (may be null), forcing, omega.
   static FallbackChain standard(Solver* backup, Solver* full_backup = nullptr);
-  // The same without the forcing and full:NAME steps: for a sweep's point
+  // The same without the forcing, omega and full:NAME steps: for a sweep's point
   // after a converged one, which its continuation in ω (from the previous
   // point, then from the next) serves better. There the homotopy's up to 40
   // solves per failed point made nlvib-03-unilateral-spring's H = 40 sweep 5x
@@ -75,7 +82,12 @@ struct FallbackChain {
   // forcing homotopy costs minutes (full:ceres-lm on contact at H = 160:
   // more than 10 minutes and 2 GB before it was stopped).
   FallbackChain withOwnBackendOnly() const;
-  // Parses "cold,full,condensed,forcing,NAME,full:NAME" (or "none"); `solver_for` returns the backend for a
+  // The same without the step "omega": for an arclength bridge, a jump a
+  // little further along a curve being traced, where continuation in ω from
+  // ω/2 or 2ω would retrace the curve (and up to twice kMostSolves solves per
+  // bridge fraction to find a point the bridge then refuses as retraced).
+  FallbackChain withoutOmegaContinuation() const;
+  // Parses "cold,full,condensed,forcing,omega,NAME,full:NAME" (or "none"); `solver_for` returns the backend for a
   // NAME that is neither cold nor full, or null for an unknown one. Throws
   // InputError naming `field` for an unknown, empty or repeated step.
   static FallbackChain parse(const std::string& text, const std::string& field,
@@ -86,6 +98,7 @@ struct FallbackChain {
 struct FallbackAttempt {
   std::string step;
   SolverResult result;
+  std::string note;  // what the step did, where it says more than its result ("omega": where it started)
 };
 
 struct FallbackReport {
