@@ -71,8 +71,9 @@ void addSolverOptions(CLI::App* cmd, SolveArguments& a) {
                   "Steps tried, in order, when a solve (a sweep's point after its halved steps) fails: cold "
                   "(coarse start, then zero), full (the full system), condensed (the condensed system, then the full "
                   "one from its answer), forcing (the dynamic loads raised from a quarter to the whole, each solve from the "
-                  "last), a backend name, or full:NAME (that backend on the full system); comma-separated, or none. "
-                  "default: cold,full,condensed, Ipopt's least squares (else ceres-lm), full:ceres-lm, forcing")
+                  "last), omega (continuation in omega from omega/2 up, else from 2 omega down), a backend name, or full:NAME "
+                  "(that backend on the full system); comma-separated, or none. "
+                  "default: cold,full,condensed, Ipopt's least squares (else ceres-lm), full:ceres-lm, forcing, omega")
       ->capture_default_str();
 }
 

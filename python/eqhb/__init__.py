@@ -110,10 +110,12 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     from_harmonics, 2 from_harmonics, ... below H (continuation in H), else a
     coarse harmonic balance (about H/3 harmonics on few samples;
     cold_start="zero": from zero). A solve that fails gets the `fallback`
-    steps in order ("cold", "full", "condensed", "forcing", a backend name;
-    comma-separated, or "none"; "default": cold, full, condensed, then Ipopt's
-    least squares, else ceres-lm, then forcing: the dynamic loads raised from a
-    quarter to the whole, each solve from the last).
+    steps in order ("cold", "full", "condensed", "forcing", "omega", a backend
+    name; comma-separated, or "none"; "default": cold, full, condensed, then
+    Ipopt's least squares, else ceres-lm, then forcing: the dynamic loads
+    raised from a quarter to the whole, each solve from the last, then omega:
+    continuation in omega from omega/2 up, else from 2 omega down; each
+    attempt's "note" says where it started).
     form and rho apply to every law that has them, and formulation
     ("equality" or "aft": the force in time from the displacement, projected)
     to every law that has that formulation. linear_algebra: "auto",

@@ -234,6 +234,20 @@ def test_a_failed_solve_reports_each_fallback_attempt():
         eqhb.solve(cubic, 0.8, fallback="cold,nope")
 
 
+
+def test_a_solve_below_a_hardening_peak_is_found_by_continuation_in_omega():
+    # penalty-contact at omega = 0.7: every step of the default path before
+    # "omega" stalls; continuation in omega reaches the sweep's point there.
+    penalty = eqhb.load_scene(PROBLEMS / "penalty-contact.toml")
+    without = eqhb.solve(penalty, 0.7, fallback="cold,full,condensed,forcing")
+    assert not without["converged"]
+    rescued = eqhb.solve(penalty, 0.7)
+    assert rescued["converged"] and rescued["fallback"]["taken"] == "omega"
+    assert "from omega = " in rescued["fallback"]["attempts"][-1]["note"]
+    curve = eqhb.sweep(penalty, 0.3, 0.7, step=0.004)
+    assert curve["complete"] and abs(curve["omega"][-1] - 0.7) < 1e-12
+    np.testing.assert_allclose(rescued["solution"]["max_abs_x"], curve["max_abs"][-1], rtol=1e-8)
+
 def test_an_element_between_two_nodes_acts_equally_and_oppositely():
     # Four identical DOFs on unit springs to the ground, grouped in two 2-DOF
     # nodes, a cubic spring between them along n = (0.6, 0.8): node 2 feels

@@ -80,7 +80,8 @@ nlohmann::json fallbackJson(const FallbackReport& report) {
                         {"termination", terminationName(a.result.termination)},
                         {"iterations", a.result.iterations},
                         {"residual_norm", a.result.final_norm},
-                        {"seconds", a.result.seconds}});
+                        {"seconds", a.result.seconds},
+                        {"note", a.note}});
   return {{"taken", report.taken.empty() ? nlohmann::json(nullptr) : nlohmann::json(report.taken)},
           {"attempts", attempts}, {"seconds", report.seconds}};
 }
