@@ -237,15 +237,20 @@ add_test(NAME field.sequential_sweeps_from_ahead
                  ${FIELD}/nlvib-03-unilateral-wall.toml
                  ${FIELD}/nlvib-03-unilateral-spring.toml)
 set_tests_properties(field.sequential_sweeps_from_ahead PROPERTIES TIMEOUT 300)
-# A scene's N is chosen for its own H: --harmonics raises it where the new H
-# needs more (Duffing's 29 samples for 7 harmonics become 166 for 40), keeps
-# it where it is enough, and an explicit --samples below 2 k_max + 1 is refused.
+# A scene's N is chosen for its own H: --harmonics above it keeps the samples
+# per period of the highest harmonic (Duffing's 29 samples for 7 harmonics
+# become 166 for 40; friction-1d's 1024 for 10 odd harmonics 4258 for 40),
+# below it keeps the scene's N, and an explicit --samples below 2 k_max + 1
+# is refused.
 add_test(NAME cli.harmonics_raise_too_few_samples
          COMMAND ${EXPECT_EXIT} 0 "\"samples\": ?166"
                  ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/duffing.toml --harmonics 40 --json)
-add_test(NAME cli.harmonics_keep_enough_samples
-         COMMAND ${EXPECT_EXIT} 0 "\"samples\": ?1024"
+add_test(NAME cli.harmonics_keep_samples_per_period
+         COMMAND ${EXPECT_EXIT} 0 "\"samples\": ?4258"
                  ${EQHB_CLI} solve ${SCENE} --harmonics 40 --json)
+add_test(NAME cli.fewer_harmonics_keep_the_scene_samples
+         COMMAND ${EXPECT_EXIT} 0 "\"samples\": ?1024"
+                 ${EQHB_CLI} solve ${SCENE} --harmonics 5 --json)
 add_test(NAME cli.given_samples_too_few_for_harmonics
          COMMAND ${EXPECT_EXIT} 2 "harmonic_balance.samples = 50: must be >= 2 k_max . 1 = 81"
                  ${EQHB_CLI} solve ${PROJECT_SOURCE_DIR}/problems/duffing.toml --harmonics 40 --samples 50)

@@ -11,10 +11,10 @@ namespace eqhb {
 
 int samplesForHarmonics(const HbModel& model, int harmonics) {
   const HarmonicSet basis(model.basis.kind(), harmonics);
-  if (model.samples >= basis.minimumSamples()) return model.samples;
+  if (basis.highest() <= model.basis.highest() && model.samples >= basis.minimumSamples()) return model.samples;
   const double ratio = static_cast<double>(basis.highest()) / std::max(1, model.basis.highest());
   const double scaled = std::min(std::ceil(model.samples * ratio), 1e9);
-  return std::max(basis.minimumSamples(), static_cast<int>(scaled));
+  return std::max({basis.minimumSamples(), model.samples, static_cast<int>(scaled)});
 }
 
 void HbModel::validate() const {

@@ -32,10 +32,15 @@ struct HbModel {
   int componentIndex(int l, int a) const;
 };
 
-// N for `model` on `harmonics` harmonics when no N is given: its own where
-// that is enough, else raised in proportion to the highest harmonic (a
-// scene's N is chosen for its H: Duffing's 29 samples for 7 harmonics
-// become 166 for 40), never below 2 k_max + 1. Throws InputError for a
+// N for `model` on `harmonics` harmonics when no N is given: a scene's N is
+// chosen for its H, so a higher H keeps its samples per period of the
+// highest harmonic (N raised in proportion to k_max: Duffing's 29 samples
+// for 7 harmonics become 166 for 40, stribeck's 1024 for 10 odd harmonics
+// 4258 for 40), a lower H keeps the scene's N; never below 2 k_max + 1.
+// Why: the equality forms' kinks are sampled; at H = 40 on the scene's N
+// (13 samples per period of k_max where the scene has 54) the arclength
+// sweeps of stribeck and NLvib's unilateral wall stopped at spurious kinks
+// (0.184, 0.742) and complete with N in proportion. Throws InputError for a
 // harmonic count the basis refuses.
 int samplesForHarmonics(const HbModel& model, int harmonics);
 
