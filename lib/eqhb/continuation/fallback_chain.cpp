@@ -201,40 +201,33 @@ FallbackChain FallbackChain::standard(Solver* backup, Solver* full_backup) {
   return chain;
 }
 
-FallbackChain FallbackChain::forWarmPoints() const {
-  FallbackChain chain = *this;
+namespace {
+
+// The chain's steps (with their backends) for which `keep` holds, in order.
+FallbackChain keepSteps(const FallbackChain& from, const std::function<bool(const std::string&)>& keep) {
+  FallbackChain chain = from;
   chain.steps.clear();
   chain.solvers.clear();
-  for (size_t i = 0; i < steps.size(); ++i)
-    if (steps[i] != kForcing && steps[i] != kOmega && !isFullWith(steps[i])) {
-      chain.steps.push_back(steps[i]);
-      chain.solvers.push_back(solvers[i]);
+  for (size_t i = 0; i < from.steps.size(); ++i)
+    if (keep(from.steps[i])) {
+      chain.steps.push_back(from.steps[i]);
+      chain.solvers.push_back(from.solvers[i]);
     }
   return chain;
+}
+
+}  // namespace
+
+FallbackChain FallbackChain::forWarmPoints() const {
+  return keepSteps(*this, [](const std::string& s) { return s != kForcing && s != kOmega && !isFullWith(s); });
 }
 
 FallbackChain FallbackChain::withoutOmegaContinuation() const {
-  FallbackChain chain = *this;
-  chain.steps.clear();
-  chain.solvers.clear();
-  for (size_t i = 0; i < steps.size(); ++i)
-    if (steps[i] != kOmega) {
-      chain.steps.push_back(steps[i]);
-      chain.solvers.push_back(solvers[i]);
-    }
-  return chain;
+  return keepSteps(*this, [](const std::string& s) { return s != kOmega; });
 }
 
 FallbackChain FallbackChain::withOwnBackendOnly() const {
-  FallbackChain chain = *this;
-  chain.steps.clear();
-  chain.solvers.clear();
-  for (size_t i = 0; i < steps.size(); ++i)
-    if (steps[i] == kCold || steps[i] == kFull || steps[i] == kCondensed) {
-      chain.steps.push_back(steps[i]);
-      chain.solvers.push_back(solvers[i]);
-    }
-  return chain;
+  return keepSteps(*this, [](const std::string& s) { return s == kCold || s == kFull || s == kCondensed; });
 }
 
 FallbackChain FallbackChain::parse(const std::string& text, const std::string& field,
