@@ -5,8 +5,8 @@
 #include <exception>
 #include <sstream>
 
-#include "eqhb/continuation/coarse_start.h"
 #include "eqhb/continuation/omega_fallback.h"
+#include "eqhb/continuation/solve_series.h"
 #include "eqhb/error.h"
 #include "eqhb/preload/operating_point.h"
 
@@ -39,14 +39,6 @@ constexpr int kForcingMostSolves = 40;
 SolverOptions forBackend(const Solver& backend, const Solver& failed_with, SolverOptions options) {
   if (backend.name() != failed_with.name()) options.backend.clear();
   return options;
-}
-
-// The solve's own cold start on `system`: coarse start, then `rest_full`
-// (the full coefficients a cold solve begins at; empty: zero).
-SolverResult solveCold(Solver& solver, HbSystem& system, const SolverOptions& options,
-                       const Eigen::VectorXd& rest_full) {
-  CoarseStart start(system.model(), system.condensed(), options.linear_algebra);
-  return start.solve(solver, system, options, nullptr, rest_full);
 }
 
 // `model` on the full system from its cold start; `full` gets the answer's [x; λ].
@@ -109,23 +101,9 @@ HbModel withDynamicLoadsScaled(HbModel model, double fraction) {
 // Iterations and evaluations are all the solves' together.
 SolverResult solveByForcingHomotopy(Solver& solver, HbSystem& system, const SolverOptions& options,
                                     const Eigen::VectorXd& rest_full) {
-  const auto start = std::chrono::steady_clock::now();
-  auto remaining = [&]() {
-    SolverOptions o = options;
-    if (options.time_limit > 0.0)
-      o.time_limit = std::max(options.time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                                                   start).count(),
-                              1e-3 * options.time_limit);
-    return o;
-  };
-  SolverResult total, last;
+  SolveSeries series(options);
+  SolverResult last;
   last.termination = Termination::kNotProgressing;
-  auto add = [&](const SolverResult& r) {
-    total.iterations += r.iterations;
-    total.residual_evaluations += r.residual_evaluations;
-    total.jacobian_evaluations += r.jacobian_evaluations;
-    last = r;
-  };
   double reached = 0.0, step = kForcingStart;
   bool whole = false;  // the whole load solved: `last` is this system's answer
   Eigen::VectorXd full = rest_full;  // the last converged [x; λ]; empty: the cold start
@@ -134,17 +112,18 @@ SolverResult solveByForcingHomotopy(Solver& solver, HbSystem& system, const Solv
     SolverResult r;
     Eigen::VectorXd answer;
     if (fraction == 1.0) {  // the system itself, its answer in its own unknowns
-      r = full.size() ? solver.solve(system, system.fromFullCoefficients(full), remaining())
-                      : solveCold(solver, system, remaining(), rest_full);
+      r = full.size() ? solver.solve(system, system.fromFullCoefficients(full), series.next())
+                      : solveCold(solver, system, series.next(), rest_full);
       if (r.converged()) answer = system.fullCoefficients(r.solution);
     } else {
       auto scaled = makeHbSystem(withDynamicLoadsScaled(system.model(), fraction), system.condensed(),
                                  options.linear_algebra);
-      r = reached > 0.0 ? solver.solve(*scaled, scaled->fromFullCoefficients(full), remaining())
-                        : solveCold(solver, *scaled, remaining(), rest_full);
+      r = reached > 0.0 ? solver.solve(*scaled, scaled->fromFullCoefficients(full), series.next())
+                        : solveCold(solver, *scaled, series.next(), rest_full);
       if (r.converged()) answer = scaled->fullCoefficients(r.solution);
     }
-    add(r);
+    series.count(r);
+    last = r;
     if (r.termination == Termination::kTimeLimit || r.termination == Termination::kInvalidOptions) break;
     if (!r.converged()) {
       if (reached == 0.0) break;  // no foothold: the smallest load is as hard as the whole
@@ -159,11 +138,7 @@ SolverResult solveByForcingHomotopy(Solver& solver, HbSystem& system, const Solv
     reached = fraction;
     step *= 2.0;
   }
-  SolverResult out = last;
-  out.iterations = total.iterations;
-  out.residual_evaluations = total.residual_evaluations;
-  out.jacobian_evaluations = total.jacobian_evaluations;
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  SolverResult out = series.total(last);
   // A converged solve of a fraction below 1 is not an answer to this system.
   if (!whole && out.converged()) {
     out.termination = Termination::kIterationLimit;

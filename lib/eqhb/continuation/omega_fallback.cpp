@@ -1,27 +1,17 @@
 #include "eqhb/continuation/omega_fallback.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <functional>
 #include <memory>
 
-#include "eqhb/continuation/coarse_start.h"
 #include "eqhb/continuation/secant_guess.h"
+#include "eqhb/continuation/solve_series.h"
 #include "eqhb/error.h"
 #include "eqhb/preload/operating_point.h"
 
 namespace eqhb {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-void addCounts(const SolverResult& r, SolverResult* total) {
-  total->iterations += r.iterations;
-  total->residual_evaluations += r.residual_evaluations;
-  total->jacobian_evaluations += r.jacobian_evaluations;
-}
 
 // How far one side got.
 struct WalkOutcome {
@@ -32,19 +22,17 @@ struct WalkOutcome {
 
 // One side: the cold start at `from`, then steps to the system's ω on
 // `walk`, a system of its own. Returns the last solve (converged at ω on
-// arrival) with every solve's counts in `total`.
-SolverResult walkFrom(double from, Solver& solver, const HbSystem& system, const SolverOptions& options,
-                      const StaticContactState* at_rest, const std::function<SolverOptions()>& remaining,
-                      SolverResult* total, WalkOutcome* outcome, std::unique_ptr<HbSystem>* walk) {
+// arrival); every solve is counted in `series`.
+SolverResult walkFrom(double from, Solver& solver, const HbSystem& system, const StaticContactState* at_rest,
+                      SolveSeries& series, WalkOutcome* outcome, std::unique_ptr<HbSystem>* walk) {
   const double target = system.model().omega;
   HbModel model = system.model();
   model.omega = from;
-  *walk = makeHbSystem(model, system.condensed(), options.linear_algebra);
+  *walk = makeHbSystem(model, system.condensed(), series.next().linear_algebra);
   HbSystem& w = **walk;
-  const Eigen::VectorXd rest_full = at_rest ? linearisedStart(model, *at_rest, remaining()) : Eigen::VectorXd();
-  CoarseStart cold(model, system.condensed(), options.linear_algebra);
-  SolverResult r = cold.solve(solver, w, remaining(), nullptr, rest_full);
-  addCounts(r, total);
+  const Eigen::VectorXd rest_full = at_rest ? linearisedStart(model, *at_rest, series.next()) : Eigen::VectorXd();
+  SolverResult r = solveCold(solver, w, series.next(), rest_full);
+  series.count(r);
   *outcome = WalkOutcome();
   outcome->reached = from;
   if (!r.converged()) return r;
@@ -61,9 +49,9 @@ SolverResult walkFrom(double from, Solver& solver, const HbSystem& system, const
     w.setOmega(next);
     int evaluations = 0;
     const Eigen::VectorXd start = guess.at(next, w, z, &evaluations);
-    total->residual_evaluations += evaluations;
-    r = solver.solve(w, start, remaining());
-    addCounts(r, total);
+    series.countResidualEvaluations(evaluations);
+    r = solver.solve(w, start, series.next());
+    series.count(r);
     if (r.termination == Termination::kTimeLimit) return r;
     if (!r.converged()) {
       h /= 2.0;
@@ -85,16 +73,9 @@ SolverResult walkFrom(double from, Solver& solver, const HbSystem& system, const
 
 SolverResult solveByOmegaContinuation(Solver& solver, HbSystem& system, const SolverOptions& options,
                                       const StaticContactState* at_rest, std::string* note) {
-  const auto start = Clock::now();
-  auto remaining = [&]() {
-    SolverOptions o = options;
-    if (options.time_limit > 0.0)
-      o.time_limit = std::max(options.time_limit - std::chrono::duration<double>(Clock::now() - start).count(),
-                              1e-3 * options.time_limit);
-    return o;
-  };
+  SolveSeries series(options);
   const double target = system.model().omega;
-  SolverResult total, last;
+  SolverResult last;
   last.solver = solver.name();
   last.termination = Termination::kNotProgressing;
   std::string why;
@@ -102,13 +83,13 @@ SolverResult solveByOmegaContinuation(Solver& solver, HbSystem& system, const So
     const double from = factor * target;
     WalkOutcome walked;
     std::unique_ptr<HbSystem> walk;
-    last = walkFrom(from, solver, system, options, at_rest, remaining, &total, &walked, &walk);
+    last = walkFrom(from, solver, system, at_rest, series, &walked, &walk);
     if (last.converged()) {
       // The walk's answer at ω, polished on the caller's system: the result
       // is one of its solves (usually at once: the same equations).
       SolverResult polished =
-          solver.solve(system, system.fromFullCoefficients(walk->fullCoefficients(last.solution)), remaining());
-      addCounts(polished, &total);
+          solver.solve(system, system.fromFullCoefficients(walk->fullCoefficients(last.solution)), series.next());
+      series.count(polished);
       if (polished.converged()) {
         if (note)
           *note = why + (why.empty() ? "" : "; ") + "from omega = " + formatNumber(from) + " in " +
@@ -124,11 +105,7 @@ SolverResult solveByOmegaContinuation(Solver& solver, HbSystem& system, const So
     if (last.termination == Termination::kTimeLimit) break;
   }
   if (!last.converged() && note) *note = why;
-  last.iterations = total.iterations;
-  last.residual_evaluations = total.residual_evaluations;
-  last.jacobian_evaluations = total.jacobian_evaluations;
-  last.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  return last;
+  return series.total(last);
 }
 
 }  // namespace eqhb

@@ -63,22 +63,24 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
     for (int dof : a.attachment.dofs()) boundary.push_back(dof);
   std::sort(boundary.begin(), boundary.end());
   boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
-  for (const AttachedLaw& a : model_.laws) {
-    if (springs) break;
-    dofs_.push_back(a.attachment.dof(0));
-    if (const auto* c = dynamic_cast<const Coulomb1D*>(a.law.get())) {
-      contact_.push_back(false);
-      limit_.push_back(c->muN());
-      rho_.push_back(c->form() == CoulombForm::kMinMax ? 1.0 / c->rho() : c->rho());
-      gap_.push_back(0.0);
-    } else {
-      const auto* s = dynamic_cast<const Signorini*>(a.law.get());
-      contact_.push_back(true);
-      limit_.push_back(0.0);
-      rho_.push_back(s->rho());
-      gap_.push_back(s->gap());
+  // The held-DOF method's sites: one grounded DOF per law (none when the
+  // spring laws' method runs).
+  if (!springs)
+    for (const AttachedLaw& a : model_.laws) {
+      dofs_.push_back(a.attachment.dof(0));
+      if (const auto* c = dynamic_cast<const Coulomb1D*>(a.law.get())) {
+        contact_.push_back(false);
+        limit_.push_back(c->muN());
+        rho_.push_back(c->form() == CoulombForm::kMinMax ? 1.0 / c->rho() : c->rho());
+        gap_.push_back(0.0);
+      } else {
+        const auto* s = dynamic_cast<const Signorini*>(a.law.get());
+        contact_.push_back(true);
+        limit_.push_back(0.0);
+        rho_.push_back(s->rho());
+        gap_.push_back(s->gap());
+      }
     }
-  }
   // The propagation's structure: the full one on small structures, else
   // reduced to the law DOFs and the modes that matter (interface_reduction.h).
   if (n_ > reduction.full_dofs) {
