@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include "eqhb/continuation/failed_runs.h"
 #include "eqhb/continuation/secant_guess.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
@@ -258,6 +259,8 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
     if (solveFromAhead(*system, m, solver, solver_options, options, curve.points[i + 1], &point))
       --curve.failed_points;
   }
+  // Still failed from both sides: each neighbour's branch, by arclength.
+  if (rescue && curve.failed_points > 0) followBranchesAcrossFailedRuns(model, solver, solver_options, options, &curve);
   curve.complete = curve.failed_points == 0;
   curve.stop_reason = curve.complete ? "reached the end of the range"
                                      : std::to_string(curve.failed_points) + " grid point(s) did not converge";
