@@ -34,6 +34,17 @@ void markFailed(Curve* curve, size_t i) {
   ++curve->failed_points;
 }
 
+// Runs the last resort on `curve`, a Duffing sweep from 0.9 to `to` by `step`.
+void followAcross(Curve* curve, double to, double step) {
+  const Scene scene = loadScene(test::problem("duffing.toml"));
+  auto solver = makeSolver("dogleg");
+  ContinuationOptions options;
+  options.from = 0.9;
+  options.to = to;
+  options.step = step;
+  followBranchesAcrossFailedRuns(scene.model, *solver, {}, options, curve);
+}
+
 // A point between two converged neighbours of one branch is solved from the
 // branch traced by arclength from the point before it: the same answer.
 TEST(FailedRuns, APointTheBranchCrossesIsSolvedFromIt) {
@@ -42,13 +53,7 @@ TEST(FailedRuns, APointTheBranchCrossesIsSolvedFromIt) {
   const CurvePoint known = curve.points[2];
   ASSERT_GT(known.max_abs[0], 1.0);  // the upper branch: above the jump
   markFailed(&curve, 2);
-  const Scene scene = loadScene(test::problem("duffing.toml"));
-  auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = 0.9;
-  options.to = 1.2;
-  options.step = 0.1;
-  followBranchesAcrossFailedRuns(scene.model, *solver, {}, options, &curve);
+  followAcross(&curve, 1.2, 0.1);
   const CurvePoint& p = curve.points[2];
   ASSERT_TRUE(p.converged) << p.termination;
   EXPECT_EQ(curve.failed_points, 0);
@@ -67,13 +72,7 @@ TEST(FailedRuns, APointPastTheFoldSaysWhereTheBranchTurns) {
   beyond.omega = 1.3;
   curve.points.push_back(beyond);
   markFailed(&curve, curve.points.size() - 1);
-  const Scene scene = loadScene(test::problem("duffing.toml"));
-  auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = 0.9;
-  options.to = 1.3;
-  options.step = 0.05;
-  followBranchesAcrossFailedRuns(scene.model, *solver, {}, options, &curve);
+  followAcross(&curve, 1.3, 0.05);
   const CurvePoint& p = curve.points.back();
   EXPECT_FALSE(p.converged);
   EXPECT_EQ(curve.failed_points, 1);
