@@ -39,9 +39,12 @@ void addStabilityFlag(CLI::App* cmd, SolveArguments& a) {
                   "dynamics over the solution with saltation at the switching instants (grounded Coulomb 1D "
                   "minmax/projection and Signorini laws; converges to the exact multipliers as H grows; above 20 "
                   "DOFs on the law DOFs and the modes that are slow or weakly damped: 15-21 us a point on "
-                  "friction-1d, 0.11 ms on beam-damper against Hill's 119 ms); auto: the monodromy where it "
-                  "applies, else Hill")
-      ->check(CLI::IsMember({"hill", "monodromy", "auto"}))
+                  "friction-1d, 0.11 ms on beam-damper against Hill's 119 ms); shooting: the exact Floquet "
+                  "multipliers of the periodic orbit shot from the solution on the exact event-driven flow "
+                  "(grounded laws with an exact flow; independent of H; a point where shooting fails or reaches "
+                  "another orbit is answered by the monodromy, else Hill, and says so); auto: the monodromy where "
+                  "it applies, else Hill")
+      ->check(CLI::IsMember({"hill", "monodromy", "shooting", "auto"}))
       ->capture_default_str();
   cmd->add_option("--stability-time-limit", a.stability_time_limit,
                   "Seconds for the stability of a whole curve (sweep), checked after each point; the points not "

@@ -125,8 +125,11 @@ def solve(model, omega=None, *, harmonics=None, samples=None, form=None, rho=Non
     eqhb.stability; stability_method "hill", "monodromy" (grounded Coulomb
     1D and Signorini laws: the monodromy over the solution with saltation at
     the switching instants; above 20 DOFs on the law DOFs and the slow or
-    weakly damped modes) or "auto" (the default: the monodromy where it
-    applies, else Hill)), error_estimate (one more solve at
+    weakly damped modes), "shooting" (grounded laws with an exact flow: the
+    exact multipliers of the periodic orbit shot from the solution, which do
+    not depend on H; where shooting fails or reaches another orbit the
+    monodromy, else Hill, answers and the dict's "note" says why) or "auto"
+    (the default: the monodromy where it applies, else Hill)), error_estimate (one more solve at
     2H: "error_estimate"), accuracy (a relative error in (0, 1): the cheapest
     H, doubling from `harmonics` or 5 up to max_harmonics, and unless rho is
     given the rho among each law's times 1, 0.1, 0.01, whose error of max|x|
@@ -199,11 +202,12 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     jacobian_evaluations, residual_norm, seconds), never rows of NaN.
 
     On the points: stability (stability_method at every converged point,
-    "hill", "monodromy" or "auto" as for solve; stability_time_limit seconds
+    "hill", "monodromy", "shooting" or "auto" as for solve; stability_time_limit seconds
     for the whole curve, 0 none: the points not reached have None, and
     "stability_time_limited" and "stability_points_analysed" say so:
     per point "stable", "spectral_radius", "multipliers" (the leading four,
-    complex) and "bifurcation"; "bifurcations", a list of dicts omega, kind,
+    complex), "stability_method" (who answered), "stability_note" (why not
+    the method asked, if so) and "bifurcation"; "bifurcations", a list of dicts omega, kind,
     point; the folds confirmed by the multipliers), error_estimate (one more
     solve at 2H per point: "error_estimate"), accuracy (a relative error in
     (0, 1): H, and rho unless given, chosen at the first point as solve

@@ -198,7 +198,8 @@ const std::pair<const char*, const char*> kPointFields[] = {
     {"stable", "stable"},         {"bifurcation", "bifurcation"},   {"spectral_radius", "spectral_radius"},
     {"multipliers", "multipliers"}, {"error_estimate", "error_estimate"}, {"harmonics", "point_harmonics"},
     {"samples", "point_samples"}, {"accuracy_met", "accuracy_met"}, {"accuracy_seconds", "accuracy_seconds"},
-    {"accuracy_failure", "accuracy_failure"}, {"accuracy_test", "accuracy_test"}, {"accuracy_error", "accuracy_error"}};
+    {"accuracy_failure", "accuracy_failure"}, {"accuracy_test", "accuracy_test"}, {"accuracy_error", "accuracy_error"},
+    {"stability_method", "stability_method"}, {"stability_note", "stability_note"}};
 const char* const kRunFields[] = {"scene",        "solver",       "method",       "from",
                                   "to",           "step",         "system",       "harmonic_set",
                                   "samples",      "bifurcations", "stability_seconds", "solve_seconds",

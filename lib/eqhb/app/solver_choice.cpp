@@ -7,8 +7,10 @@
 namespace eqhb::app {
 
 bool SolutionChecks::isValid(std::string* why) const {
-  if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "auto")
-    return refuseOption(why, "stability_method", "\"" + stability_method + "\"", "must be hill, monodromy or auto");
+  if (stability_method != "hill" && stability_method != "monodromy" && stability_method != "shooting" &&
+      stability_method != "auto")
+    return refuseOption(why, "stability_method", "\"" + stability_method + "\"",
+                        "must be hill, monodromy, shooting or auto");
   if (!(stability_time_limit >= 0.0) || !std::isfinite(stability_time_limit))
     return refuseOption(why, "stability_time_limit", formatNumber(stability_time_limit),
                         "must be finite and >= 0 (0: none)");

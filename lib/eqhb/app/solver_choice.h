@@ -27,7 +27,7 @@ struct SolverChoice {
 
 struct SolutionChecks {
   bool stability = false;  // Floquet multipliers of each converged solution
-  std::string stability_method = "auto";  // hill, monodromy or auto (HillOptions::method)
+  std::string stability_method = "auto";  // hill, monodromy, shooting or auto (HillOptions::method)
   double stability_time_limit = 0.0;  // seconds for a curve's stability, 0: none (HillOptions::time_limit)
   bool error_estimate = false;  // per converged solution, the relative error of max|x| by one more solve at 2H
   // The cheapest H (and ρ unless the scene's settings fix one) whose

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 
 #include "eqhb/harmonic_balance/hb_solution.h"
 #include "eqhb/io_error.h"
@@ -183,9 +184,15 @@ void writeCurveSummary(std::ostream& out, const Curve& curve, const CurveRun& s)
       stable += p->stable.value_or(false);
     }
     const CurveStability& st = *s.stability;
-    // One method serves a whole curve (auto chooses it from the model).
-    const bool monodromy = !st.points.empty() && st.points.front().method == "monodromy";
-    out << "  stability (" << (monodromy ? "monodromy" : "Hill") << "): " << stable << " of " << analysed << " points stable, " << st.seconds << " s ("
+    // One method serves a whole curve (auto chooses it from the model);
+    // shooting's points may fall back to another, counted by method.
+    std::map<std::string, int> by_method;
+    for (const HillResult& r : st.points)
+      if (!r.exponents.empty() || !r.failure.empty()) ++by_method[r.method == "hill" ? "Hill" : r.method];
+    std::string methods;
+    for (const auto& [name, count] : by_method)
+      methods += (methods.empty() ? "" : ", ") + name + (by_method.size() > 1 ? " " + std::to_string(count) : "");
+    out << "  stability (" << (methods.empty() ? "Hill" : methods) << "): " << stable << " of " << analysed << " points stable, " << st.seconds << " s ("
         << (st.solve_seconds > 0 ? 100.0 * st.seconds / st.solve_seconds : 0.0) << " % of the solve time)\n";
     if (st.time_limited)
       out << "  stability: the time limit (--stability-time-limit) ran out after " << st.analysed << " of "

@@ -48,6 +48,8 @@ nlohmann::json pointJson(const CurvePoint& p, const CurveRun& run, const HillRes
       for (size_t j = 0; j < all["multipliers"].size() && j < 4; ++j) leading.push_back(all["multipliers"][j]);
       point["spectral_radius"] = all["spectral_radius"];
       point["multipliers"] = leading;
+      point["stability_method"] = hill->method;
+      if (!hill->note.empty()) point["stability_note"] = hill->note;
     }
   }
   if (p.full.size() > 0) {

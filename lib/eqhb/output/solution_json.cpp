@@ -105,6 +105,7 @@ nlohmann::json stabilityJson(const HillResult& hill) {
     out["eigensolver"] = hill.method;  // the multipliers are a monodromy matrix's eigenvalues
   }
   if (!hill.failure.empty()) out["failure"] = hill.failure;
+  if (!hill.note.empty()) out["note"] = hill.note;
   return out;
 }
 

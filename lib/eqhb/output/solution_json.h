@@ -42,7 +42,8 @@ nlohmann::json coldStartJson(const ColdStartReport& report, const std::string& o
 //  iterations, residual_norm, seconds}], "seconds"}
 nlohmann::json fallbackJson(const FallbackReport& report);
 // A Hill analysis: stable, spectral_radius, multipliers and exponents
-// ([re, im], largest |multiplier| first), counts and time.
+// ([re, im], largest |multiplier| first), counts and time; "method" when
+// not Hill's, "note" when another method answered than the one asked.
 nlohmann::json stabilityJson(const HillResult& hill);
 // [{"law", "type", "violations": {name: value}}]
 nlohmann::json invariantsJson(const std::vector<LawInvariants>& invariants);

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "eqhb/stability/monodromy_stability.h"
+#include "eqhb/stability/shooting_stability.h"
 
 namespace eqhb {
 
@@ -38,6 +39,8 @@ bool useMonodromy(const HbModel& model, const HillOptions& options) {
 }  // namespace
 
 HillResult analyseStability(const HbModel& model, const Eigen::VectorXd& full, const HillOptions& options) {
+  options.validate();
+  if (options.method == "shooting") return ShootingStability(model, options).analyse(model.omega, full);
   if (useMonodromy(model, options)) return MonodromyStability(model, options.unit_tolerance).analyse(model.omega, full);
   return hillStability(model, full, options);
 }
@@ -50,7 +53,10 @@ CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const H
   bool has_tangents = false;
   std::unique_ptr<HillStability> hill;
   std::unique_ptr<MonodromyStability> monodromy;
-  if (useMonodromy(model, options)) monodromy = std::make_unique<MonodromyStability>(model, options.unit_tolerance);
+  std::unique_ptr<ShootingStability> shooting;
+  options.validate();
+  if (options.method == "shooting") shooting = std::make_unique<ShootingStability>(model, options);
+  else if (useMonodromy(model, options)) monodromy = std::make_unique<MonodromyStability>(model, options.unit_tolerance);
   else hill = std::make_unique<HillStability>(model, options);
   auto outOfTime = [&]() {
     return options.time_limit > 0.0 &&
@@ -68,7 +74,9 @@ CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const H
       continue;
     }
     ++out.analysed;
-    out.points[i] = monodromy ? monodromy->analyse(p.omega, p.full) : hill->analyse(p.omega, p.full);
+    out.points[i] = shooting    ? shooting->analyse(p.omega, p.full)
+                     : monodromy ? monodromy->analyse(p.omega, p.full)
+                                 : hill->analyse(p.omega, p.full);
     if (out.points[i].failure.empty()) p.stable = out.points[i].stable;
     if (progress) progress(static_cast<int>(i) + 1, static_cast<int>(curve.points.size()));
   }

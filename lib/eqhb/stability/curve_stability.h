@@ -41,13 +41,16 @@ struct CurveStability {
 // changed per point), sets each point's `stable` and `bifurcation`, and
 // replaces the curve's folds by the confirmed ones when the curve has
 // arclength tangents.
-// options.method chooses Hill's method or the monodromy
-// (monodromy_stability.h); `progress`, if set, is told of each point.
+// options.method chooses Hill's method, the monodromy
+// (monodromy_stability.h) or shooting (shooting_stability.h: one
+// ShootingStability for the curve, its fallbacks per point); `progress`, if
+// set, is told of each point.
 CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const HillOptions& options = {},
                                      const std::function<void(int done, int total)>& progress = {});
 
 // One solution's stability by options.method: throws InputError
-// (stability_method) for "monodromy" on laws it does not support.
+// (stability_method) for "monodromy" or "shooting" on laws they do not
+// support.
 HillResult analyseStability(const HbModel& model, const Eigen::VectorXd& full, const HillOptions& options = {});
 
 }  // namespace eqhb

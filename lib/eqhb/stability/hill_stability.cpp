@@ -131,8 +131,8 @@ void HillOptions::validate() const {
     throwInputError("sparse_eigenvalues", std::to_string(sparse_eigenvalues), "must be >= 0");
   if (!(unit_tolerance >= 0.0) || !std::isfinite(unit_tolerance))
     throwInputError("unit_tolerance", formatNumber(unit_tolerance), "must be finite and >= 0");
-  if (method != "hill" && method != "monodromy" && method != "auto")
-    throwInputError("stability_method", "\"" + method + "\"", "must be hill, monodromy or auto");
+  if (method != "hill" && method != "monodromy" && method != "shooting" && method != "auto")
+    throwInputError("stability_method", "\"" + method + "\"", "must be hill, monodromy, shooting or auto");
   if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
     throwInputError("stability_time_limit", formatNumber(time_limit), "must be finite and >= 0 (0: none)");
 }

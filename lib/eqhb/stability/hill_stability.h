@@ -57,8 +57,10 @@ struct HillOptions {
   // means spectral radius < 1 + unit_tolerance.
   double unit_tolerance = 1e-6;
   // "hill" (this file), "monodromy" (monodromy_stability.h: only on the
-  // laws it supports) or "auto" (the monodromy where it applies, else Hill;
-  // curve_stability.h). The command line and Python default to "auto".
+  // laws it supports), "shooting" (shooting_stability.h: the exact orbit's
+  // multipliers, only on laws with an exact flow) or "auto" (the monodromy
+  // where it applies, else Hill; curve_stability.h). The command line and
+  // Python default to "auto".
   std::string method = "hill";
   // Seconds for the stability of a whole curve (analyseCurveStability), 0:
   // none. Checked after each point: the points not reached keep no verdict.
@@ -81,9 +83,12 @@ struct HillResult {
   int candidates = 0;        // finite eigenvalues examined
   int pencil_size = 0;       // unknowns of the pencil
   bool sparse = false;       // Spectra (true) or the dense solver
-  std::string method = "hill";  // or "monodromy" (monodromy_stability.h): exponents from its multipliers
+  std::string method = "hill";  // or "monodromy" / "shooting": exponents from their multipliers
   double seconds = 0.0;
   std::string failure;       // nonempty when no exponent could be computed
+  // Why `method` answered instead of the one asked (shooting that failed or
+  // reached another orbit); empty otherwise.
+  std::string note;
 };
 
 // Hill's method about the solution `full` = [x; λ] coefficients of `model`
