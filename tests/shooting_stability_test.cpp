@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "eqhb/backends/registry.h"
+#include "eqhb/continuation/continuation.h"
 #include "eqhb/error.h"
 #include "eqhb/scenes/scene.h"
 #include "eqhb/stability/curve_stability.h"
@@ -89,6 +91,50 @@ TEST(ShootingStability, AnotherOrbitFallsBackToTheMonodromy) {
   EXPECT_NE(wrong.note.find("another orbit"), std::string::npos) << wrong.note;
   EXPECT_GT(shooting.lastDistance(), ShootingStability::kSameOrbitDistance);
   EXPECT_TRUE(shooting.lastShooting().converged);
+}
+
+// Unstable orbits too: along the arclength curve of the penalty wall
+// (problems/penalty-contact.toml, 0.3-0.9, H = 20) every third point is shot;
+// where shooting answers itself, the monodromy over the series (another
+// computation: the linearised dynamics over the harmonic-balance samples)
+// gives the same verdict, and Hill's does too away from the unit circle
+// (|radius − 1| > 0.01: at 0.798 Hill finds 0.9987 where shooting finds
+// 1.0016). The curve has unstable stretches (0.435-0.46, 0.53, 0.67-0.78):
+// a method that called every orbit stable fails.
+TEST(ShootingStability, VerdictsOnThePenaltyWallCurveIncludingUnstableOrbits) {
+  const HbModel model = loadScene(test::problem("penalty-contact.toml")).model;
+  ContinuationOptions range;
+  range.from = 0.3;
+  range.to = 0.9;
+  auto solver = makeSolver("dogleg");
+  const Curve curve = sweepArclength(model, *solver, SolverOptions(), range);
+  ASSERT_GT(curve.points.size(), 100u) << curve.stop_reason;
+  ShootingStability shooting(model);
+  MonodromyStability monodromy(model);
+  HillStability hill(model);
+  int shot = 0, unstable = 0, stable = 0, hill_checked = 0;
+  for (size_t i = 0; i < curve.points.size(); i += 3) {
+    const CurvePoint& p = curve.points[i];
+    if (!p.converged) continue;
+    const HillResult s = shooting.analyse(p.omega, p.full);
+    if (s.method != "shooting") continue;
+    ++shot;
+    const HillResult m = monodromy.analyse(p.omega, p.full);
+    EXPECT_EQ(m.stable, s.stable) << "omega " << p.omega << ": monodromy " << m.spectral_radius << ", shooting "
+                                  << s.spectral_radius;
+    (s.stable ? stable : unstable) += 1;
+    if (i % 9 == 0 && std::abs(s.spectral_radius - 1.0) > 0.01) {
+      const HillResult h = hill.analyse(p.omega, p.full);
+      EXPECT_EQ(h.stable, s.stable) << "omega " << p.omega << ": Hill " << h.spectral_radius << ", shooting "
+                                    << s.spectral_radius;
+      ++hill_checked;
+    }
+  }
+  std::printf("penalty wall: %d points shot, %d unstable, %d stable, %d checked against Hill\n", shot, unstable, stable,
+              hill_checked);
+  EXPECT_GE(shot, 100);
+  EXPECT_GE(unstable, 30);
+  EXPECT_GE(stable, 30);
 }
 
 // "shooting" by name through analyseStability; laws without an exact flow
