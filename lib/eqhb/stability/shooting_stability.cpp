@@ -16,6 +16,7 @@ orbits::ShootingOptions ShootingStability::defaultShooting() {
   orbits::ShootingOptions o;
   o.tolerance = 1e-10;
   o.max_iterations = 20;
+  o.time_limit = 2.0;
   return o;
 }
 
@@ -69,6 +70,11 @@ HillResult ShootingStability::analyse(double omega, const Eigen::VectorXd& full)
                     "must have " + std::to_string(size) + " ([x; lambda] of the full system)");
   model_.omega = omega;
   last_distance_ = std::nan("");
+  last_ = orbits::ShootingResult();
+  if (n > kMaxDofs)
+    return fallback(omega, full,
+                    "not shot: " + std::to_string(n) + " DOFs, above " + std::to_string(kMaxDofs) +
+                        " (the exact flow's exponentials of the whole state cost minutes a point)");
   // The flow's phases (matrix exponentials with the forcing in the
   // generator) depend on ω, so each point gets its own flow; the model and
   // the work space are the curve's.

@@ -47,6 +47,12 @@ class ShootingStability {
   // Largest relative displacement distance of the shot orbit from the
   // harmonic-balance series for the orbit to count as the series' (header).
   static constexpr double kSameOrbitDistance = 0.1;
+  // Structures of more DOFs are not shot: the exact flow's dense
+  // exponentials of the whole state cost minutes a point on beam-damper's
+  // 120 DOFs (no point of its curve finished in 300 s); they are answered as
+  // shooting's fallback answers (the monodromy, else Hill), with a note. The
+  // same bound as the accuracy ladder's exact-orbit test.
+  static constexpr int kMaxDofs = 12;
 
   // Throws InputError if the model or options are invalid, or the laws have
   // no exact flow (supports()).
@@ -64,9 +70,10 @@ class ShootingStability {
   // Its distance to the series (NaN when shooting did not converge).
   double lastDistance() const { return last_distance_; }
 
-  // Period residual 1e-10 and 20 Newton steps: the multipliers converge
-  // with the orbit, and a start that needs more steps is one that is not
-  // close to an orbit anyway.
+  // Period residual 1e-10, 20 Newton steps and 2 s a point: the
+  // multipliers converge with the orbit, and a start that needs more steps
+  // is one that is not close to an orbit anyway (from the series it takes
+  // 2-3 on the scenes measured).
   static orbits::ShootingOptions defaultShooting();
 
  private:
