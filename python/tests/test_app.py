@@ -230,7 +230,7 @@ def test_sweep_with_stability_and_error_estimates_is_eqhb_sweep():
     same_curve(cli, py)
 
 
-@pytest.mark.parametrize("method", ["hill", "monodromy"])
+@pytest.mark.parametrize("method", ["hill", "monodromy", "shooting"])
 def test_sweep_stability_by_each_method_is_eqhb_sweeps(method):
     """The stability column by the method asked is the command's, verdicts and radii; the two methods agree."""
     args = ("--from", 0.3, "--to", 0.56, "--step", 0.02, "--harmonics", 10)
