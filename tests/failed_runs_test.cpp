@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "eqhb/backends/registry.h"
 #include "eqhb/scenes/scene.h"
 #include "test_support.h"
@@ -9,17 +11,24 @@
 namespace eqhb {
 namespace {
 
-// The Duffing scene's upper branch swept from 0.9 in steps of `step` up to
-// `to`, every point converged (its folds: 1.2696 on the upper branch, 1.1157
-// on the lower one, by arclength).
-Curve upperBranch(double to, double step) {
-  const Scene scene = loadScene(test::problem("duffing.toml"));
-  auto solver = makeSolver("dogleg");
+// The Duffing scene, the own dogleg and a sequential sweep from 0.9 to `to`
+// by `step`.
+struct DuffingSweep {
+  Scene scene = loadScene(test::problem("duffing.toml"));
+  std::unique_ptr<Solver> solver = makeSolver("dogleg");
   ContinuationOptions options;
-  options.from = 0.9;
-  options.to = to;
-  options.step = step;
-  Curve curve = sweepSequential(scene.model, *solver, {}, options);
+  DuffingSweep(double to, double step) {
+    options.from = 0.9;
+    options.to = to;
+    options.step = step;
+  }
+};
+
+// Its upper branch, every point converged (its folds: 1.2696 on the upper
+// branch, 1.1157 on the lower one, by arclength).
+Curve upperBranch(double to, double step) {
+  DuffingSweep duffing(to, step);
+  Curve curve = sweepSequential(duffing.scene.model, *duffing.solver, {}, duffing.options);
   for (const CurvePoint& p : curve.points) EXPECT_TRUE(p.converged) << p.omega;
   return curve;
 }
@@ -36,13 +45,8 @@ void markFailed(Curve* curve, size_t i) {
 
 // Runs the last resort on `curve`, a Duffing sweep from 0.9 to `to` by `step`.
 void followAcross(Curve* curve, double to, double step) {
-  const Scene scene = loadScene(test::problem("duffing.toml"));
-  auto solver = makeSolver("dogleg");
-  ContinuationOptions options;
-  options.from = 0.9;
-  options.to = to;
-  options.step = step;
-  followBranchesAcrossFailedRuns(scene.model, *solver, {}, options, curve);
+  DuffingSweep duffing(to, step);
+  followBranchesAcrossFailedRuns(duffing.scene.model, *duffing.solver, {}, duffing.options, curve);
 }
 
 // A point between two converged neighbours of one branch is solved from the
