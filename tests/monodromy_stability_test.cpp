@@ -41,6 +41,23 @@ Comparison compare(const std::string& file, double omega, int harmonics) {
   return c;
 }
 
+// Two points of friction-1d's arclength curve at its own H = 10 where the
+// series rings: at 0.15926 its v flickers about 0 just after a stick ends,
+// at 0.54648 it slows down to -0.36 without reaching 0 while its force
+// overshoots the limit. Read as reversals, those samples gave radii 1.31
+// and 1.04 (unstable) where shooting finds 0.43 and 0.84: a stick that ends
+// slips against the holding force until v clearly slides, and a stick run
+// whose v never reaches 0 is no reversal.
+TEST(MonodromyStability, SeriesRingingIsNoReversal) {
+  for (const double omega : {0.1592631123466103, 0.5464787739999302}) {
+    const Comparison c = compare("friction-1d.toml", omega, 10);
+    ASSERT_TRUE(c.monodromy.failure.empty()) << c.monodromy.failure;
+    EXPECT_TRUE(c.exact.stable) << omega;
+    EXPECT_EQ(c.monodromy.stable, c.exact.stable) << omega;
+    EXPECT_NEAR(c.monodromy.spectral_radius, c.exact.spectral_radius, 0.12) << omega;
+  }
+}
+
 // The two-mass chain (friction-1d) at H = 20. At ω = 0.55 the contact only
 // reverses: the radius is within 1e-4 of the exact one (Hill's is 3e-3
 // off). At 0.308 and 0.4 it sticks twice per period: the stick onsets are

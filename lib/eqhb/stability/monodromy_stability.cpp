@@ -245,12 +245,15 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
       const double sign = old_state == State::kSlipPositive ? 1.0 : -1.0;
       int zero = first;
       while (state(zero, l) == State::kStick && sign * v_(zero, l) > 0.0 && zero != origin) zero = (zero + 1) % samples;
-      if (state(zero, l) != State::kStick || zero == origin) zero = first;
+      const bool crossed = state(zero, l) == State::kStick && zero != origin;
+      if (!crossed) zero = first;
       for (int k = first; k != zero; k = (k + 1) % samples) state(k, l) = old_state;
       const double force = holdingForce(full, l, zero);
-      if (std::abs(force) > limit_[l]) {  // a reversal at v = 0
-        for (int k = zero; state(k, l) == State::kStick && k != origin; k = (k + 1) % samples)
-          state(k, l) = opposite(old_state);
+      if (std::abs(force) > limit_[l]) {
+        // A reversal at v = 0; where the series' v slows down without
+        // reaching 0, the slip goes on.
+        const State through = crossed ? opposite(old_state) : old_state;
+        for (int k = zero; state(k, l) == State::kStick && k != origin; k = (k + 1) % samples) state(k, l) = through;
         continue;
       }
       r_(zero, l) = force;
@@ -262,11 +265,11 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
         state(k, l) = State::kStick;
       }
       // Slip against λ through the series' flicker, up to the first sample
-      // that clearly slides (kSlidingFraction of max|v|).
+      // that clearly slides either way (kSlidingFraction of max|v|): a stick
+      // that ends slips against λ even where the series' v still rings about 0.
       const State slip = r_(k, l) > 0.0 ? State::kSlipNegative : State::kSlipPositive;
-      const double direction = slip == State::kSlipPositive ? 1.0 : -1.0;
-      for (int j = k; j != start && state(j, l) != opposite(slip); j = (j + 1) % samples) {
-        if (direction * v_(j, l) > kSlidingFraction * sliding_scale) break;
+      for (int j = k; j != start; j = (j + 1) % samples) {
+        if (std::abs(v_(j, l)) > kSlidingFraction * sliding_scale) break;
         state(j, l) = slip;
       }
     }
