@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <unsupported/Eigen/MatrixFunctions>
 
 #include "eqhb/error.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
@@ -12,6 +13,7 @@
 #include "eqhb/scenes/scene.h"
 #include "eqhb/stability/curve_stability.h"
 #include "eqhb/stability/interface_reduction.h"
+#include "eqhb/stability/phase_exponential.h"
 #include "test_support.h"
 
 namespace eqhb {
@@ -202,6 +204,36 @@ TEST(MonodromyStability, MethodChoice) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("stability_method"), std::string::npos) << e.what();
   }
+}
+
+// The decomposed exponential of a phase equals Eigen's scaling-and-squaring
+// one; a defective generator (a free mass: a Jordan block at 0) is not
+// decomposed and takes the exponential itself.
+TEST(MonodromyStability, PhaseExponentialMatchesTheMatrixExponential) {
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(6, 6);
+  Eigen::Matrix3d k;
+  k << 2.0, -1.0, 0.0, -1.0, 2.0, -1.0, 0.0, -1.0, 1.5;
+  a.topRightCorner(3, 3).setIdentity();
+  a.bottomLeftCorner(3, 3) = -k;
+  a.bottomRightCorner(3, 3) = -0.02 * Eigen::Matrix3d::Identity() - 0.01 * k;
+  a(3, 5) = 0.3;  // a non-symmetric coupling, as a slider's anchor gives
+  const PhaseExponential fast(a);
+  EXPECT_TRUE(fast.decomposed());
+  Eigen::MatrixXd phi = Eigen::MatrixXd::Random(6, 6), scratch;
+  const Eigen::MatrixXd start = phi;
+  for (double tau : {0.01, 0.7, 3.0, 25.0}) {
+    const Eigen::MatrixXd reference = (a * tau).exp();
+    EXPECT_LT((fast.exponential(tau) - reference).norm(), 1e-12 * reference.norm()) << tau;
+  }
+  fast.apply(0.7, phi, scratch);
+  const Eigen::MatrixXd reference = (a * 0.7).exp() * start;
+  EXPECT_LT((phi - reference).norm(), 1e-12 * reference.norm());
+
+  Eigen::MatrixXd free = Eigen::MatrixXd::Zero(2, 2);
+  free(0, 1) = 1.0;
+  const PhaseExponential jordan(free);
+  EXPECT_FALSE(jordan.decomposed());
+  EXPECT_EQ(jordan.exponential(2.0), (free * 2.0).exp());
 }
 
 }  // namespace

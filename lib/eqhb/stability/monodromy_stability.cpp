@@ -1,10 +1,9 @@
 #include "eqhb/stability/monodromy_stability.h"
 
-#include <unsupported/Eigen/MatrixFunctions>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
@@ -81,6 +80,7 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
         gap_.push_back(s->gap());
       }
     }
+  laws_ = static_cast<int>(dofs_.size());
   // The propagation's structure: the full one on small structures, else
   // reduced to the law DOFs and the modes that matter (interface_reduction.h).
   if (n_ > reduction.full_dofs) {
@@ -131,22 +131,26 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
       ++work_.syntheses;
     }
     transform.differentiate(x, model_.omega, rate_.data());
-    transform.synthesize(rate_.data(), v_.col(l).data());
-    transform.synthesize(full.data() + (n_ + model_.componentIndex(l, 0)) * nb, r_.col(l).data());
+    transform.synthesizePair(rate_.data(), full.data() + (n_ + model_.componentIndex(l, 0)) * nb, v_.col(l).data(),
+                             r_.col(l).data());
     work_.syntheses += 2;
   }
   states_.resize(static_cast<size_t>(samples) * laws);
-  for (int k = 0; k < samples; ++k)
-    for (int l = 0; l < laws; ++l) {
-      if (contact_[l]) {
-        state(k, l) = r_(k, l) > rho_[l] * (gap_[l] - u_(k, l)) ? State::kClosed : State::kOpen;
-        continue;
-      }
-      const double trial = r_(k, l) - rho_[l] * v_(k, l);
-      state(k, l) = std::abs(trial) <= limit_[l] ? State::kStick
-                    : trial < 0.0               ? State::kSlipPositive
-                                                : State::kSlipNegative;
+  for (int l = 0; l < laws; ++l) {
+    const double *u = u_.col(l).data(), *v = v_.col(l).data(), *r = r_.col(l).data();
+    const double rho = rho_[l], gap = gap_[l], limit = limit_[l];
+    State* out = states_.data() + l;
+    if (contact_[l]) {
+      for (int k = 0; k < samples; ++k) out[k * laws] = r[k] > rho * (gap - u[k]) ? State::kClosed : State::kOpen;
+      continue;
     }
+    for (int k = 0; k < samples; ++k) {
+      const double trial = r[k] - rho * v[k];
+      out[k * laws] = std::abs(trial) <= limit ? State::kStick
+                      : trial < 0.0           ? State::kSlipPositive
+                                              : State::kSlipNegative;
+    }
+  }
 }
 
 // A truncated series cannot jump, so the samples' states are checked by
@@ -171,17 +175,27 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
   ++work_.holding_forces;
   const int held_dof = dofs_[l], nb = model_.basis.size(), samples = model_.samples;
   const int laws = static_cast<int>(dofs_.size());
-  held_key_.clear();
-  int row = 0;
-  for (int m = 0; m < laws; ++m) {
-    const State s = m == l ? State::kStick : state(k, m);
-    if (!held(s)) continue;
-    if (m == l) row = static_cast<int>(held_key_.size());
-    held_key_.push_back(dofs_[m]);
+  // Consecutive calls mostly ask for the same key (a stick run): up to 64
+  // laws, the held laws' bit mask and l name it without building it.
+  std::uint64_t mask = 0;
+  if (laws <= 64)
+    for (int m = 0; m < laws; ++m)
+      if (m == l || held(state(k, m))) mask |= std::uint64_t{1} << m;
+  const bool same = last_holding_ != nullptr && laws <= 64 && mask == last_mask_ && l == last_law_;
+  if (!same) {
+    held_key_.clear();
+    int row = 0;
+    for (int m = 0; m < laws; ++m) {
+      const State s = m == l ? State::kStick : state(k, m);
+      if (!held(s)) continue;
+      if (m == l) row = static_cast<int>(held_key_.size());
+      held_key_.push_back(dofs_[m]);
+    }
+    held_key_.push_back(row);
+    last_mask_ = mask;
+    last_law_ = l;
   }
-  held_key_.push_back(row);
-  // Consecutive calls mostly ask for the same key (a stick run).
-  if (last_holding_ == nullptr || last_key_ != held_key_) {
+  if (!same && (last_holding_ == nullptr || last_key_ != held_key_)) {
     auto found = holdings_.find(held_key_);
     if (found == holdings_.end()) {
       Holding h;
@@ -193,7 +207,7 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
         pm.row(a) = dynamics_.mass_inverse.row(held_key_[a]);
         for (int b = 0; b < g; ++b) coupling(a, b) = dynamics_.mass_inverse(held_key_[a], held_key_[b]);
       }
-      const Eigen::VectorXd pick = coupling.ldlt().solve(Eigen::VectorXd::Unit(g, row));  // coupling is symmetric
+      const Eigen::VectorXd pick = coupling.ldlt().solve(Eigen::VectorXd::Unit(g, held_key_.back()));  // coupling is symmetric
       h.row = -(pick.transpose() * pm);
       h.stiffness_row = dynamics_.stiffness.transpose() * h.row.transpose();
       h.damping_row = dynamics_.damping.transpose() * h.row.transpose();
@@ -230,6 +244,7 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
 
 void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
   const int samples = model_.samples, laws = static_cast<int>(dofs_.size());
+  auto next = [samples](int k) { return k + 1 == samples ? 0 : k + 1; };  // round the period
   auto opposite = [](State s) { return s == State::kSlipPositive ? State::kSlipNegative : State::kSlipPositive; };
   for (int l = 0; l < laws; ++l) {
     if (contact_[l]) continue;
@@ -238,28 +253,29 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
     if (origin == samples) continue;
     const double sliding_scale = v_.col(l).cwiseAbs().maxCoeff();
     for (int i = 1; i <= samples; ++i) {
-      const int first = (origin + i) % samples, before = (first + samples - 1) % samples;
+      const int first = origin + i < samples ? origin + i : origin + i - samples;
+      const int before = first == 0 ? samples - 1 : first - 1;
       if (state(first, l) != State::kStick || state(before, l) == State::kStick) continue;
       // The run starts where v reaches 0 (the series' v rings into it).
       const State old_state = state(before, l);
       const double sign = old_state == State::kSlipPositive ? 1.0 : -1.0;
       int zero = first;
-      while (state(zero, l) == State::kStick && sign * v_(zero, l) > 0.0 && zero != origin) zero = (zero + 1) % samples;
+      while (state(zero, l) == State::kStick && sign * v_(zero, l) > 0.0 && zero != origin) zero = next(zero);
       const bool crossed = state(zero, l) == State::kStick && zero != origin;
       if (!crossed) zero = first;
-      for (int k = first; k != zero; k = (k + 1) % samples) state(k, l) = old_state;
+      for (int k = first; k != zero; k = next(k)) state(k, l) = old_state;
       const double force = holdingForce(full, l, zero);
       if (std::abs(force) > limit_[l]) {
         // A reversal at v = 0; where the series' v slows down without
         // reaching 0, the slip goes on.
         const State through = crossed ? opposite(old_state) : old_state;
-        for (int k = zero; state(k, l) == State::kStick && k != origin; k = (k + 1) % samples) state(k, l) = through;
+        for (int k = zero; state(k, l) == State::kStick && k != origin; k = next(k)) state(k, l) = through;
         continue;
       }
       r_(zero, l) = force;
       const int start = zero;
-      int k = (start + 1) % samples;
-      for (; k != start; k = (k + 1) % samples) {
+      int k = next(start);
+      for (; k != start; k = next(k)) {
         r_(k, l) = holdingForce(full, l, k);
         if (std::abs(r_(k, l)) > limit_[l]) break;
         state(k, l) = State::kStick;
@@ -268,7 +284,7 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
       // that clearly slides either way (kSlidingFraction of max|v|): a stick
       // that ends slips against λ even where the series' v still rings about 0.
       const State slip = r_(k, l) > 0.0 ? State::kSlipNegative : State::kSlipPositive;
-      for (int j = k; j != start; j = (j + 1) % samples) {
+      for (int j = k; j != start; j = next(j)) {
         if (std::abs(v_(j, l)) > kSlidingFraction * sliding_scale) break;
         state(j, l) = slip;
       }
@@ -283,10 +299,12 @@ void MonodromyStability::findSwitches() {
   const int samples = model_.samples, laws = static_cast<int>(dofs_.size());
   const double step = 2.0 * M_PI / model_.omega / samples;
   switches_.clear();
+  const State* states = states_.data();
   for (int k = 0; k < samples; ++k) {
-    const int next = (k + 1) % samples;
+    const int next = k + 1 == samples ? 0 : k + 1;
+    const State *now = states + static_cast<size_t>(k) * laws, *then = states + static_cast<size_t>(next) * laws;
     for (int l = 0; l < laws; ++l) {
-      const State a = state(k, l), b = state(next, l);
+      const State a = now[l], b = then[l];
       if (a == b) continue;
       double fraction = 0.5;
       if (a == State::kOpen) fraction = switchCrossing(gap_[l] - u_(k, l), gap_[l] - u_(next, l));
@@ -312,68 +330,81 @@ const MonodromyStability::Phase& MonodromyStability::phase(const std::vector<Sta
   p.projector = orbits::holdDofs(propagated_.mass_inverse, coords).projector;
   p.generator = Eigen::MatrixXd::Zero(2 * m_, 2 * m_);
   p.generator.topRightCorner(m_, m_).setIdentity();
+  // A held DOF's velocity perturbation is 0 through the phase (the reset
+  // that starts it sets it so), so its ẋ = v row is left out: the generator
+  // then has no Jordan block at 0 and is decomposed (phase_exponential.h).
+  for (int i : coords) p.generator(i, m_ + i) = 0.0;
   p.generator.bottomLeftCorner(m_, m_) = -p.projector * propagated_.stiffness;
   p.generator.bottomRightCorner(m_, m_) = -p.projector * propagated_.damping;
+  p.exponential = PhaseExponential(p.generator);
   return phases_.emplace(phase_key_, std::move(p)).first->second;
 }
 
 // [v; Q b] of the full forced system at (t, y) in `states`: b = f(t) − K x
 // − C v + the slip forces; held DOFs take what their constraint needs.
-Eigen::VectorXd MonodromyStability::field(const std::vector<State>& states, double t, const Eigen::VectorXd& y) {
+void MonodromyStability::field(const std::vector<State>& states, double t, const Eigen::VectorXd& y,
+                               Eigen::VectorXd& f) {
   const Phase& p = phase(states);
-  Eigen::VectorXd b = -propagated_.stiffness * y.head(m_) - propagated_.damping * y.segment(m_, m_);
-  for (const HarmonicLoad& load : model_.structure.loads) b += load_directions_.col(load.dof) * load.at(model_.omega * t);
-  for (size_t l = 0; l < states.size(); ++l) addSlipForce(static_cast<int>(l), states[l], b);
-  Eigen::VectorXd f(2 * m_);
+  force_.noalias() = -propagated_.stiffness * y.head(m_);
+  force_.noalias() -= propagated_.damping * y.segment(m_, m_);
+  for (const HarmonicLoad& load : model_.structure.loads)
+    force_ += load_directions_.col(load.dof) * load.at(model_.omega * t);
+  for (size_t l = 0; l < states.size(); ++l) addSlipForce(static_cast<int>(l), states[l], force_);
+  f.resize(2 * m_);
   f.head(m_) = y.segment(m_, m_);
   for (int i = 0; i < m_; ++i)
     if (phase_key_[i]) f[i] = 0.0;
-  f.tail(m_) = p.projector * b;
-  return f;
+  f.tail(m_).noalias() = p.projector * force_;
 }
 
-// S = R + (f⁺ − R f⁻) ∇gᵀ / ġ⁻ at switch s (header); I where the field is
-// continuous (stick to slip, contact opening).
-Eigen::MatrixXd MonodromyStability::saltation(const Switch& s, const std::vector<State>& before,
-                                              const std::vector<State>& after, const Eigen::VectorXd& full) {
-  Eigen::MatrixXd out = Eigen::MatrixXd::Identity(2 * m_, 2 * m_);
-  if (s.from == State::kStick || s.from == State::kClosed) return out;
+// Φ ← S Φ with S = R + (f⁺ − R f⁻) ∇gᵀ / ġ⁻ at switch s (header): R Φ
+// plus a rank-one term, O(m²) rather than a product; S = I where the field
+// is continuous (stick to slip, contact opening).
+void MonodromyStability::applySaltation(const Switch& s, const std::vector<State>& before,
+                                        const std::vector<State>& after, const Eigen::VectorXd& full,
+                                        Eigen::MatrixXd& phi) {
+  if (s.from == State::kStick || s.from == State::kClosed) return;
   const int i = coords_[s.law];
   // The orbit's [x; ẋ] at the switch, from the coefficients.
   const int nb = model_.basis.size();
   const std::vector<int>& ks = model_.basis.harmonics();
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n_);
+  orbit_state_.setZero(2 * n_);
   for (size_t h = 0; h < ks.size(); ++h) {
     const int o = model_.basis.offset(static_cast<int>(h));
     if (ks[h] == 0) {
-      for (int j = 0; j < n_; ++j) y[j] += full[j * nb + o];
+      for (int j = 0; j < n_; ++j) orbit_state_[j] += full[j * nb + o];
       continue;
     }
     const double kw = ks[h] * model_.omega, c = std::cos(kw * s.time), sn = std::sin(kw * s.time);
     for (int j = 0; j < n_; ++j) {
       const double a = full[j * nb + o], b = full[j * nb + o + 1];
-      y[j] += a * c + b * sn;
-      y[n_ + j] += kw * (b * c - a * sn);
+      orbit_state_[j] += a * c + b * sn;
+      orbit_state_[n_ + j] += kw * (b * c - a * sn);
     }
   }
   if (projection_.size() > 0) {
-    Eigen::VectorXd q(2 * m_);
-    q.head(m_) = projection_ * y.head(n_);
-    q.tail(m_) = projection_ * y.tail(n_);
-    y = q;
+    y_.resize(2 * m_);
+    y_.head(m_).noalias() = projection_ * orbit_state_.head(n_);
+    y_.tail(m_).noalias() = projection_ * orbit_state_.tail(n_);
+  } else {
+    y_ = orbit_state_;
   }
   const bool slipping = s.from != State::kOpen;
-  if (slipping) y[m_ + i] = 0.0;  // the event: the slip velocity vanishes
-  Eigen::MatrixXd reset = Eigen::MatrixXd::Identity(2 * m_, 2 * m_);
-  if (held(s.to)) reset(m_ + i, m_ + i) = 0.0;
+  if (slipping) y_[m_ + i] = 0.0;  // the event: the slip velocity vanishes
+  const bool reset = held(s.to);   // R holds the DOF's velocity at 0
   const int gradient = slipping ? m_ + i : i;  // g = v_i, or the gap's x_i (sign cancels)
-  const Eigen::VectorXd f_before = field(before, s.time, y);
-  const Eigen::VectorXd f_after = field(after, s.time, reset * y);
-  const double rate = f_before[gradient];
-  if (!(std::abs(rate) > 0.0) || !std::isfinite(rate)) return reset;
-  out = reset;
-  out.col(gradient) += (f_after - reset * f_before) / rate;
-  return out;
+  field(before, s.time, y_, f_before_);
+  if (reset) y_[m_ + i] = 0.0;
+  field(after, s.time, y_, f_after_);
+  const double rate = f_before_[gradient];
+  gradient_row_ = phi.row(gradient);
+  if (reset) {
+    phi.row(m_ + i).setZero();
+    f_before_[m_ + i] = 0.0;
+  }
+  if (!(std::abs(rate) > 0.0) || !std::isfinite(rate)) return;
+  f_after_ -= f_before_;
+  phi.noalias() += (f_after_ / rate) * gradient_row_;
 }
 
 HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full) {
@@ -390,9 +421,10 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   classify(full);
   keepHeldRuns(full);
   findSwitches();
-  Eigen::MatrixXd phi = Eigen::MatrixXd::Identity(2 * m_, 2 * m_);
+  phi_.setIdentity(2 * m_, 2 * m_);
   if (switches_.empty()) {
-    phi = (phase(std::vector<State>(states_.begin(), states_.begin() + dofs_.size())).generator * period).exp();
+    current_.assign(states_.begin(), states_.begin() + dofs_.size());
+    phase(current_).exponential.apply(period, phi_, scratch_);
     ++work_.exponentials;
   } else {
     // From just after the first switch round the period back to it.
@@ -402,15 +434,15 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
       const Switch& s = switches_[(j + 1) % switches_.size()];
       const double previous = switches_[j].time;
       const double tau = j + 1 < switches_.size() ? s.time - previous : s.time + period - previous;
-      phi = (phase(current_).generator * tau).exp() * phi;
+      phase(current_).exponential.apply(tau, phi_, scratch_);
       ++work_.exponentials;
       after_ = current_;
       after_[s.law] = s.to;
-      phi = saltation(s, current_, after_, full) * phi;
+      applySaltation(s, current_, after_, full, phi_);
       current_.swap(after_);
     }
   }
-  return multipliers(phi, period, start);
+  return multipliers(phi_, period, start);
 }
 
 HillResult MonodromyStability::multipliers(const Eigen::MatrixXd& phi, double period,

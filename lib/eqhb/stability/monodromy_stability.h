@@ -59,6 +59,7 @@
 
 #include <Eigen/Dense>
 #include <chrono>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -67,6 +68,7 @@
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/stability/hill_stability.h"
+#include "eqhb/stability/phase_exponential.h"
 
 namespace eqhb {
 
@@ -105,7 +107,7 @@ class MonodromyStability {
   int propagatedDofs() const { return m_; }
 
  private:
-  enum class State { kSlipPositive, kSlipNegative, kStick, kOpen, kClosed };
+  enum class State : std::uint8_t { kSlipPositive, kSlipNegative, kStick, kOpen, kClosed };
   struct Switch {
     double time = 0.0;
     int law = 0;
@@ -127,9 +129,10 @@ class MonodromyStability {
   // The phase's generator A_G and projector Q for one set of held DOFs.
   struct Phase {
     Eigen::MatrixXd generator, projector;
+    PhaseExponential exponential;  // exp(A_G τ), decomposed once per curve
   };
-  State& state(int k, int l) { return states_[static_cast<size_t>(k) * dofs_.size() + l]; }
-  State state(int k, int l) const { return states_[static_cast<size_t>(k) * dofs_.size() + l]; }
+  State& state(int k, int l) { return states_[static_cast<size_t>(k) * laws_ + l]; }
+  State state(int k, int l) const { return states_[static_cast<size_t>(k) * laws_ + l]; }
   void classify(const Eigen::VectorXd& full);
   void keepHeldRuns(const Eigen::VectorXd& full);
   double holdingForce(const Eigen::VectorXd& full, int law, int sample);
@@ -139,9 +142,10 @@ class MonodromyStability {
   // The verdict from the multipliers, the eigenvalues of phi.
   HillResult multipliers(const Eigen::MatrixXd& phi, double period, std::chrono::steady_clock::time_point start) const;
   const Phase& phase(const std::vector<State>& states);
-  Eigen::VectorXd field(const std::vector<State>& states, double t, const Eigen::VectorXd& y);
-  Eigen::MatrixXd saltation(const Switch& s, const std::vector<State>& before, const std::vector<State>& after,
-                            const Eigen::VectorXd& full);
+  // f = [v; Q b] of the forced system at (t, y) in `states`.
+  void field(const std::vector<State>& states, double t, const Eigen::VectorXd& y, Eigen::VectorXd& f);
+  void applySaltation(const Switch& s, const std::vector<State>& before, const std::vector<State>& after,
+                      const Eigen::VectorXd& full, Eigen::MatrixXd& phi);
   static bool held(State s) { return s == State::kStick || s == State::kClosed; }
 
   HbModel model_;
@@ -159,6 +163,7 @@ class MonodromyStability {
   Eigen::MatrixXd load_directions_;                // Tᵀ: column j is DOF j's load in q
   std::vector<int> coords_;                        // per law: its DOF's coordinate in the propagation
   std::vector<int> dofs_;                          // per law
+  int laws_ = 0;                                   // dofs_.size(): the held-DOF method's laws
   std::vector<double> limit_, rho_, gap_;          // per law: μN (friction), ρ in trial form, g0 (contact)
   std::vector<bool> contact_;
   Eigen::MatrixXd u_, v_, r_;                      // N x laws: displacement (contacts), velocity, force samples
@@ -168,11 +173,19 @@ class MonodromyStability {
   std::map<std::vector<int>, Holding> holdings_;   // by held DOFs + row
   std::vector<int> last_key_;                      // the key of
   Holding* last_holding_ = nullptr;                // the last holding looked up
+  std::uint64_t last_mask_ = 0;                    // its held laws (up to 64) and
+  int last_law_ = -1;                              // its law
   std::vector<State> states_;                      // N x laws, row-major by sample
   std::vector<State> current_, after_;             // the propagation's states before and after a switch
   std::vector<bool> phase_key_;                    // phase()'s held DOFs, likewise
   std::vector<Switch> switches_;                   // increasing in time, within [0, T)
   std::map<std::vector<bool>, Phase> phases_;      // by held DOFs
+  // Storage reused from point to point: the monodromy and a product's
+  // scratch, the orbit's state at a switch (structure, propagation), the
+  // fields before and after it, Φ's row along the event's gradient, b.
+  Eigen::MatrixXd phi_, scratch_;
+  Eigen::VectorXd orbit_state_, y_, f_before_, f_after_, force_;
+  Eigen::RowVectorXd gradient_row_;
   std::unique_ptr<SpringLawMonodromy> springs_;    // penalty contact and Jenkins AFT laws (its header)
 };
 

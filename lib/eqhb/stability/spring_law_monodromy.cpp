@@ -1,7 +1,5 @@
 #include "eqhb/stability/spring_law_monodromy.h"
 
-#include <unsupported/Eigen/MatrixFunctions>
-
 #include <algorithm>
 #include <cmath>
 
@@ -136,7 +134,7 @@ void SpringLawMonodromy::findSwitches(double omega) {
 }
 
 // A of (1) (header) for the laws' states `active` and the current slots.
-const Eigen::MatrixXd& SpringLawMonodromy::generator(const std::vector<char>& active) {
+const PhaseExponential& SpringLawMonodromy::generator(const std::vector<char>& active) {
   auto key = std::make_pair(active, slot_);
   auto found = generators_.find(key);
   if (found != generators_.end()) return found->second;
@@ -156,7 +154,7 @@ const Eigen::MatrixXd& SpringLawMonodromy::generator(const std::vector<char>& ac
   a.block(0, m_, m_, m_).diagonal().setConstant(scale_);
   a.block(m_, 0, m_, m_) = -mass_inverse_ * k / scale_;
   a.block(m_, m_, m_, m_) = -mass_inverse_ * damping_;
-  return generators_.emplace(std::move(key), std::move(a)).first->second;
+  return generators_.emplace(std::move(key), PhaseExponential(a)).first->second;
 }
 
 const Eigen::MatrixXd& SpringLawMonodromy::monodromy(double omega, const Eigen::VectorXd& full, long& exponentials,
@@ -168,7 +166,7 @@ const Eigen::MatrixXd& SpringLawMonodromy::monodromy(double omega, const Eigen::
   phi_ = Eigen::MatrixXd::Identity(d, d);
   current_.assign(active_.begin(), active_.begin() + laws_);
   if (switches_.empty()) {
-    phi_ = (generator(current_) * period).exp();
+    phi_ = generator(current_).exponential(period);
     ++exponentials;
     return phi_;
   }
@@ -178,7 +176,7 @@ const Eigen::MatrixXd& SpringLawMonodromy::monodromy(double omega, const Eigen::
     const Switch& s = switches_[(j + 1) % switches_.size()];
     const double previous = switches_[j].time;
     const double tau = j + 1 < switches_.size() ? s.time - previous : s.time + period - previous;
-    phi_ = (generator(current_) * tau).exp() * phi_;
+    generator(current_).apply(tau, phi_, scratch_);
     ++exponentials;
     // (4): a stick onset sets the anchor's perturbation to wᵀδq.
     if (!contact_[s.law] && s.to_active && slot_[s.law] >= 0)

@@ -50,6 +50,7 @@
 
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/laws/law.h"
+#include "eqhb/stability/phase_exponential.h"
 
 namespace eqhb {
 
@@ -81,7 +82,8 @@ class SpringLawMonodromy {
   };
   void classify(double omega, const Eigen::VectorXd& full, long& syntheses);
   void findSwitches(double omega);
-  const Eigen::MatrixXd& generator(const std::vector<char>& active);
+  // A of (1) with its exponential's decomposition, formed once per key.
+  const PhaseExponential& generator(const std::vector<char>& active);
 
   HbModel model_;
   std::unique_ptr<FourierTransform> transform_;
@@ -100,7 +102,8 @@ class SpringLawMonodromy {
   std::vector<char> active_;                // N x laws, row-major: stuck or closed
   std::vector<Switch> switches_;
   std::vector<char> current_;
-  std::map<std::pair<std::vector<char>, std::vector<int>>, Eigen::MatrixXd> generators_;
+  std::map<std::pair<std::vector<char>, std::vector<int>>, PhaseExponential> generators_;
+  Eigen::MatrixXd scratch_;
   Eigen::MatrixXd phi_;
 };
 

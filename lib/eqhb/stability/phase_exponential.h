@@ -1,0 +1,40 @@
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace eqhb {
+
+// exp(A τ) Φ for one constant generator A at many τ, as a monodromy's phase
+// generators repeat from phase to phase and from point to point along a
+// curve. A = V D V⁻¹ once (real form: D block diagonal, 2x2 blocks
+// [a b; −b a] for a ± ib), then exp(A τ) Φ = V (exp(D τ) (V⁻¹ Φ)): two
+// products and an O(d²) scaling instead of a scaling-and-squaring
+// exponential (tens of products when ‖A τ‖ is large). Where V is
+// ill-conditioned or defective (a rigid-body Jordan block, repeated
+// eigenvalues) that would lose digits, so the generator keeps Eigen's
+// exponential.
+class PhaseExponential {
+ public:
+  PhaseExponential() = default;  // of the empty generator
+  explicit PhaseExponential(const Eigen::MatrixXd& generator);
+  // True when exp(A τ) is formed from the eigendecomposition.
+  bool decomposed() const { return decomposed_; }
+  // Φ ← exp(A τ) Φ. `scratch` is reused storage of Φ's size.
+  void apply(double tau, Eigen::MatrixXd& phi, Eigen::MatrixXd& scratch) const;
+  // exp(A τ) itself (by the same route as apply).
+  Eigen::MatrixXd exponential(double tau) const;
+
+  // Reciprocal condition number of V below which the decomposition is not
+  // used: its error in exp(A τ) is about eps/rcond relative. The lap
+  // joint's scaled generators (rcond ~6e-7 after column scaling) stay on
+  // the exponential: decomposed, its radii moved by up to 1.3e-7.
+  static constexpr double kMinimumRcond = 1e-6;
+
+ private:
+  Eigen::MatrixXd generator_;
+  bool decomposed_ = false;
+  Eigen::MatrixXd vectors_, inverse_;
+  Eigen::VectorXd real_, imaginary_;  // per column of V; imaginary_ > 0 opens a 2x2 block
+};
+
+}  // namespace eqhb
