@@ -40,12 +40,12 @@ InterfaceReduction reduceToInterface(const Eigen::MatrixXd& mass, const Eigen::M
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(kii, mii);
     if (modes.info() != Eigen::Success)
       throwInputError("structure", "mass", "the interior's modes did not converge");
-    const Eigen::MatrixXd cii = block(damping, interior, interior);
+    const Eigen::MatrixXd& vectors = modes.eigenvectors();
+    const Eigen::MatrixXd damped = block(damping, interior, interior) * vectors;  // one product for every mode
     std::vector<int> kept;
     for (int k = 0; k < ni; ++k) {
-      const Eigen::VectorXd v = modes.eigenvectors().col(k);
       const double rate = std::sqrt(std::max(modes.eigenvalues()[k], 0.0));
-      const double sigma = 0.5 * v.dot(cii * v);
+      const double sigma = 0.5 * vectors.col(k).dot(damped.col(k));
       if (rate > fast_rate && sigma * period > decay) continue;
       kept.push_back(k);
     }

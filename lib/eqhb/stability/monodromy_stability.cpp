@@ -46,7 +46,9 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
                     "needs grounded Coulomb 1D (minmax or projection form) or Signorini laws only, or penalty "
                     "contact and one-slider jenkins (aft) laws only; use hill");
   n_ = model_.structure.dofs();
-  transform_ = std::make_unique<FourierTransform>(model_.basis, model_.samples);
+  // On odd harmonics the second half-period is the first's negative:
+  // half the samples are transformed (synthesize).
+  transform_ = std::make_unique<FourierTransform>(model_.basis, model_.samples, Sampling::kHalfWave);
   // The loads at the samples: harmonic h at t_k = kT/N has the phase
   // 2π h k / N whatever ω, so they are sampled once.
   load_samples_ = Eigen::MatrixXd::Zero(model_.samples, n_);
@@ -114,6 +116,14 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
 
 MonodromyStability::~MonodromyStability() = default;
 
+// All N samples of a series on the basis (x(t + T/2) = −x(t) completes a
+// half-wave transform's N/2).
+void MonodromyStability::synthesize(const double* coefficients, double* samples) {
+  transform_->synthesize(coefficients, samples);
+  const int half = transform_->activeSamples();
+  for (int k = half; k < model_.samples; ++k) samples[k] = -samples[k - half];
+}
+
 // Samples of each law's velocity, force (and displacement for contacts),
 // and its state per sample by the law's branch rule (header). The
 // structure's other DOFs are not sampled: the holding forces are series
@@ -121,18 +131,23 @@ MonodromyStability::~MonodromyStability() = default;
 void MonodromyStability::classify(const Eigen::VectorXd& full) {
   const int nb = model_.basis.size(), samples = model_.samples, laws = static_cast<int>(dofs_.size());
   FourierTransform& transform = *transform_;
+  const int half = transform.activeSamples();
   u_.resize(samples, laws);
   v_.resize(samples, laws);
   r_.resize(samples, laws);
   for (int l = 0; l < laws; ++l) {
     const double* x = full.data() + dofs_[l] * nb;
     if (contact_[l]) {
-      transform.synthesize(x, u_.col(l).data());
+      synthesize(x, u_.col(l).data());
       ++work_.syntheses;
     }
     transform.differentiate(x, model_.omega, rate_.data());
     transform.synthesizePair(rate_.data(), full.data() + (n_ + model_.componentIndex(l, 0)) * nb, v_.col(l).data(),
                              r_.col(l).data());
+    for (int k = half; k < samples; ++k) {
+      v_(k, l) = -v_(k - half, l);
+      r_(k, l) = -r_(k - half, l);
+    }
     work_.syntheses += 2;
   }
   states_.resize(static_cast<size_t>(samples) * laws);
@@ -227,7 +242,7 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
     differentiateCoefficients(model_.basis, combined_.data(), model_.omega, rate_.data());
     combined_.noalias() = -(x * h.stiffness_row);
     combined_ -= rate_;
-    transform_->synthesize(combined_.data(), h.samples.data());
+    synthesize(combined_.data(), h.samples.data());
     ++work_.syntheses;
     h.samples += h.loads;
     h.point = point_;

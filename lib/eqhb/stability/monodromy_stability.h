@@ -133,6 +133,7 @@ class MonodromyStability {
   };
   State& state(int k, int l) { return states_[static_cast<size_t>(k) * laws_ + l]; }
   State state(int k, int l) const { return states_[static_cast<size_t>(k) * laws_ + l]; }
+  void synthesize(const double* coefficients, double* samples);
   void classify(const Eigen::VectorXd& full);
   void keepHeldRuns(const Eigen::VectorXd& full);
   double holdingForce(const Eigen::VectorXd& full, int law, int sample);
