@@ -90,7 +90,13 @@ int main(int argc, char** argv) {
       row.scene = name;
       row.method = method;
       for (int r = 0; r < repeats; ++r) {
-        const CurveStability stability = analyseCurveStability(swept.model, swept.curve, hill);
+        CurveStability stability;
+        try {
+          stability = analyseCurveStability(swept.model, swept.curve, hill);
+        } catch (const std::exception& e) {
+          std::cerr << entry << ", " << method << ": " << e.what() << "\n";
+          return 2;
+        }
         ratios.push_back(stability.seconds / std::max(stability.solve_seconds, 1e-12));
         per_point.push_back(1e3 * stability.seconds / std::max(stability.analysed, 1));
         row.points = stability.analysed;

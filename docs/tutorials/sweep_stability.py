@@ -1,7 +1,8 @@
 """A frequency sweep with stability and an accuracy check: the Duffing-like
 cubic scene traced by arclength through its folds with Hill's stability along
 the curve (command line, JSON read here), then friction-1d: the error
-estimate of harmonic balance checked against the exact periodic orbit."""
+estimate of harmonic balance checked against the exact periodic orbit, and
+the spectral radius by Hill's method, the monodromy and shooting."""
 import json
 import subprocess
 
@@ -73,3 +74,15 @@ ax.set_xlabel("harmonics H")
 ax.set_ylabel("relative error of max|x|")
 ax.legend(loc="lower left")
 fig.savefig("friction_accuracy.png")
+
+# --- 3. who computes the multipliers: Hill's method, the monodromy, or shooting
+print(f"\nfriction-1d, omega = 0.4: spectral radius by stability_method (exact orbit "
+      f"{exact['spectral_radius']:.6f})")
+print(f"{'H':>4} {'hill':>10} {'monodromy':>10} {'shooting':>10}")
+for H in (5, 10, 20):
+    radii = []
+    for method in ("hill", "monodromy", "shooting"):
+        r = eqhb.solve(model, omega=0.4, harmonics=H, stability=True, stability_method=method)
+        assert r["stability"].get("method", "hill") == method, r["stability"]
+        radii.append(r["stability"]["spectral_radius"])
+    print(f"{H:>4} " + " ".join(f"{x:>10.6f}" for x in radii))

@@ -28,9 +28,9 @@ bool turnsBetween(const Curve& curve, int lo, int hi) {
 namespace {
 
 // "auto" takes the monodromy wherever its laws allow: on friction-1d it
-// costs 15-21 us a point against Hill's ~3 ms, on beam-damper (reduced to
-// its law DOFs and slow modes) 0.11 ms against 119 ms, on the lap joint
-// (penalty contact and Jenkins AFT between nodes) 0.26 s against 1.8 s.
+// costs 19 us a point against Hill's ~1.7 ms, on beam-damper (reduced to
+// its law DOFs and slow modes) 0.15 ms against 24 ms, on the lap joint
+// (penalty contact and Jenkins AFT between nodes) 58 ms against 1.8 s.
 // Shooting (exact multipliers) costs 2-9 ms a point on the small scenes,
 // 20-100 times their solve, so auto does not take it.
 bool useMonodromy(const HbModel& model, const HillOptions& options) {
