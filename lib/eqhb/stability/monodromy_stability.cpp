@@ -116,12 +116,16 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
 
 MonodromyStability::~MonodromyStability() = default;
 
-// All N samples of a series on the basis (x(t + T/2) = −x(t) completes a
-// half-wave transform's N/2).
-void MonodromyStability::synthesize(const double* coefficients, double* samples) {
-  transform_->synthesize(coefficients, samples);
+// All N samples from a half-wave transform's N/2: x(t + T/2) = −x(t) on
+// odd harmonics (nothing to do on a full-period transform).
+void MonodromyStability::completePeriod(double* samples) const {
   const int half = transform_->activeSamples();
   for (int k = half; k < model_.samples; ++k) samples[k] = -samples[k - half];
+}
+
+void MonodromyStability::synthesize(const double* coefficients, double* samples) {
+  transform_->synthesize(coefficients, samples);
+  completePeriod(samples);
 }
 
 // Samples of each law's velocity, force (and displacement for contacts),
@@ -129,9 +133,8 @@ void MonodromyStability::synthesize(const double* coefficients, double* samples)
 // structure's other DOFs are not sampled: the holding forces are series
 // formed from the coefficients (holdingForce).
 void MonodromyStability::classify(const Eigen::VectorXd& full) {
-  const int nb = model_.basis.size(), samples = model_.samples, laws = static_cast<int>(dofs_.size());
+  const int nb = model_.basis.size(), samples = model_.samples, laws = laws_;
   FourierTransform& transform = *transform_;
-  const int half = transform.activeSamples();
   u_.resize(samples, laws);
   v_.resize(samples, laws);
   r_.resize(samples, laws);
@@ -144,10 +147,8 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
     transform.differentiate(x, model_.omega, rate_.data());
     transform.synthesizePair(rate_.data(), full.data() + (n_ + model_.componentIndex(l, 0)) * nb, v_.col(l).data(),
                              r_.col(l).data());
-    for (int k = half; k < samples; ++k) {
-      v_(k, l) = -v_(k - half, l);
-      r_(k, l) = -r_(k - half, l);
-    }
+    completePeriod(v_.col(l).data());
+    completePeriod(r_.col(l).data());
     work_.syntheses += 2;
   }
   states_.resize(static_cast<size_t>(samples) * laws);
@@ -189,7 +190,7 @@ void MonodromyStability::addSlipForce(int l, State state, Eigen::VectorXd& b) co
 double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int k) {
   ++work_.holding_forces;
   const int held_dof = dofs_[l], nb = model_.basis.size(), samples = model_.samples;
-  const int laws = static_cast<int>(dofs_.size());
+  const int laws = laws_;
   // Consecutive calls mostly ask for the same key (a stick run): up to 64
   // laws, the held laws' bit mask and l name it without building it.
   std::uint64_t mask = 0;
@@ -258,7 +259,7 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
 }
 
 void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
-  const int samples = model_.samples, laws = static_cast<int>(dofs_.size());
+  const int samples = model_.samples, laws = laws_;
   auto next = [samples](int k) { return k + 1 == samples ? 0 : k + 1; };  // round the period
   auto opposite = [](State s) { return s == State::kSlipPositive ? State::kSlipNegative : State::kSlipPositive; };
   for (int l = 0; l < laws; ++l) {
@@ -311,7 +312,7 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
 // sample wraps to the first), placed by linear interpolation of the
 // quantity that vanishes there.
 void MonodromyStability::findSwitches() {
-  const int samples = model_.samples, laws = static_cast<int>(dofs_.size());
+  const int samples = model_.samples, laws = laws_;
   const double step = 2.0 * M_PI / model_.omega / samples;
   switches_.clear();
   const State* states = states_.data();
@@ -343,15 +344,15 @@ const MonodromyStability::Phase& MonodromyStability::phase(const std::vector<Sta
     if (phase_key_[i]) coords.push_back(i);
   Phase p;
   p.projector = orbits::holdDofs(propagated_.mass_inverse, coords).projector;
-  p.generator = Eigen::MatrixXd::Zero(2 * m_, 2 * m_);
-  p.generator.topRightCorner(m_, m_).setIdentity();
+  Eigen::MatrixXd generator = Eigen::MatrixXd::Zero(2 * m_, 2 * m_);
+  generator.topRightCorner(m_, m_).setIdentity();
   // A held DOF's velocity perturbation is 0 through the phase (the reset
   // that starts it sets it so), so its ẋ = v row is left out: the generator
   // then has no Jordan block at 0 and is decomposed (phase_exponential.h).
-  for (int i : coords) p.generator(i, m_ + i) = 0.0;
-  p.generator.bottomLeftCorner(m_, m_) = -p.projector * propagated_.stiffness;
-  p.generator.bottomRightCorner(m_, m_) = -p.projector * propagated_.damping;
-  p.exponential = PhaseExponential(p.generator);
+  for (int i : coords) generator(i, m_ + i) = 0.0;
+  generator.bottomLeftCorner(m_, m_) = -p.projector * propagated_.stiffness;
+  generator.bottomRightCorner(m_, m_) = -p.projector * propagated_.damping;
+  p.exponential = PhaseExponential(generator);
   return phases_.emplace(phase_key_, std::move(p)).first->second;
 }
 
@@ -438,12 +439,12 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   findSwitches();
   phi_.setIdentity(2 * m_, 2 * m_);
   if (switches_.empty()) {
-    current_.assign(states_.begin(), states_.begin() + dofs_.size());
+    current_.assign(states_.begin(), states_.begin() + laws_);
     phase(current_).exponential.apply(period, phi_, scratch_);
     ++work_.exponentials;
   } else {
     // From just after the first switch round the period back to it.
-    current_.assign(states_.begin(), states_.begin() + dofs_.size());
+    current_.assign(states_.begin(), states_.begin() + laws_);
     current_[switches_[0].law] = switches_[0].to;
     for (size_t j = 0; j < switches_.size(); ++j) {
       const Switch& s = switches_[(j + 1) % switches_.size()];

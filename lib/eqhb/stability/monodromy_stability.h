@@ -126,13 +126,15 @@ class MonodromyStability {
     Eigen::VectorXd samples;       // row · b(t_k) but the slip forces, at the current point
     long point = -1;               // the point `samples` belongs to
   };
-  // The phase's generator A_G and projector Q for one set of held DOFs.
+  // The projector Q for one set of held DOFs and its generator A_G's
+  // exponential, decomposed once per curve.
   struct Phase {
-    Eigen::MatrixXd generator, projector;
-    PhaseExponential exponential;  // exp(A_G τ), decomposed once per curve
+    Eigen::MatrixXd projector;
+    PhaseExponential exponential;
   };
   State& state(int k, int l) { return states_[static_cast<size_t>(k) * laws_ + l]; }
   State state(int k, int l) const { return states_[static_cast<size_t>(k) * laws_ + l]; }
+  void completePeriod(double* samples) const;
   void synthesize(const double* coefficients, double* samples);
   void classify(const Eigen::VectorXd& full);
   void keepHeldRuns(const Eigen::VectorXd& full);
