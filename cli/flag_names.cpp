@@ -18,7 +18,7 @@ const std::pair<const char*, const char*> kFlags[] = {
     {"from_hb", "--from-hb"},
     {"from", "--from"}, {"to", "--to"}, {"step", "--step"},
     {"min_step", "--min-step"}, {"max_step", "--max-step"}, {"stability", "--stability"}, {"stability_method", "--stability-method"},
-    {"stability_time_limit", "--stability-time-limit"},
+    {"stability_time_limit", "--stability-time-limit"}, {"curve_time_limit", "--curve-time-limit"},
     {"dof", "--dof"}, {"coarse_points", "--coarse-points"}, {"max_peaks", "--max-peaks"},
     {"show", "--show"}, {"peak_dof", "--peak-dof"}, {"vary", "--vary"}, {"lhs", "--lhs"}, {"out", "--out"}, {"threads", "--threads"},
     // Phrases, replaced wherever they begin a word.

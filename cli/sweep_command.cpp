@@ -16,6 +16,7 @@
 #include "hdf5_option.h"
 #include "terminal/progress.h"
 #include "terminal/run_program.h"
+#include "terminal/stop_signals.h"
 #include "terminal/verbosity.h"
 
 namespace eqhb::cli {
@@ -37,6 +38,11 @@ void addSweepCommand(CLI::App& app, SolveArguments& s, SweepArguments& w) {
                   "Largest scaled arclength step with --arclength (default max(0.1, step); 0.1 is a tenth of the "
                   "range in omega or a 10 % change of the response)");
   cmd->add_option("--max-points", w.curve.max_points, "Most points on the curve")->capture_default_str();
+  cmd->add_option("--curve-time-limit", w.curve.curve_time_limit,
+                  "Seconds for the whole sweep (0 = none): the curve stops between two points and writes those "
+                  "found, not complete (exit 1); stability gets what is left. SIGINT or SIGTERM stop it the same "
+                  "way (a second signal at once)")
+      ->capture_default_str();
   cmd->add_option("--out", w.out, "Write the curve as CSV");
   cmd->add_option("--chart", w.chart, "Write a chart of the curve: PREFIX.png and PREFIX.svg (matplotlib)");
   addHdf5Option(cmd, w.hdf5, "the curve");
@@ -156,7 +162,10 @@ void reportAccuracyNotMet(const app::SweepResult& r) {
 }  // namespace
 
 int runSweep(const SolveArguments& s, const SweepArguments& w) {
-  const app::SweepPlan plan = app::planSweep(s.scene, sweepOptions(s, w));
+  const StopOnSignals signals;
+  app::SweepOptions options = sweepOptions(s, w);
+  options.stop_requested = signals.requested();
+  const app::SweepPlan plan = app::planSweep(s.scene, options);
   SweepProgress progress(plan);
   app::SweepResult r = app::sweep(plan, progress.callbacks());
   progress.finish(r.curve);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <optional>
 
 #include "eqhb/continuation/arclength_steps.h"
@@ -205,6 +206,53 @@ TEST(Continuation, ArclengthStoppedByMaxPointsIsNotComplete) {
   EXPECT_EQ(curve.points.size(), 3u);
   EXPECT_FALSE(curve.complete);
   EXPECT_NE(curve.stop_reason.find("max_points = 3 reached"), std::string::npos) << curve.stop_reason;
+}
+
+// A stop asked from outside (the command line's signal handler) after the
+// third point: both methods keep the three points, are not complete and say
+// why and where; the sequential sweep counts the grid points not reached.
+TEST(Continuation, AStopRequestKeepsThePointsFound) {
+  const Scene scene = loadScene(test::problem("friction-1d.toml"), {"harmonic_balance.harmonics=3",
+                                                                      "harmonic_balance.samples=64"});
+  auto solver = makeSolver("dogleg");
+  for (const bool arclength : {false, true}) {
+    std::atomic<bool> requested{false};
+    ContinuationOptions options = overItsRange(scene);
+    options.stop.requested = &requested;
+    int seen = 0;
+    const Progress stop_after_three = [&](const CurvePoint&, int) {
+      if (++seen == 3) requested.store(true);
+    };
+    const Curve curve = arclength ? sweepArclength(scene.model, *solver, {}, options, stop_after_three)
+                                  : sweepSequential(scene.model, *solver, {}, options, stop_after_three);
+    EXPECT_EQ(curve.points.size(), 3u) << (arclength ? "arclength" : "sequential");
+    EXPECT_FALSE(curve.complete);
+    EXPECT_EQ(curve.failed_points, 0);
+    EXPECT_NE(curve.stop_reason.find("stopped on request"), std::string::npos) << curve.stop_reason;
+    for (const CurvePoint& p : curve.points) EXPECT_TRUE(p.converged);
+    if (!arclength)
+      EXPECT_NE(curve.stop_reason.find("before omega = " + formatNumber(curve.points.back().omega + options.step)),
+                std::string::npos)
+          << curve.stop_reason;
+  }
+}
+
+// A whole-curve limit already passed: the first point is still solved (the
+// curve says where it began), then the curve stops naming the limit.
+TEST(Continuation, ACurveTimeLimitStopsAfterTheFirstPoint) {
+  const Scene scene = loadScene(test::problem("friction-1d.toml"), {"harmonic_balance.harmonics=3",
+                                                                      "harmonic_balance.samples=64"});
+  auto solver = makeSolver("dogleg");
+  for (const bool arclength : {false, true}) {
+    ContinuationOptions options = overItsRange(scene);
+    options.stop.deadline = Deadline(1e-9);
+    const Curve curve = arclength ? sweepArclength(scene.model, *solver, {}, options)
+                                  : sweepSequential(scene.model, *solver, {}, options);
+    ASSERT_EQ(curve.points.size(), 1u) << (arclength ? "arclength" : "sequential");
+    EXPECT_TRUE(curve.points[0].converged);
+    EXPECT_FALSE(curve.complete);
+    EXPECT_NE(curve.stop_reason.find("curve_time_limit of 1e-09 s reached"), std::string::npos) << curve.stop_reason;
+  }
 }
 
 // The Duffing oscillator's response grows tenfold from the start of the

@@ -177,14 +177,17 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
           rho=None, formulation=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
           max_step=None, stability=False, stability_method="auto", stability_time_limit=0.0, error_estimate=False,
-          accuracy=None,
+          accuracy=None, curve_time_limit=0.0,
           max_harmonics=320, accuracy_test="auto", peak_dof=None, show=None):
     """A frequency-response curve by continuation in omega, as `eqhb sweep`
     runs it ("sequential" on a grid of `step`, by default a hundredth of the
     range, or "arclength", which passes turning points, from a scaled step
     of 0.01). start and stop default to the model's sweep range; min_step
     (default min(1e-6, step)) and max_step (arclength, default max(0.1,
-    step)) bound the step. Returns a dict of arrays over the converged
+    step)) bound the step; curve_time_limit (seconds, 0 none) bounds the
+    whole sweep: the curve stops between two points, keeping those found
+    (complete False, stop_reason saying where), and stability gets what is
+    left. Returns a dict of arrays over the converged
     points: omega, converged, max_abs (points x dofs), first_harmonic,
     energy, fold, x_cos/x_sin (points x dofs x harmonics), and folds,
     stop_reason, complete, failed_points, seconds and the settings of `eqhb
@@ -221,6 +224,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
                          linear_algebra, "coarse", fallback))
     args.update(start=_real(start, "start", True), stop=_real(stop, "stop", True), step=_real(step, "step", True),
                 method=_text(method, "method"), max_points=_integer(max_points, "max_points"),
+                curve_time_limit=_real(curve_time_limit, "curve_time_limit"),
                 min_step=_real(min_step, "min_step", True), max_step=_real(max_step, "max_step", True),
                 stability=_flag(stability, "stability"), stability_method=_text(stability_method, "stability_method"),
                 stability_time_limit=_real(stability_time_limit, "stability_time_limit"),

@@ -202,6 +202,7 @@ py::dict sweep(const PyModel& m, const py::dict& args) {
   o.min_step = args["min_step"].cast<std::optional<double>>();
   o.max_step = args["max_step"].cast<std::optional<double>>();
   o.max_points = args["max_points"].cast<int>();
+  o.curve_time_limit = args["curve_time_limit"].cast<double>();
   const app::SweepPlan plan = inPythonTerms([&] { return app::planSweep(scene, o); });
   return sweepDict(withoutGil([&] { return app::sweep(plan); }));
 }

@@ -113,6 +113,18 @@ def test_sweep_points_are_the_single_solves():
     np.testing.assert_allclose(curve["x_cos"][3], single["x_cos"], atol=1e-6 * np.max(single["max_abs_x"]))
 
 
+def test_a_curve_time_limit_keeps_the_points_found():
+    model = eqhb.load_scene(SCENE)
+    curve = eqhb.sweep(model, 0.3, 0.4, step=0.02, harmonics=5, samples=256, curve_time_limit=1e-9, stability=True)
+    # The first point is solved, then the limit stops the curve; stability has no time left.
+    assert list(curve["omega"]) == [0.3] and curve["converged"].all()
+    assert not curve["complete"] and curve["failed_points"] == 0
+    assert "curve_time_limit of 1e-09 s reached" in curve["stop_reason"]
+    assert curve["stability_time_limited"] and curve["stability_points_analysed"] == 0
+    with pytest.raises(eqhb.InputError, match="^curve_time_limit = -1: must be finite and >= 0"):
+        eqhb.sweep(model, 0.3, 0.4, curve_time_limit=-1)
+
+
 def test_arclength_sweep_uses_the_scene_range():
     model = eqhb.load_scene(PROBLEMS / "cubic.toml")
     curve = eqhb.sweep(model, method="arclength", harmonics=3, samples=64)

@@ -37,6 +37,15 @@ void resolveSteps(const SweepOptions& o, ContinuationOptions* c) {
                     "min_step = " + formatNumber(c->min_step) + " must be <= max_step = " + formatNumber(c->max_step));
 }
 
+// The stability's own limit (0: none) within what is left of the sweep's:
+// a sweep out of time gets the smallest limit, which stops before the first
+// point and says so (stability_time_limited).
+double withinCurveLimit(double stability_limit, const Deadline& sweep) {
+  if (!sweep.limited()) return stability_limit;
+  const double left = std::max(sweep.remaining(), 1e-9);
+  return stability_limit > 0.0 ? std::min(stability_limit, left) : left;
+}
+
 }  // namespace
 
 bool SweepOptions::isValid(std::string* why) const {
@@ -46,6 +55,8 @@ bool SweepOptions::isValid(std::string* why) const {
     return refuseOption(why, "min_step", formatNumber(*min_step), "must be finite and > 0");
   if (max_step && !positive(*max_step))
     return refuseOption(why, "max_step", formatNumber(*max_step), "must be finite and > 0");
+  if (!(curve_time_limit >= 0.0) || !std::isfinite(curve_time_limit))
+    return refuseOption(why, "curve_time_limit", formatNumber(curve_time_limit), "must be finite and >= 0 (0: none)");
   if (!SolutionChecks::isValid(why)) return false;
   if (accuracy && stability)
     return refuseOption(why, "stability", "(set)", "not with accuracy: the points of such a curve differ in H");
@@ -107,6 +118,7 @@ SweepResult sweep(const SweepPlan& plan, const SweepCallbacks& callbacks) {
   const OwnedFallbackChain fallbacks(o.fallback, o.solver, "fallback");
   ContinuationOptions continuation = plan.continuation;
   continuation.fallbacks = fallbacks.chain();
+  continuation.stop = CurveStop{Deadline(o.curve_time_limit), o.stop_requested};
   if (plan.scene.at_rest) continuation.fallbacks.at_rest = std::make_shared<const StaticContactState>(*plan.scene.at_rest);
   SweepResult result;
   result.plan = plan;
@@ -125,11 +137,14 @@ SweepResult sweep(const SweepPlan& plan, const SweepCallbacks& callbacks) {
                      ? sweepArclength(scene_model, *solver, o.solver_options, continuation, callbacks.point)
                      : sweepSequential(scene_model, *solver, o.solver_options, continuation, callbacks.point);
   result.model = scene_model;
+  // Stopped on request: what was found is returned as it is, at once.
+  if (continuation.stop.wasRequested()) return result;
   if (o.error_estimate) estimateCurveErrors(scene_model, *solver, o.solver_options, o.condensed, &result.curve);
   if (o.stability) {
     HillOptions stability;
     stability.method = o.stability_method;
-    stability.time_limit = o.stability_time_limit;
+    stability.time_limit = withinCurveLimit(o.stability_time_limit, continuation.stop.deadline);
+    stability.stop_requested = o.stop_requested;
     result.stability = analyseCurveStability(scene_model, result.curve, stability, callbacks.stability);
   }
   return result;

@@ -6,6 +6,7 @@
 // it, accuracy_sweep.h); then per-point error estimates and stability.
 #pragma once
 
+#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,13 @@ struct SweepOptions : SolverChoice, SolutionChecks {
   // Default min(1e-6, step) and max(0.1, step) (ContinuationOptions).
   std::optional<double> min_step, max_step;
   int max_points = 20000;
+  // Seconds for the whole sweep, its curve and what follows (0: none): the
+  // curve stops between two points keeping those found (curve_stop.h), the
+  // stability gets what is left.
+  double curve_time_limit = 0.0;
+  // Set from outside (a signal handler) to stop the same way; error
+  // estimates and stability are then skipped.
+  const std::atomic<bool>* stop_requested = nullptr;
 
   // False with a message naming the field, its value and the rule (the
   // options alone; the range against the scene is checked by planSweep).

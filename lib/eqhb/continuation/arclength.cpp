@@ -95,6 +95,10 @@ bool ArclengthSweep::startCurve() {
 
 void ArclengthSweep::trace() {
   while (static_cast<int>(curve_.points.size()) < options_.max_points) {
+    if (const std::string why = options_.stop.due(); !why.empty()) {
+      stop(why + " after " + at(current_.omega));
+      return;
+    }
     Trial trial = predictAndCorrect();
     Next next = correctorConverged(trial);
     if (next == Next::kGoOn) next = insideTheRange(trial);

@@ -174,8 +174,15 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
                                                 : Eigen::VectorXd::Zero(system->size());
   double last_converged_omega = NAN;
   SecantGuess guess;
+  std::string stopped;  // why the curve ended before its last grid point
   for (int i = 0; i <= grid; ++i) {
     const double target = options.from + direction * i * options.step;
+    if (i > 0) stopped = options.stop.due();
+    if (!stopped.empty()) {
+      stopped += " before omega = " + formatNumber(target) + " (" + std::to_string(grid + 1 - i) + " of " +
+                 std::to_string(grid + 1) + " grid points not reached)";
+      break;
+    }
     CurvePoint point;
     point.omega = target;
     SolverResult r;
@@ -252,7 +259,7 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   }
   // Failed points next to a converged one further on: from there, backwards
   // (a rescue like the fallbacks: not with an empty chain, --fallback none).
-  const bool rescue = !options.fallbacks.steps.empty();
+  const bool rescue = !options.fallbacks.steps.empty() && stopped.empty();
   for (int i = grid - 1; rescue && i >= 0 && curve.failed_points > 0; --i) {
     CurvePoint& point = curve.points[i];
     if (point.converged || !curve.points[i + 1].converged) continue;
@@ -261,9 +268,12 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   }
   // Still failed from both sides: each neighbour's branch, by arclength.
   if (rescue && curve.failed_points > 0) followBranchesAcrossFailedRuns(model, solver, solver_options, options, &curve);
-  curve.complete = curve.failed_points == 0;
+  curve.complete = curve.failed_points == 0 && stopped.empty();
   curve.stop_reason = curve.complete ? "reached the end of the range"
-                                     : std::to_string(curve.failed_points) + " grid point(s) did not converge";
+                      : curve.failed_points == 0
+                          ? stopped
+                          : std::to_string(curve.failed_points) + " grid point(s) did not converge" +
+                                (stopped.empty() ? "" : "; " + stopped);
   curve.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return curve;
 }

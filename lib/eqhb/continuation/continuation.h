@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "eqhb/continuation/curve_stop.h"
 #include "eqhb/continuation/fallback_chain.h"
 #include "eqhb/harmonic_balance/hb_model.h"
 #include "eqhb/solvers/solver.h"
@@ -99,6 +100,9 @@ struct ContinuationOptions {
   // The first point's start: its [x; λ] coefficients (FullSystem layout, the
   // model's H) at `from`, e.g. a solution already known there; empty: zero.
   Eigen::VectorXd start_full;
+  // Ends the curve early, keeping its points (curve_stop.h): not complete,
+  // the stop reason says where and why.
+  CurveStop stop;
   // The step when none is given: a sequential grid of a hundredth of the
   // range (101 points in any unit: 0.007 on a nondimensional 0.1 -> 0.8,
   // 2.6 rad/s on a cantilever's 110 -> 370 rad/s), an arclength start of

@@ -61,6 +61,7 @@ CurveStability analyseCurveStability(const HbModel& model, Curve& curve, const H
   else if (useMonodromy(model, options)) monodromy = std::make_unique<MonodromyStability>(model, options.unit_tolerance);
   else hill = std::make_unique<HillStability>(model, options);
   auto outOfTime = [&]() {
+    if (options.stop_requested && options.stop_requested->load(std::memory_order_relaxed)) return true;
     return options.time_limit > 0.0 &&
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= options.time_limit;
   };

@@ -36,6 +36,8 @@
 // Spectra's Arnoldi solver (shift-invert).
 #pragma once
 
+#include <atomic>
+
 #include <Eigen/Dense>
 #include <complex>
 #include <memory>
@@ -65,6 +67,9 @@ struct HillOptions {
   // Seconds for the stability of a whole curve (analyseCurveStability), 0:
   // none. Checked after each point: the points not reached keep no verdict.
   double time_limit = 0.0;
+  // Set from outside (a signal handler): the curve's stability stops there
+  // too, as at its time limit.
+  const std::atomic<bool>* stop_requested = nullptr;
   // Throws InputError naming the field.
   void validate() const;
 };
