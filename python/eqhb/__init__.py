@@ -177,7 +177,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
           rho=None, formulation=None, solver="dogleg", system="condensed", tolerance=1e-10, max_iterations=1000, max_evaluations=10000,
           time_limit=0.0, options=None, linear_algebra="auto", max_points=20000, fallback="default", min_step=None,
           max_step=None, stability=False, stability_method="auto", stability_time_limit=0.0, error_estimate=False,
-          accuracy=None, curve_time_limit=0.0,
+          accuracy=None, curve_time_limit=0.0, progress=None,
           max_harmonics=320, accuracy_test="auto", peak_dof=None, show=None):
     """A frequency-response curve by continuation in omega, as `eqhb sweep`
     runs it ("sequential" on a grid of `step`, by default a hundredth of the
@@ -187,7 +187,11 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     step)) bound the step; curve_time_limit (seconds, 0 none) bounds the
     whole sweep: the curve stops between two points, keeping those found
     (complete False, stop_reason saying where), and stability gets what is
-    left. Returns a dict of arrays over the converged
+    left. progress, a callable, is told of each point as it is found
+    (a dict: index, omega, converged); if it raises, the sweep stops and the
+    exception propagates. Ctrl-C (KeyboardInterrupt) stops the curve between
+    two points and returns those found (complete False, the stop reason
+    "stopped on request"), as SIGINT does to `eqhb sweep`. Returns a dict of arrays over the converged
     points: omega, converged, max_abs (points x dofs), first_harmonic,
     energy, fold, x_cos/x_sin (points x dofs x harmonics), and folds,
     stop_reason, complete, failed_points, seconds and the settings of `eqhb
@@ -225,6 +229,7 @@ def sweep(model, start=None, stop=None, *, step=None, method="sequential", harmo
     args.update(start=_real(start, "start", True), stop=_real(stop, "stop", True), step=_real(step, "step", True),
                 method=_text(method, "method"), max_points=_integer(max_points, "max_points"),
                 curve_time_limit=_real(curve_time_limit, "curve_time_limit"),
+                progress=_callable(progress, "progress"),
                 min_step=_real(min_step, "min_step", True), max_step=_real(max_step, "max_step", True),
                 stability=_flag(stability, "stability"), stability_method=_text(stability_method, "stability_method"),
                 stability_time_limit=_real(stability_time_limit, "stability_time_limit"),
@@ -448,6 +453,12 @@ def _real(value, field, optional=False):
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise InputError(f"{field} = {value!r}: must be a real number")
     return float(value)
+
+
+def _callable(value, field):
+    if value is not None and not callable(value):
+        raise InputError(f"{field} = {value!r}: must be callable (told of each point) or None")
+    return value
 
 
 _INT_RANGE = (-2**31, 2**31 - 1)  # the C++ int the bindings take

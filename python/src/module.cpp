@@ -12,6 +12,7 @@
 
 #include "conversions.h"
 #include "py_model.h"
+#include "sweep_watch.h"
 #include "eqhb/app/modes.h"
 #include "eqhb/app/shoot.h"
 #include "eqhb/app/simulate.h"
@@ -203,8 +204,14 @@ py::dict sweep(const PyModel& m, const py::dict& args) {
   o.max_step = args["max_step"].cast<std::optional<double>>();
   o.max_points = args["max_points"].cast<int>();
   o.curve_time_limit = args["curve_time_limit"].cast<double>();
+  SweepWatch watch(args["progress"]);
+  o.stop_requested = watch.stopRequested();
   const app::SweepPlan plan = inPythonTerms([&] { return app::planSweep(scene, o); });
-  return sweepDict(withoutGil([&] { return app::sweep(plan); }));
+  app::SweepCallbacks callbacks;
+  callbacks.point = watch.callback();
+  const app::SweepResult result = withoutGil([&] { return app::sweep(plan, callbacks); });
+  watch.raiseIfFailed();
+  return sweepDict(result);
 }
 
 // eqhb.study: app::study with the call's settings and options, as `eqhb

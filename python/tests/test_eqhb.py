@@ -5,6 +5,8 @@ every bad input raises eqhb.InputError naming the field."""
 import math
 import os
 import pathlib
+import signal
+import threading
 
 import numpy as np
 import pytest
@@ -123,6 +125,46 @@ def test_a_curve_time_limit_keeps_the_points_found():
     assert curve["stability_time_limited"] and curve["stability_points_analysed"] == 0
     with pytest.raises(eqhb.InputError, match="^curve_time_limit = -1: must be finite and >= 0"):
         eqhb.sweep(model, 0.3, 0.4, curve_time_limit=-1)
+
+
+def test_sweep_progress_sees_each_point_and_ctrl_c_keeps_them():
+    model = eqhb.load_scene(SCENE)
+    seen = []
+    curve = eqhb.sweep(model, 0.3, 0.4, step=0.02, harmonics=5, samples=256, progress=seen.append)
+    assert [p["index"] for p in seen] == list(range(6)) and all(p["converged"] for p in seen)
+    np.testing.assert_allclose([p["omega"] for p in seen], curve["omega"], atol=0)
+
+    # Ctrl-C during the third point: the curve stops there with three points.
+    def interrupt_at_third(point):
+        if point["index"] == 2:
+            signal.raise_signal(signal.SIGINT)
+    stopped = eqhb.sweep(model, 0.3, 0.4, step=0.02, harmonics=5, samples=256, progress=interrupt_at_third)
+    assert len(stopped["omega"]) == 3 and not stopped["complete"]
+    assert "stopped on request" in stopped["stop_reason"]
+
+    # An exception of the callable stops the sweep and reaches the caller.
+    def fail_at_second(point):
+        if point["index"] == 1:
+            raise RuntimeError("enough")
+    with pytest.raises(RuntimeError, match="enough"):
+        eqhb.sweep(model, 0.3, 0.4, step=0.02, harmonics=5, samples=256, progress=fail_at_second)
+    with pytest.raises(eqhb.InputError, match="^progress = 3: must be callable"):
+        eqhb.sweep(model, 0.3, 0.4, progress=3)
+
+
+def test_ctrl_c_while_the_library_runs_stops_the_sweep_keeping_its_points():
+    # No callable: the signal comes while the sweep runs without the GIL
+    # (15001 points of ~30 ms: far from done after 1 s; the time limit only
+    # bounds the test if the signal were missed).
+    model = eqhb.load_scene(PROBLEMS / "lap-joint.toml")
+    timer = threading.Timer(1.0, signal.raise_signal, (signal.SIGINT,))
+    timer.start()
+    try:
+        curve = eqhb.sweep(model, 1450, 1600, step=0.01, curve_time_limit=60)
+    finally:
+        timer.cancel()
+    assert "stopped on request" in curve["stop_reason"] and not curve["complete"]
+    assert len(curve["omega"]) >= 1 and curve["converged"].all()
 
 
 def test_arclength_sweep_uses_the_scene_range():
