@@ -373,38 +373,45 @@ void MonodromyStability::field(const std::vector<State>& states, double t, const
   f.tail(m_).noalias() = p.projector * force_;
 }
 
+// The orbit's [q; q̇] at time t from its propagated coefficients (O(m nb),
+// the harmonics' cosines and sines by rotation from the first's: a switch
+// costs no pass over the structure's DOFs nor a sincos per harmonic).
+void MonodromyStability::orbitState(double t, Eigen::VectorXd& y) const {
+  const int nb = model_.basis.size();
+  const std::vector<int>& ks = model_.basis.harmonics();
+  const Eigen::Map<const Eigen::MatrixXd> q(orbit_coefficients_, nb, m_);
+  y.setZero(2 * m_);
+  const double w = model_.omega, c1 = std::cos(w * t), s1 = std::sin(w * t);
+  double c = 1.0, sn = 0.0;  // cos, sin of k ω t for k = 0, 1, 2, ... up to ks[h]
+  int k = 0;
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int o = model_.basis.offset(static_cast<int>(h));
+    for (; k < ks[h]; ++k) {
+      const double next_c = c * c1 - sn * s1;
+      sn = sn * c1 + c * s1;
+      c = next_c;
+    }
+    if (ks[h] == 0) {
+      y.head(m_) += q.row(o).transpose();
+      continue;
+    }
+    const double kw = ks[h] * w;
+    for (int j = 0; j < m_; ++j) {
+      const double a = q(o, j), b = q(o + 1, j);
+      y[j] += a * c + b * sn;
+      y[m_ + j] += kw * (b * c - a * sn);
+    }
+  }
+}
+
 // Φ ← S Φ with S = R + (f⁺ − R f⁻) ∇gᵀ / ġ⁻ at switch s (header): R Φ
 // plus a rank-one term, O(m²) rather than a product; S = I where the field
 // is continuous (stick to slip, contact opening).
 void MonodromyStability::applySaltation(const Switch& s, const std::vector<State>& before,
-                                        const std::vector<State>& after, const Eigen::VectorXd& full,
-                                        Eigen::MatrixXd& phi) {
+                                        const std::vector<State>& after, Eigen::MatrixXd& phi) {
   if (s.from == State::kStick || s.from == State::kClosed) return;
   const int i = coords_[s.law];
-  // The orbit's [x; ẋ] at the switch, from the coefficients.
-  const int nb = model_.basis.size();
-  const std::vector<int>& ks = model_.basis.harmonics();
-  orbit_state_.setZero(2 * n_);
-  for (size_t h = 0; h < ks.size(); ++h) {
-    const int o = model_.basis.offset(static_cast<int>(h));
-    if (ks[h] == 0) {
-      for (int j = 0; j < n_; ++j) orbit_state_[j] += full[j * nb + o];
-      continue;
-    }
-    const double kw = ks[h] * model_.omega, c = std::cos(kw * s.time), sn = std::sin(kw * s.time);
-    for (int j = 0; j < n_; ++j) {
-      const double a = full[j * nb + o], b = full[j * nb + o + 1];
-      orbit_state_[j] += a * c + b * sn;
-      orbit_state_[n_ + j] += kw * (b * c - a * sn);
-    }
-  }
-  if (projection_.size() > 0) {
-    y_.resize(2 * m_);
-    y_.head(m_).noalias() = projection_ * orbit_state_.head(n_);
-    y_.tail(m_).noalias() = projection_ * orbit_state_.tail(n_);
-  } else {
-    y_ = orbit_state_;
-  }
+  orbitState(s.time, y_);
   const bool slipping = s.from != State::kOpen;
   if (slipping) y_[m_ + i] = 0.0;  // the event: the slip velocity vanishes
   const bool reset = held(s.to);   // R holds the DOF's velocity at 0
@@ -423,6 +430,19 @@ void MonodromyStability::applySaltation(const Switch& s, const std::vector<State
   phi.noalias() += (f_after_ / rate) * gradient_row_;
 }
 
+// The orbit's coefficients on the propagation's coordinates: q = P x per
+// coefficient when reduced (O(n nb m) once a point), else x itself.
+void MonodromyStability::projectCoefficients(const Eigen::VectorXd& full) {
+  if (projection_.size() == 0) {
+    orbit_coefficients_ = full.data();
+    return;
+  }
+  const int nb = model_.basis.size();
+  const Eigen::Map<const Eigen::MatrixXd> x(full.data(), nb, n_);
+  projected_.noalias() = x * projection_.transpose();
+  orbit_coefficients_ = projected_.data();
+}
+
 HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full) {
   const auto start = std::chrono::steady_clock::now();
   if (!(omega > 0.0) || !std::isfinite(omega)) throwInputError("omega", formatNumber(omega), "must be finite and > 0");
@@ -434,6 +454,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   ++point_;
   const double period = 2.0 * M_PI / omega;
   if (springs_) return multipliers(springs_->monodromy(omega, full, work_.exponentials, work_.syntheses), period, start);
+  projectCoefficients(full);
   classify(full);
   keepHeldRuns(full);
   findSwitches();
@@ -454,7 +475,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
       ++work_.exponentials;
       after_ = current_;
       after_[s.law] = s.to;
-      applySaltation(s, current_, after_, full, phi_);
+      applySaltation(s, current_, after_, phi_);
       current_.swap(after_);
     }
   }

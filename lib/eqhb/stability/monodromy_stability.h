@@ -147,8 +147,10 @@ class MonodromyStability {
   const Phase& phase(const std::vector<State>& states);
   // f = [v; Q b] of the forced system at (t, y) in `states`.
   void field(const std::vector<State>& states, double t, const Eigen::VectorXd& y, Eigen::VectorXd& f);
+  void projectCoefficients(const Eigen::VectorXd& full);
+  void orbitState(double t, Eigen::VectorXd& y) const;
   void applySaltation(const Switch& s, const std::vector<State>& before, const std::vector<State>& after,
-                      const Eigen::VectorXd& full, Eigen::MatrixXd& phi);
+                      Eigen::MatrixXd& phi);
   static bool held(State s) { return s == State::kStick || s == State::kClosed; }
 
   HbModel model_;
@@ -184,10 +186,12 @@ class MonodromyStability {
   std::vector<Switch> switches_;                   // increasing in time, within [0, T)
   std::map<std::vector<bool>, Phase> phases_;      // by held DOFs
   // Storage reused from point to point: the monodromy and a product's
-  // scratch, the orbit's state at a switch (structure, propagation), the
+  // scratch, the orbit's state at a switch (propagation), the
   // fields before and after it, Φ's row along the event's gradient, b.
   Eigen::MatrixXd phi_, scratch_;
-  Eigen::VectorXd orbit_state_, y_, f_before_, f_after_, force_;
+  Eigen::MatrixXd projected_;                      // nb x m: the orbit's coefficients in q (reduced)
+  const double* orbit_coefficients_ = nullptr;     // nb x m, column-major: projected_ or the solution's x
+  Eigen::VectorXd y_, f_before_, f_after_, force_;
   Eigen::RowVectorXd gradient_row_;
   std::unique_ptr<SpringLawMonodromy> springs_;    // penalty contact and Jenkins AFT laws (its header)
 };

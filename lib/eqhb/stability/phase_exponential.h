@@ -31,6 +31,8 @@ class PhaseExponential {
   // 1.2e-7 against Eigen's exponential, the verdicts are the same, and the
   // stability takes 2.5 times less time.
   static constexpr double kMinimumRcond = 1e-8;
+  // Up to this size apply() multiplies without the blocked product.
+  static constexpr Eigen::Index kLazyProductSize = 24;
 
  private:
   Eigen::MatrixXd generator_;
