@@ -57,24 +57,28 @@ void PhaseExponential::apply(double tau, Eigen::MatrixXd& phi, Eigen::MatrixXd& 
   const bool small = phi.rows() <= kLazyProductSize;
   if (small) scratch.noalias() = inverse_.lazyProduct(phi);
   else scratch.noalias() = inverse_ * phi;
+  scaleModes(tau, scratch);
+  if (small) phi.noalias() = vectors_.lazyProduct(scratch);
+  else phi.noalias() = vectors_ * scratch;
+}
+
+void PhaseExponential::scaleModes(double tau, Eigen::MatrixXd& psi) const {
   const Eigen::Index d = real_.size();
   for (Eigen::Index i = 0; i < d; ++i) {
     const double growth = std::exp(real_[i] * tau);
     if (imaginary_[i] == 0.0) {
-      scratch.row(i) *= growth;
+      psi.row(i) *= growth;
       continue;
     }
     // exp([a b; −b a] τ) = e^{aτ} [cos bτ  sin bτ; −sin bτ  cos bτ].
     const double c = growth * std::cos(imaginary_[i] * tau), s = growth * std::sin(imaginary_[i] * tau);
-    for (Eigen::Index j = 0; j < scratch.cols(); ++j) {
-      const double x = scratch(i, j), y = scratch(i + 1, j);
-      scratch(i, j) = c * x + s * y;
-      scratch(i + 1, j) = -s * x + c * y;
+    for (Eigen::Index j = 0; j < psi.cols(); ++j) {
+      const double x = psi(i, j), y = psi(i + 1, j);
+      psi(i, j) = c * x + s * y;
+      psi(i + 1, j) = -s * x + c * y;
     }
     ++i;
   }
-  if (small) phi.noalias() = vectors_.lazyProduct(scratch);
-  else phi.noalias() = vectors_ * scratch;
 }
 
 Eigen::MatrixXd PhaseExponential::exponential(double tau) const {

@@ -23,6 +23,11 @@ class PhaseExponential {
   void apply(double tau, Eigen::MatrixXd& phi, Eigen::MatrixXd& scratch) const;
   // exp(A τ) itself (by the same route as apply).
   Eigen::MatrixXd exponential(double tau) const;
+  // The decomposition (decomposed() only): V, V⁻¹, and ψ ← exp(D τ) ψ on
+  // rows in V's coordinates, so that exp(A τ) Φ = V exp(D τ) V⁻¹ Φ.
+  const Eigen::MatrixXd& vectors() const { return vectors_; }
+  const Eigen::MatrixXd& inverse() const { return inverse_; }
+  void scaleModes(double tau, Eigen::MatrixXd& psi) const;
 
   // Reciprocal condition number of V below which the decomposition is not
   // used: its error in exp(A τ) is about eps/rcond relative (2e-8 here).

@@ -157,6 +157,48 @@ const PhaseExponential& SpringLawMonodromy::generator(const std::vector<char>& a
   return generators_.emplace(std::move(key), PhaseExponential(a)).first->second;
 }
 
+double SpringLawMonodromy::phaseLength(size_t j, double period) const {
+  const double end = switches_[(j + 1) % switches_.size()].time, begin = switches_[j].time;
+  return j + 1 < switches_.size() ? end - begin : end + period - begin;
+}
+
+// (4): a stick onset sets the anchor's perturbation to wᵀδq.
+bool SpringLawMonodromy::resetsAnchor(const Switch& s) const {
+  return !contact_[s.law] && s.to_active && slot_[s.law] >= 0;
+}
+
+// When every phase's exponential is decomposed, A_j = V_j D_j V_j⁻¹, the
+// product Π R_j V_j exp(D_j τ_j) V_j⁻¹ is carried in the current phase's
+// modal coordinates ψ: a phase scales ψ's rows (O(d²)) and a switch maps
+// ψ ← (V_next⁻¹ R V_j) ψ, one product where the phase-by-phase route takes
+// two; the transition matrices are kept, since the same phases follow one
+// another from point to point along a curve. Started from ψ = I (Φ₀ = V₁)
+// the result is V₁⁻¹ M V₁, similar to the monodromy M: the same multipliers.
+void SpringLawMonodromy::chainInModes(double period) {
+  phi_.setIdentity();
+  for (size_t j = 0; j < switches_.size(); ++j) {
+    const Switch& s = switches_[(j + 1) % switches_.size()];
+    phases_[j]->scaleModes(phaseLength(j, period), phi_);
+    scratch_.noalias() = transition(*phases_[j], *phases_[(j + 1) % switches_.size()], s) * phi_;
+    phi_.swap(scratch_);
+  }
+}
+
+// V_to⁻¹ R V_from at switch s, R the anchor's reset (4) or I.
+const Eigen::MatrixXd& SpringLawMonodromy::transition(const PhaseExponential& from, const PhaseExponential& to,
+                                                      const Switch& s) {
+  const bool reset = resetsAnchor(s);
+  const TransitionKey key{&from, &to, s.law, reset};
+  auto found = transitions_.find(key);
+  if (found != transitions_.end()) return found->second;
+  // Bounded memory: a curve whose phases keep changing starts afresh.
+  if (transitions_.size() >= kMaxTransitions) transitions_.clear();
+  transition_scratch_ = from.vectors();
+  if (reset)
+    transition_scratch_.row(2 * m_ + slot_[s.law]) = direction_[s.law].transpose() * from.vectors().topRows(m_);
+  return transitions_.emplace(key, to.inverse() * transition_scratch_).first->second;
+}
+
 const Eigen::MatrixXd& SpringLawMonodromy::monodromy(double omega, const Eigen::VectorXd& full, long& exponentials,
                                                      long& syntheses) {
   const double period = 2.0 * M_PI / omega;
@@ -170,19 +212,28 @@ const Eigen::MatrixXd& SpringLawMonodromy::monodromy(double omega, const Eigen::
     ++exponentials;
     return phi_;
   }
-  // From just after the first switch round the period back to it.
+  // From just after the first switch round the period back to it; the
+  // generators of its phases first, as they decide the route.
   current_[switches_[0].law] = switches_[0].to_active;
+  phases_.clear();
+  bool decomposed = true;
   for (size_t j = 0; j < switches_.size(); ++j) {
+    const PhaseExponential& g = generator(current_);
+    phases_.push_back(&g);
+    decomposed = decomposed && g.decomposed();
     const Switch& s = switches_[(j + 1) % switches_.size()];
-    const double previous = switches_[j].time;
-    const double tau = j + 1 < switches_.size() ? s.time - previous : s.time + period - previous;
-    generator(current_).apply(tau, phi_, scratch_);
-    ++exponentials;
-    // (4): a stick onset sets the anchor's perturbation to wᵀδq.
-    if (!contact_[s.law] && s.to_active && slot_[s.law] >= 0)
-      phi_.row(2 * m_ + slot_[s.law]) = direction_[s.law].transpose() * phi_.topRows(m_);
     current_[s.law] = s.to_active;
   }
+  if (decomposed) {
+    chainInModes(period);
+  } else {
+    for (size_t j = 0; j < switches_.size(); ++j) {
+      const Switch& s = switches_[(j + 1) % switches_.size()];
+      phases_[j]->apply(phaseLength(j, period), phi_, scratch_);
+      if (resetsAnchor(s)) phi_.row(2 * m_ + slot_[s.law]) = direction_[s.law].transpose() * phi_.topRows(m_);
+    }
+  }
+  exponentials += static_cast<long>(switches_.size());
   return phi_;
 }
 

@@ -46,6 +46,7 @@
 #include <Eigen/Dense>
 #include <map>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include "eqhb/harmonic_balance/hb_model.h"
@@ -84,6 +85,11 @@ class SpringLawMonodromy {
   void findSwitches(double omega);
   // A of (1) with its exponential's decomposition, formed once per key.
   const PhaseExponential& generator(const std::vector<char>& active);
+  // The length of phase j (from switch j to the next, round the period).
+  double phaseLength(size_t j, double period) const;
+  bool resetsAnchor(const Switch& s) const;
+  void chainInModes(double period);
+  const Eigen::MatrixXd& transition(const PhaseExponential& from, const PhaseExponential& to, const Switch& s);
 
   HbModel model_;
   std::unique_ptr<FourierTransform> transform_;
@@ -103,6 +109,13 @@ class SpringLawMonodromy {
   std::vector<Switch> switches_;
   std::vector<char> current_;
   std::map<std::pair<std::vector<char>, std::vector<int>>, PhaseExponential> generators_;
+  std::vector<const PhaseExponential*> phases_;  // per phase of the point, its generator's exponential
+  // Transitions V_to⁻¹ R V_from between consecutive phases (chainInModes),
+  // by the two phases, the switching law and whether it resets an anchor.
+  using TransitionKey = std::tuple<const PhaseExponential*, const PhaseExponential*, int, bool>;
+  std::map<TransitionKey, Eigen::MatrixXd> transitions_;
+  static constexpr size_t kMaxTransitions = 256;
+  Eigen::MatrixXd transition_scratch_;
   Eigen::MatrixXd scratch_;
   Eigen::MatrixXd phi_;
 };
