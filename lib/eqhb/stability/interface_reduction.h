@@ -9,8 +9,9 @@
 // multiplier over the period, e^{−σ_k T} with σ_k = φᵀ C_ii φ / 2, is below
 // e^{−decay} (decay = 13.8: 1e-6): such a mode neither resonates with the
 // orbit nor carries a multiplier near the unit circle; its static part stays
-// in Ψ. Stuck or closed law DOFs are boundary DOFs, so holding them is exact
-// in q. An undamped or slightly damped structure keeps every mode (T = I in
+// in Ψ. With proportional damping (C = αM + βK, β > 0) σ_k grows with ω_k,
+// so the kept modes are the lowest ones and only they are computed. Stuck
+// or closed law DOFs are boundary DOFs, so holding them is exact in q. An undamped or slightly damped structure keeps every mode (T = I in
 // effect, at the full cost).
 #pragma once
 
