@@ -72,7 +72,9 @@ class SpringLawMonodromy {
   // law of dimension 1 (grounded or relative), and there is one at least.
   static bool supports(const HbModel& model);
   // The monodromy of `full` ([x; λ] on the model's basis) at ω, square of
-  // size 2m + the sliders that slip. `exponentials` counts those formed.
+  // size 2m + the sliders that slip, or a matrix similar to it (the same
+  // multipliers: in the first phase's modal coordinates, chainInModes).
+  // `exponentials` counts those formed.
   const Eigen::MatrixXd& monodromy(double omega, const Eigen::VectorXd& full, long& exponentials, long& syntheses);
 
  private:
