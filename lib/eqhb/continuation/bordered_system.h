@@ -46,7 +46,6 @@ class BorderedSystem : public SquareSystem {
   ArcScales scales_;
   double current_;
   Eigen::VectorXd tangent_, predicted_, g_, g_shift_;
-  Eigen::MatrixXd jz_;
 };
 
 // The unit tangent (scaled) at ŷ: the null direction of [J_z s_z, J_ω s_ω],
