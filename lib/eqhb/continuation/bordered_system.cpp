@@ -88,8 +88,13 @@ bool BorderedSystem::moveTo(double omega) {
 // estimate, rows equilibrated, shows the matrix far from singular; else
 // (an estimate below kFastTangentRcond) the full-pivoting LU that decides
 // whether it is singular (rank-revealing, but unblocked: on the lap joint at
-// H = 40, 3403 unknowns, it took 74 % of an arclength sweep).
+// H = 40, 3403 unknowns, it took 74 % of an arclength sweep). Below
+// kFastTangentFromUnknowns the full-pivoting LU costs little (20 ms at 500)
+// and stays: its tangent, where the curve kinks, is the one the small
+// scenes' sweeps were tuned on (a tangent that differs by round-off there
+// can send a sweep another way: stribeck at H = 40, N = 1024).
 constexpr double kFastTangentRcond = 1e-8;
+constexpr int kFastTangentFromUnknowns = 512;
 
 bool tangentAt(HbSystem& system, const ArcScales& scales, const Eigen::VectorXd& y, const Eigen::VectorXd& previous,
                Eigen::VectorXd* tangent) {
@@ -106,7 +111,7 @@ bool tangentAt(HbSystem& system, const ArcScales& scales, const Eigen::VectorXd&
   // right-hand side a multiple of e_n) is the same, and the condition
   // estimate no longer reflects the equations' units.
   const Eigen::VectorXd row_max = j.cwiseAbs().rowwise().maxCoeff();
-  bool fast = row_max.allFinite() && (row_max.array() > 0.0).all();
+  bool fast = n + 1 >= kFastTangentFromUnknowns && row_max.allFinite() && (row_max.array() > 0.0).all();
   if (fast) {
     j.array().colwise() /= row_max.array();
     const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(j);
@@ -114,7 +119,8 @@ bool tangentAt(HbSystem& system, const ArcScales& scales, const Eigen::VectorXd&
     if (fast) t = lu.solve(rhs / row_max[n]);
   }
   if (!fast) {
-    if (!bordered.residualAndJacobian(y, out, j)) return false;  // j as evaluated (the LU overwrote it)
+    // j as evaluated (an LU above overwrote it).
+    if (n + 1 >= kFastTangentFromUnknowns && !bordered.residualAndJacobian(y, out, j)) return false;
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(j);
     if (!lu.isInvertible()) return false;
     t = lu.solve(rhs);
