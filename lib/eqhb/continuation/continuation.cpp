@@ -269,11 +269,10 @@ Curve sweepSequential(const HbModel& model, Solver& solver, const SolverOptions&
   // Still failed from both sides: each neighbour's branch, by arclength.
   if (rescue && curve.failed_points > 0) followBranchesAcrossFailedRuns(model, solver, solver_options, options, &curve);
   curve.complete = curve.failed_points == 0 && stopped.empty();
-  curve.stop_reason = curve.complete ? "reached the end of the range"
-                      : curve.failed_points == 0
-                          ? stopped
-                          : std::to_string(curve.failed_points) + " grid point(s) did not converge" +
-                                (stopped.empty() ? "" : "; " + stopped);
+  std::vector<std::string> why;  // failed points, then an early stop
+  if (curve.failed_points > 0) why.push_back(std::to_string(curve.failed_points) + " grid point(s) did not converge");
+  if (!stopped.empty()) why.push_back(stopped);
+  curve.stop_reason = curve.complete ? "reached the end of the range" : why.size() == 2 ? why[0] + "; " + why[1] : why[0];
   curve.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return curve;
 }
