@@ -236,7 +236,7 @@ void ArclengthSweep::accept(const Trial& trial) {
 Next ArclengthSweep::bridgeOrStop(const std::string& reason) {
   if (static_cast<int>(bridged_.size()) >= kMostBridges) {
     stop(reason + "; the curve was bridged " + std::to_string(bridged_.size()) +
-         " times already: arclength cannot follow it here, sweep it sequentially");
+         " times already: arclength cannot follow it here, sweep it sequentially" + unresolvedAlongTheCurve());
     return Next::kStop;
   }
   if (switchToFullSystem() || bridge()) {
@@ -246,7 +246,7 @@ Next ArclengthSweep::bridgeOrStop(const std::string& reason) {
     finishAtTheEnd();
     return Next::kStop;
   }
-  stop(reason + "; no point found a little further in omega either (fallbacks included)");
+  stop(reason + "; no point found a little further in omega either (fallbacks included)" + unresolvedAlongTheCurve());
   return Next::kStop;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eqhb/continuation/arclength_sweep.h"
+#include "eqhb/continuation/unresolved_note.h"
 #include "eqhb/error.h"
 
 namespace eqhb::arclength {
@@ -44,6 +45,12 @@ void ArclengthSweep::record(const ArcPoint& point, const SolverResult& r, double
 void ArclengthSweep::finishAtTheEnd() {
   curve_.complete = true;
   stop("reached the end of the range, " + at(options_.to));
+}
+
+std::string ArclengthSweep::unresolvedAlongTheCurve() const {
+  std::vector<const CurvePoint*> points;
+  for (const CurvePoint& p : curve_.points) points.push_back(&p);
+  return unresolvedForceClause(model_, points);
 }
 
 void ArclengthSweep::stop(const std::string& reason) {

@@ -212,7 +212,7 @@ bool ArclengthSweep::landOnTheEnd(const ArcScales& s, const Eigen::VectorXd& y, 
   }
   stop("the curve turned back and left the range at its start, " + at(end) +
        (curve_.fold_omegas.empty() ? "" : " (after the fold at " + at(curve_.fold_omegas.back()) + ")") +
-       ": not complete");
+       ": not complete" + unresolvedAlongTheCurve());
   return true;
 }
 

@@ -89,6 +89,8 @@ class ArclengthSweep {
   void record(const ArcPoint& point, const SolverResult& r, double tangent_omega, const std::string& fallback = "");
   void finishAtTheEnd();
   void stop(const std::string& reason);
+  // "; law 1's force ... is not resolved ..." from the curve's worst-resolved point, or empty.
+  std::string unresolvedAlongTheCurve() const;
 
   HbModel model_;
   Solver& solver_;

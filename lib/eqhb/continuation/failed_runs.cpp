@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "eqhb/continuation/unresolved_note.h"
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/hb_systems.h"
 
@@ -116,6 +117,10 @@ void followBranchesAcrossFailedRuns(const HbModel& model, Solver& solver, const 
       if (all_solved) break;
       ends += (ends.empty() ? "" : "; ") + branchEnd(branch, points[side].omega);
     }
+    // Where the neighbours' force is not resolved, the branches' ends are
+    // likely the truncation's doing: say so.
+    if (!ends.empty())
+      ends += unresolvedForceClause(model, {before >= 0 ? &points[before] : nullptr, after < count ? &points[after] : nullptr});
     for (int i = first; i <= last; ++i)
       if (!points[i].converged && !ends.empty())
         points[i].termination +=
