@@ -101,8 +101,10 @@ std::string runCurves(const BenchOptions& options, const std::vector<fs::path>& 
     sweep.max_points = quick ? 1500 : 6000;
     sweep.condensed = path.stem() != "contact";  // contact: only the full system starts cold
     const Curve sequential = sweepSequential(scene.model, *solver, {}, sweep);
-    sweep.step = 0.01;
-    sweep.max_step = 1.0;
+    // The arclength on the command line's defaults: the curve a user gets.
+    sweep.step = ContinuationOptions::defaultStep(sweep.from, sweep.to, true);
+    sweep.min_step = ContinuationOptions::defaultMinStep(sweep.step);
+    sweep.max_step = ContinuationOptions::defaultMaxStep(sweep.step);
     const Curve arclength = sweepArclength(scene.model, *solver, {}, sweep);
     const int dofs = scene.model.structure.dofs();
     writeCurveCsv(options.out + "/curve_" + scene.name + "_sequential.csv", sequential, dofs);

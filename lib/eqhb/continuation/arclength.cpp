@@ -43,6 +43,7 @@ ArclengthSweep::ArclengthSweep(const HbModel& model, Solver& solver, const Solve
       direction_(options.to > options.from ? 1.0 : -1.0),
       step_(options) {
   model_.omega = options.from;
+  scene_samples_ = model_.samples;
   system_ = makeHbSystem(model_, options.condensed, solver_options.linear_algebra);
   n_ = system_->size();
   unknown_scale_ = system_->unknownScale();
@@ -150,7 +151,7 @@ Next ArclengthSweep::correctorConverged(const Trial& trial) {
   if (step_.halve()) return Next::kRetry;
   return bridgeOrStop("the corrector failed (" + std::string(terminationName(trial.r.termination)) + ") near " +
                       at(current_.omega) + " even with the step at min_step = " + formatNumber(options_.min_step) +
-                      ": give a smaller min_step, or try system = full or another solver");
+                      ": give a smaller min_step, or try " + (system_->condensed() ? "system = full or " : "") + "another solver");
 }
 
 // A point past either end of the range: land on the end crossed, else a
@@ -205,8 +206,13 @@ Next ArclengthSweep::turnedLittle(Trial& trial) {
   if (!(heading != 0.0 && trial.t_new[n_] * heading < 0.0 && !new_branch)) return Next::kGoOn;
   return bridgeOrStop("the curve turns back at a kink at " + at(trial.omega_new) +
                       " (the tangent's omega-component changes sign without passing through zero, and the "
-                      "point found starts no branch of its own: not a fold); try system = full, more "
-                      "samples or a smaller max_step");
+                      "point found starts no branch of its own: not a fold); " + remedies());
+}
+
+// What may get past a kink the curve cannot cross: the full system is
+// offered only where the curve is not on it already.
+std::string ArclengthSweep::remedies() const {
+  return std::string("try ") + (system_->condensed() ? "system = full, " : "") + "more samples or a smaller max_step";
 }
 
 // However it turned, a curve that goes back onto the path it traced
@@ -218,7 +224,7 @@ Next ArclengthSweep::notRetracing(const Trial& trial) {
         traced_.retraces(trial.s, trial.y, trial.r.solution)))
     return Next::kGoOn;
   return bridgeOrStop("the curve turns back onto the path already traced at " + at(trial.omega_new) +
-                      " (not a fold); try system = full, more samples or a smaller max_step");
+                      " (not a fold); " + remedies());
 }
 
 void ArclengthSweep::accept(const Trial& trial) {
@@ -239,7 +245,7 @@ Next ArclengthSweep::bridgeOrStop(const std::string& reason) {
          " times already: arclength cannot follow it here, sweep it sequentially" + unresolvedAlongTheCurve());
     return Next::kStop;
   }
-  if (switchToFullSystem() || bridge()) {
+  if (switchToFullSystem() || bridge() || refineSamples()) {
     step_ = ArclengthStep(options_);
     kink_.reset();
     if (current_.omega != options_.to) return Next::kRetry;

@@ -20,6 +20,7 @@ void ArclengthSweep::record(const ArcPoint& point, const SolverResult& r, double
   model_.omega = point.omega;
   CurvePoint p = describePoint(model_, system_->fullCoefficients(point.z));
   addSolverCounts(r, &p);
+  if (model_.samples != scene_samples_) p.samples = model_.samples;
   p.fallback = fallback;
   if (!std::isnan(tangent_omega)) p.tangent_omega = tangent_omega;
   curve_.points.push_back(p);
@@ -56,6 +57,7 @@ std::string ArclengthSweep::unresolvedAlongTheCurve() const {
 void ArclengthSweep::stop(const std::string& reason) {
   curve_.stop_reason = reason;
   if (!full_from_.empty()) curve_.stop_reason += " (on the full system from omega = " + full_from_ + ")";
+  for (const std::string& refined : refined_) curve_.stop_reason += " (on " + refined + ")";
   if (bridged_.empty()) return;
   curve_.stop_reason += " (" + std::to_string(bridged_.size()) + " bridge(s), the curve not traced between: ";
   for (size_t i = 0; i < bridged_.size(); ++i) curve_.stop_reason += (i ? ", " : "") + bridged_[i];

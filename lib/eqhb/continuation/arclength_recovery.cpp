@@ -17,6 +17,9 @@ namespace {
 // need 80 GB).
 constexpr int kMostDenseUnknowns = 2000;
 
+// refineSamples doubles N at most up to this multiple of the scene's.
+constexpr int kMostSampleRefinement = 4;
+
 // A point found with ω held lies within this many steps of the current one.
 constexpr double kLocalReach = 2.0;
 
@@ -159,6 +162,45 @@ bool ArclengthSweep::switchToFullSystem() {
   by_omega_ = false;
   traced_.clear();
   full_from_ = formatNumber(current_.omega);
+  return true;
+}
+
+// The last way on where neither a bridge nor the full system gets past: the
+// same curve sampled on twice the N from the current point. Why: the
+// equality forms' kinks are sampled, and too few samples put kinks of
+// their own on a branch, where the tangent flips with no fold (contact on
+// the full system at H = 20, N = 1024: a turn back at 0.796 that no bridge
+// crosses; on N = 2048 the curve goes through). At most twice (4 N).
+bool ArclengthSweep::refineSamples() {
+  if (model_.samples >= kMostSampleRefinement * scene_samples_) return false;
+  HbModel finer = model_;
+  finer.samples = 2 * model_.samples;
+  finer.omega = current_.omega;
+  std::unique_ptr<HbSystem> finer_system;
+  SolverResult r;
+  try {
+    system_->setOmega(current_.omega);
+    const Eigen::VectorXd full = system_->fullCoefficients(current_.z);
+    finer_system = makeHbSystem(finer, system_->condensed(), solver_options_.linear_algebra);
+    r = solver_.solve(*finer_system, finer_system->fromFullCoefficients(full), solver_options_);
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (!r.converged()) return false;
+  const Eigen::VectorXd& z = r.solution;
+  const ArcScales s = ArcScales::at(z, std::max(kScaleFloorFraction * finer_system->unknownScale(), 1e-300), hi_ - lo_);
+  // Oriented the way the curve was heading.
+  const Eigen::VectorXd ahead = s.scaledDirection(current_.direction);
+  Eigen::VectorXd tangent;
+  if (!tangentAt(*finer_system, s, s.scaled(z, current_.omega), ahead, &tangent)) tangent = ahead.normalized();
+  if (!tangent.allFinite()) return false;
+  system_ = std::move(finer_system);
+  model_.samples = finer.samples;
+  current_ = {z, current_.omega, s.physicalDirection(tangent)};
+  largest_norm_ = std::max(largest_norm_, z.norm());
+  by_omega_ = false;
+  traced_.clear();
+  refined_.push_back("N = " + std::to_string(model_.samples) + " from omega = " + formatNumber(current_.omega));
   return true;
 }
 

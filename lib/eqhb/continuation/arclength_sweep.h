@@ -73,11 +73,13 @@ class ArclengthSweep {
   Next notRetracing(const Trial& trial);
   void accept(const Trial& trial);
   Next bridgeOrStop(const std::string& reason);
+  std::string remedies() const;
 
   // arclength_recovery.cpp: where the curve cannot be followed.
   bool bridge();
   TracedPath wholeCurve() const;
   bool switchToFullSystem();
+  bool refineSamples();
   SolverResult correctAtFixedOmega(const ArcScales& s, const Eigen::VectorXd& current, const Eigen::VectorXd& tangent,
                                    double step);
   bool secantTangent(const ArcScales& s, double heading, Eigen::VectorXd* tangent);
@@ -110,6 +112,8 @@ class ArclengthSweep {
   bool by_omega_ = false;             // the corrector holds ω (correctAtFixedOmega)
   std::vector<std::string> bridged_;  // "ω_from -> ω_to" of each bridge
   std::string full_from_;             // ω where the sweep went on on the full system
+  int scene_samples_ = 0;             // N of the model given (refineSamples raises model_.samples)
+  std::vector<std::string> refined_;  // "N = 2048 from omega = ..." of each refinement
   Curve curve_;
 };
 
