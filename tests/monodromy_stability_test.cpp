@@ -236,5 +236,30 @@ TEST(MonodromyStability, PhaseExponentialMatchesTheMatrixExponential) {
   EXPECT_EQ(jordan.exponential(2.0), (free * 2.0).exp());
 }
 
+// The modes come by decreasing real part: those a phase of length τ keeps
+// above kNegligibleGrowth are a leading set, e^{λτ} are exp(A τ)'s
+// eigenvalues, and scaling the leading rows alone is exp(D τ) on them.
+TEST(MonodromyStability, PhaseExponentialKeepsTheLeadingModes) {
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(4, 4);
+  a.topRightCorner(2, 2).setIdentity();
+  a.bottomLeftCorner(2, 2) << -1.0, 0.0, 0.0, -1e4;  // ω 1 and 100
+  a.bottomRightCorner(2, 2) << -0.02, 0.0, 0.0, -20.0;  // decay rates 0.01 and 10
+  const PhaseExponential phase(a);
+  ASSERT_TRUE(phase.decomposed());
+  EXPECT_EQ(phase.survivingModes(1.0), 4);
+  EXPECT_EQ(phase.survivingModes(10.0), 2);  // e^{-100} is gone, e^{-0.1} is not
+  Eigen::VectorXcd multipliers(4);
+  phase.multipliers(10.0, multipliers);
+  const Eigen::VectorXcd expected = Eigen::EigenSolver<Eigen::MatrixXd>((a * 10.0).exp(), false).eigenvalues();
+  for (Eigen::Index i = 0; i < 4; ++i)
+    EXPECT_LT((expected.array() - multipliers[i]).abs().minCoeff(), 1e-10) << multipliers[i];  // expm at ‖Aτ‖ ~ 1e5
+  EXPECT_NEAR(std::abs(multipliers[0]), std::exp(-0.1), 1e-12);  // the slow mode leads
+  Eigen::MatrixXd all = Eigen::MatrixXd::Random(4, 3);
+  Eigen::MatrixXd leading = all.topRows(2);
+  phase.scaleModes(0.5, all);
+  phase.scaleModes(0.5, leading);
+  EXPECT_EQ(leading, all.topRows(2));
+}
+
 }  // namespace
 }  // namespace eqhb

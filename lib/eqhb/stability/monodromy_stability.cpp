@@ -453,7 +453,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   model_.omega = omega;
   ++point_;
   const double period = 2.0 * M_PI / omega;
-  if (springs_) return multipliers(springs_->monodromy(omega, full, work_.exponentials, work_.syntheses), period, start);
+  if (springs_) return verdict(springs_->multipliers(omega, full, work_.exponentials, work_.syntheses), period, start);
   projectCoefficients(full);
   classify(full);
   keepHeldRuns(full);
@@ -484,14 +484,20 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
 
 HillResult MonodromyStability::multipliers(const Eigen::MatrixXd& phi, double period,
                                            std::chrono::steady_clock::time_point start) const {
-  HillResult result;
   Eigen::EigenSolver<Eigen::MatrixXd> solver(phi, false);
-  if (solver.info() != Eigen::Success) {
+  if (solver.info() != Eigen::Success) return verdict(Eigen::VectorXcd(), period, start);
+  return verdict(solver.eigenvalues(), period, start);
+}
+
+HillResult MonodromyStability::verdict(const Eigen::VectorXcd& multipliers, double period,
+                                       std::chrono::steady_clock::time_point start) const {
+  HillResult result;
+  if (multipliers.size() == 0) {
     result.method = "monodromy";
-    result.state_dimension = result.candidates = result.pencil_size = static_cast<int>(phi.rows());
+    result.state_dimension = result.candidates = result.pencil_size = 2 * m_;
     result.failure = "the eigenvalues of the monodromy matrix did not converge";
   } else {
-    result = stabilityFromMultipliers(solver.eigenvalues(), period, unit_tolerance_, "monodromy");
+    result = stabilityFromMultipliers(multipliers, period, unit_tolerance_, "monodromy");
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -144,6 +144,9 @@ class MonodromyStability {
   void findSwitches();
   // The verdict from the multipliers, the eigenvalues of phi.
   HillResult multipliers(const Eigen::MatrixXd& phi, double period, std::chrono::steady_clock::time_point start) const;
+  // The verdict from the multipliers themselves (none: their eigenproblem failed).
+  HillResult verdict(const Eigen::VectorXcd& multipliers, double period,
+                     std::chrono::steady_clock::time_point start) const;
   const Phase& phase(const std::vector<State>& states);
   // f = [v; Q b] of the forced system at (t, y) in `states`.
   void field(const std::vector<State>& states, double t, const Eigen::VectorXd& y, Eigen::VectorXd& f);

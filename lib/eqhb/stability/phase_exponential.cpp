@@ -2,9 +2,30 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <vector>
 
 namespace eqhb {
+
+// ‖A V − V D‖∞ with D (real_, imaginary_) block diagonal: V D is formed
+// column by column, O(d²), not as a dense product.
+double PhaseExponential::reproductionError(const Eigen::MatrixXd& generator, const Eigen::MatrixXd& v) const {
+  Eigen::MatrixXd residual = generator * v;
+  for (Eigen::Index i = 0; i < v.cols(); ++i) {
+    if (imaginary_[i] == 0.0) {
+      residual.col(i) -= real_[i] * v.col(i);
+      continue;
+    }
+    // [a b; −b a]: (V D)_i = a v_i − b v_{i+1}, (V D)_{i+1} = b v_i + a v_{i+1}.
+    const double a = real_[i], b = imaginary_[i];
+    residual.col(i) -= a * v.col(i) - b * v.col(i + 1);
+    residual.col(i + 1) -= b * v.col(i) + a * v.col(i + 1);
+    ++i;
+  }
+  return residual.lpNorm<Eigen::Infinity>();
+}
 
 PhaseExponential::PhaseExponential(const Eigen::MatrixXd& generator) : generator_(generator) {
   const Eigen::Index d = generator.rows();
@@ -40,9 +61,28 @@ PhaseExponential::PhaseExponential(const Eigen::MatrixXd& generator) : generator
   // The decomposition must reproduce A: a failed or inaccurate Schur step
   // would otherwise pass unnoticed.
   const double scale = generator.lpNorm<Eigen::Infinity>() * v.lpNorm<Eigen::Infinity>();
-  if (!((generator * v - v * blocks).lpNorm<Eigen::Infinity>() <= 1e-12 * scale)) return;
-  vectors_ = v;
-  inverse_ = lu.inverse();
+  if (!(reproductionError(generator, v) <= 1e-12 * scale)) return;
+  // The blocks by decreasing real part, so that the modes a phase leaves
+  // are a leading set (a permutation of V's columns: the same product).
+  std::vector<Eigen::Index> starts;
+  for (Eigen::Index i = 0; i < d; i += imaginary_[i] != 0.0 ? 2 : 1) starts.push_back(i);
+  std::stable_sort(starts.begin(), starts.end(),
+                   [this](Eigen::Index x, Eigen::Index y) { return real_[x] > real_[y]; });
+  const Eigen::MatrixXd inverse = lu.inverse();
+  vectors_.resize(d, d);
+  inverse_.resize(d, d);  // (V P)⁻¹ = Pᵀ V⁻¹: V⁻¹'s rows likewise
+  Eigen::VectorXd real(d), imaginary(d);
+  Eigen::Index to = 0;
+  for (Eigen::Index from : starts) {
+    const Eigen::Index width = imaginary_[from] != 0.0 ? 2 : 1;
+    vectors_.middleCols(to, width) = v.middleCols(from, width);
+    inverse_.middleRows(to, width) = inverse.middleRows(from, width);
+    real.segment(to, width) = real_.segment(from, width);
+    imaginary.segment(to, width) = imaginary_.segment(from, width);
+    to += width;
+  }
+  real_.swap(real);
+  imaginary_.swap(imaginary);
   decomposed_ = true;
 }
 
@@ -62,8 +102,8 @@ void PhaseExponential::apply(double tau, Eigen::MatrixXd& phi, Eigen::MatrixXd& 
   else phi.noalias() = vectors_ * scratch;
 }
 
-void PhaseExponential::scaleModes(double tau, Eigen::MatrixXd& psi) const {
-  const Eigen::Index d = real_.size();
+void PhaseExponential::scaleModes(double tau, Eigen::Ref<Eigen::MatrixXd> psi) const {
+  const Eigen::Index d = psi.rows();
   for (Eigen::Index i = 0; i < d; ++i) {
     const double growth = std::exp(real_[i] * tau);
     if (imaginary_[i] == 0.0) {
@@ -77,6 +117,22 @@ void PhaseExponential::scaleModes(double tau, Eigen::MatrixXd& psi) const {
       psi(i, j) = c * x + s * y;
       psi(i + 1, j) = -s * x + c * y;
     }
+    ++i;
+  }
+}
+
+Eigen::Index PhaseExponential::survivingModes(double tau) const {
+  const double negligible = std::log(kNegligibleGrowth);
+  Eigen::Index kept = 0;
+  while (kept < real_.size() && real_[kept] * tau > negligible) ++kept;
+  return kept;
+}
+
+void PhaseExponential::multipliers(double tau, Eigen::Ref<Eigen::VectorXcd> out) const {
+  for (Eigen::Index i = 0; i < real_.size(); ++i) {
+    out[i] = std::exp(std::complex<double>(real_[i], imaginary_[i]) * tau);
+    if (imaginary_[i] == 0.0) continue;
+    out[i + 1] = std::conj(out[i]);  // [a b; −b a]: a ± ib
     ++i;
   }
 }

@@ -133,27 +133,35 @@ void SpringLawMonodromy::findSwitches(double omega) {
   std::stable_sort(switches_.begin(), switches_.end(), [](const Switch& x, const Switch& y) { return x.time < y.time; });
 }
 
-// A of (1) (header) for the laws' states `active` and the current slots.
+// A₁₁ of (1) (header): [0 ΩI; −M⁻¹K/Ω −M⁻¹C] with the stuck and closed
+// springs in K. In [δq; δq̇/Ω] (a similarity: the multipliers are the same)
+// the blocks are of one size, which the exponential's scaling and squaring
+// needs: unscaled, the stiff contact springs on light interface DOFs
+// (‖M⁻¹K‖ ~ 4e14 on the lap joint) made it overflow.
+Eigen::MatrixXd SpringLawMonodromy::structuralGenerator(const std::vector<char>& active,
+                                                        Eigen::MatrixXd& stiffness) const {
+  stiffness = stiffness_;
+  for (int l = 0; l < laws_; ++l)
+    if (active[l]) stiffness.noalias() += spring_[l] * direction_[l] * direction_[l].transpose();
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * m_, 2 * m_);
+  a.block(0, m_, m_, m_).diagonal().setConstant(scale_);
+  a.block(m_, 0, m_, m_) = -mass_inverse_ * stiffness / scale_;
+  a.block(m_, m_, m_, m_) = -mass_inverse_ * damping_;
+  return a;
+}
+
+// A of (1) (header) for the laws' states `active` and the current slots:
+// A₁₁ and the stuck anchors' columns k_t M⁻¹ w (scaled by 1/Ω like K).
 const PhaseExponential& SpringLawMonodromy::generator(const std::vector<char>& active) {
   auto key = std::make_pair(active, slot_);
   auto found = generators_.find(key);
   if (found != generators_.end()) return found->second;
   const int d = 2 * m_ + sliders_;
-  Eigen::MatrixXd k = stiffness_;
+  Eigen::MatrixXd k;
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(d, d);
-  for (int l = 0; l < laws_; ++l) {
-    if (!active[l]) continue;
-    k.noalias() += spring_[l] * direction_[l] * direction_[l].transpose();
-    if (slot_[l] >= 0) a.block(m_, 2 * m_ + slot_[l], m_, 1) = spring_[l] * (mass_inverse_ * direction_[l]);
-  }
-  // In [δq; δq̇/Ω; δz] (a similarity: the multipliers are the same) the
-  // blocks are of one size, which the exponential's scaling and squaring
-  // needs: unscaled, the stiff contact springs on light interface DOFs
-  // (‖M⁻¹K‖ ~ 4e14 on the lap joint) made it overflow.
-  a.block(m_, 2 * m_, m_, sliders_) /= scale_;
-  a.block(0, m_, m_, m_).diagonal().setConstant(scale_);
-  a.block(m_, 0, m_, m_) = -mass_inverse_ * k / scale_;
-  a.block(m_, m_, m_, m_) = -mass_inverse_ * damping_;
+  a.topLeftCorner(2 * m_, 2 * m_) = structuralGenerator(active, k);
+  for (int l = 0; l < laws_; ++l)
+    if (active[l] && slot_[l] >= 0) a.block(m_, 2 * m_ + slot_[l], m_, 1) = spring_[l] / scale_ * (mass_inverse_ * direction_[l]);
   return generators_.emplace(std::move(key), PhaseExponential(a)).first->second;
 }
 
@@ -167,74 +175,69 @@ bool SpringLawMonodromy::resetsAnchor(const Switch& s) const {
   return !contact_[s.law] && s.to_active && slot_[s.law] >= 0;
 }
 
-// When every phase's exponential is decomposed, A_j = V_j D_j V_j⁻¹, the
-// product Π R_j V_j exp(D_j τ_j) V_j⁻¹ is carried in the current phase's
-// modal coordinates ψ: a phase scales ψ's rows (O(d²)) and a switch maps
-// ψ ← (V_next⁻¹ R V_j) ψ, one product where the phase-by-phase route takes
-// two; the transition matrices are kept, since the same phases follow one
-// another from point to point along a curve. Started from ψ = I (Φ₀ = V₁)
-// the result is V₁⁻¹ M V₁, similar to the monodromy M: the same multipliers.
-void SpringLawMonodromy::chainInModes(double period) {
-  phi_.setIdentity();
+// Φ = Π R_j exp(A_j τ_j) from just after the first switch round the
+// period, each phase's exponential applied to the whole Φ.
+void SpringLawMonodromy::chainInFull(double period) {
+  const int d = 2 * m_ + sliders_;
+  phi_.setIdentity(d, d);
   for (size_t j = 0; j < switches_.size(); ++j) {
     const Switch& s = switches_[(j + 1) % switches_.size()];
-    phases_[j]->scaleModes(phaseLength(j, period), phi_);
-    scratch_.noalias() = transition(*phases_[j], *phases_[(j + 1) % switches_.size()], s) * phi_;
-    phi_.swap(scratch_);
+    generator(phase_states_[j]).apply(phaseLength(j, period), phi_, scratch_);
+    if (resetsAnchor(s)) phi_.row(2 * m_ + slot_[s.law]) = direction_[s.law].transpose() * phi_.topRows(m_);
   }
+  eigenvaluesOf(phi_, d);
 }
 
-// V_to⁻¹ R V_from at switch s, R the anchor's reset (4) or I.
-const Eigen::MatrixXd& SpringLawMonodromy::transition(const PhaseExponential& from, const PhaseExponential& to,
-                                                      const Switch& s) {
-  const bool reset = resetsAnchor(s);
-  const TransitionKey key{&from, &to, s.law, reset};
-  auto found = transitions_.find(key);
-  if (found != transitions_.end()) return found->second;
-  // Bounded memory: a curve whose phases keep changing starts afresh.
-  if (transitions_.size() >= kMaxTransitions) transitions_.clear();
-  transition_scratch_ = from.vectors();
-  if (reset)
-    transition_scratch_.row(2 * m_ + slot_[s.law]) = direction_[s.law].transpose() * from.vectors().topRows(m_);
-  return transitions_.emplace(key, to.inverse() * transition_scratch_).first->second;
+// multipliers_: the eigenvalues of phi, then 0 up to `size`.
+void SpringLawMonodromy::eigenvaluesOf(const Eigen::Ref<const Eigen::MatrixXd>& phi, Eigen::Index size) {
+  multipliers_.setZero(size);
+  if (phi.rows() == 0) return;
+  eigen_.compute(phi, false);
+  if (eigen_.info() != Eigen::Success) {
+    multipliers_.resize(0);  // the caller reports the failure
+    return;
+  }
+  multipliers_.head(phi.rows()) = eigen_.eigenvalues();
 }
 
-const Eigen::MatrixXd& SpringLawMonodromy::monodromy(double omega, const Eigen::VectorXd& full, long& exponentials,
-                                                     long& syntheses) {
+const Eigen::VectorXcd& SpringLawMonodromy::multipliers(double omega, const Eigen::VectorXd& full,
+                                                        long& exponentials, long& syntheses) {
   const double period = 2.0 * M_PI / omega;
   classify(omega, full, syntheses);
   findSwitches(omega);
   const int d = 2 * m_ + sliders_;
-  phi_ = Eigen::MatrixXd::Identity(d, d);
   current_.assign(active_.begin(), active_.begin() + laws_);
   if (switches_.empty()) {
-    phi_ = generator(current_).exponential(period);
+    // One phase the whole period: exp(A T)'s eigenvalues are e^{λT} of A₁₁'s
+    // and 1 for each slider that slips throughout (its δz does not move).
     ++exponentials;
-    return phi_;
+    const ActiveModes& modes = activeModes(current_);
+    if (!modes.usable) {
+      eigenvaluesOf(generator(current_).exponential(period), d);
+      return multipliers_;
+    }
+    multipliers_.setOnes(d);
+    modes.exponential.multipliers(period, multipliers_.head(2 * m_));
+    return multipliers_;
   }
-  // From just after the first switch round the period back to it; the
-  // generators of its phases first, as they decide the route.
+  // From just after the first switch round the period back to it: the
+  // laws' states in each phase, which decide the route.
   current_[switches_[0].law] = switches_[0].to_active;
-  phases_.clear();
-  bool decomposed = true;
+  phase_states_.resize(switches_.size());
+  phase_modes_.clear();
+  bool usable = true;
   for (size_t j = 0; j < switches_.size(); ++j) {
-    const PhaseExponential& g = generator(current_);
-    phases_.push_back(&g);
-    decomposed = decomposed && g.decomposed();
+    phase_states_[j] = current_;
+    const ActiveModes& modes = activeModes(current_);
+    phase_modes_.push_back(&modes);
+    usable = usable && modes.usable;
     const Switch& s = switches_[(j + 1) % switches_.size()];
     current_[s.law] = s.to_active;
   }
-  if (decomposed) {
-    chainInModes(period);
-  } else {
-    for (size_t j = 0; j < switches_.size(); ++j) {
-      const Switch& s = switches_[(j + 1) % switches_.size()];
-      phases_[j]->apply(phaseLength(j, period), phi_, scratch_);
-      if (resetsAnchor(s)) phi_.row(2 * m_ + slot_[s.law]) = direction_[s.law].transpose() * phi_.topRows(m_);
-    }
-  }
   exponentials += static_cast<long>(switches_.size());
-  return phi_;
+  if (usable) chainLeadingModes(period);
+  else chainInFull(period);
+  return multipliers_;
 }
 
 }  // namespace eqhb

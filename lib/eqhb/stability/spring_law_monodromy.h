@@ -41,12 +41,22 @@
 // interpolation of what vanishes there: u − g0 (contact), u̇ (stick onset),
 // |trial force| − μN (slip onset). A slider whose slip turns over between
 // two slipping samples (a stick shorter than a sample) is taken as slipping.
+//
+// The product is formed in the phases' modal coordinates
+// (spring_law_modes.cpp). A phase's generator is A = [A₁₁ B; 0 0]: A₁₁ the
+// structure's with the stuck and closed springs in, B the stuck anchors'
+// forces. A₁₁ depends on the laws' states in the phase only, not on which
+// sliders slip somewhere in the period (that set changes along a curve and
+// with it every phase's B): A₁₁ = V D V⁻¹ is decomposed once per set of
+// states, and a = V⁻¹ (x + A₁₁⁻¹ B z) obeys ȧ = D a. Modes that a phase
+// damps below PhaseExponential::kNegligibleGrowth are dropped, so the
+// product carries only the modes that outlast their phase: on the lap joint
+// 40-60 of 190.
 #pragma once
 
 #include <Eigen/Dense>
 #include <map>
 #include <memory>
-#include <tuple>
 #include <vector>
 
 #include "eqhb/harmonic_balance/hb_model.h"
@@ -71,11 +81,11 @@ class SpringLawMonodromy {
   // True when every law is a penalty contact or a one-slider Jenkins AFT
   // law of dimension 1 (grounded or relative), and there is one at least.
   static bool supports(const HbModel& model);
-  // The monodromy of `full` ([x; λ] on the model's basis) at ω, square of
-  // size 2m + the sliders that slip, or a matrix similar to it (the same
-  // multipliers: in the first phase's modal coordinates, chainInModes).
-  // `exponentials` counts those formed.
-  const Eigen::MatrixXd& monodromy(double omega, const Eigen::VectorXd& full, long& exponentials, long& syntheses);
+  // The Floquet multipliers of `full` ([x; λ] on the model's basis) at
+  // ω: 2m + the sliders that slip, those of dropped modes as 0.
+  // `exponentials` counts the phases' exponentials applied.
+  const Eigen::VectorXcd& multipliers(double omega, const Eigen::VectorXd& full, long& exponentials,
+                                      long& syntheses);
 
  private:
   struct Switch {
@@ -83,15 +93,33 @@ class SpringLawMonodromy {
     int law = 0;
     bool to_active = false;  // stuck or closed after it
   };
+  // The modes of A₁₁ for one set of stuck or closed laws (header), and
+  // where a unit anchor displacement of each stuck slider moves them.
+  struct ActiveModes {
+    PhaseExponential exponential;  // of A₁₁ in [δq; δq̇/Ω]
+    Eigen::MatrixXd anchor_shift;  // 2m x laws: column l = A₁₁⁻¹ B_l for a stuck slider l, else 0
+    Eigen::MatrixXd anchor_modes;  // V⁻¹ anchor_shift
+    std::vector<int> sliders;      // the stuck sliders (their columns above)
+    bool usable = false;           // decomposed, and A₁₁ invertible if a slider is stuck
+  };
   void classify(double omega, const Eigen::VectorXd& full, long& syntheses);
   void findSwitches(double omega);
-  // A of (1) with its exponential's decomposition, formed once per key.
+  // A₁₁ of (1) for the laws' states `active`, and K with their springs in.
+  Eigen::MatrixXd structuralGenerator(const std::vector<char>& active, Eigen::MatrixXd& stiffness) const;
+  // A₁₁'s modes, decomposed once per set of states (spring_law_modes.cpp).
+  const ActiveModes& activeModes(const std::vector<char>& active);
+  // The whole A of (1) with the current slots, once per key: the route
+  // where some A₁₁ is not decomposed.
   const PhaseExponential& generator(const std::vector<char>& active);
   // The length of phase j (from switch j to the next, round the period).
   double phaseLength(size_t j, double period) const;
   bool resetsAnchor(const Switch& s) const;
-  void chainInModes(double period);
-  const Eigen::MatrixXd& transition(const PhaseExponential& from, const PhaseExponential& to, const Switch& s);
+  // multipliers_ from the product in the phases' leading modes (header;
+  // spring_law_modes.cpp), every phase's ActiveModes usable.
+  void chainLeadingModes(double period);
+  // multipliers_ from Φ = Π exp(A_j τ_j) with the resets, formed in full.
+  void chainInFull(double period);
+  void eigenvaluesOf(const Eigen::Ref<const Eigen::MatrixXd>& phi, Eigen::Index size);
 
   HbModel model_;
   std::unique_ptr<FourierTransform> transform_;
@@ -110,16 +138,19 @@ class SpringLawMonodromy {
   std::vector<char> active_;                // N x laws, row-major: stuck or closed
   std::vector<Switch> switches_;
   std::vector<char> current_;
+  std::map<std::vector<char>, ActiveModes> modes_;  // by the laws' states; never cleared (pointers kept)
   std::map<std::pair<std::vector<char>, std::vector<int>>, PhaseExponential> generators_;
-  std::vector<const PhaseExponential*> phases_;  // per phase of the point, its generator's exponential
-  // Transitions V_to⁻¹ R V_from between consecutive phases (chainInModes),
-  // by the two phases, the switching law and whether it resets an anchor.
-  using TransitionKey = std::tuple<const PhaseExponential*, const PhaseExponential*, int, bool>;
-  std::map<TransitionKey, Eigen::MatrixXd> transitions_;
-  static constexpr size_t kMaxTransitions = 256;
-  Eigen::MatrixXd transition_scratch_;
-  Eigen::MatrixXd scratch_;
-  Eigen::MatrixXd phi_;
+  std::vector<std::vector<char>> phase_states_;     // per phase of the point: the laws' states
+  std::vector<const ActiveModes*> phase_modes_;     // and its modes
+  std::vector<double> phase_length_;
+  std::vector<Eigen::Index> kept_;                  // per phase: the modes that outlast it
+  // Storage reused from point to point: the product in a phase's leading
+  // modes (2m rows at most) and the anchors (sliders), the same in
+  // [δq; δq̇/Ω], the product reduced to the kept modes, the whole Φ.
+  Eigen::MatrixXd modal_, anchors_, physical_, reduced_;
+  Eigen::MatrixXd scratch_, phi_;
+  Eigen::EigenSolver<Eigen::MatrixXd> eigen_;
+  Eigen::VectorXcd multipliers_;
 };
 
 }  // namespace eqhb
