@@ -1,4 +1,4 @@
-#include "eqhb/accuracy/force_resolution.h"
+#include "eqhb/harmonic_balance/force_resolution.h"
 
 #include <gtest/gtest.h>
 

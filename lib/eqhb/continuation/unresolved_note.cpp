@@ -1,6 +1,6 @@
 #include "eqhb/continuation/unresolved_note.h"
 
-#include "eqhb/accuracy/force_resolution.h"
+#include "eqhb/harmonic_balance/force_resolution.h"
 
 namespace eqhb {
 
