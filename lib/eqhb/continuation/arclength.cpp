@@ -149,6 +149,10 @@ SolverResult ArclengthSweep::correct(const ArcScales& s, const Eigen::VectorXd& 
 Next ArclengthSweep::correctorConverged(const Trial& trial) {
   if (trial.r.converged()) return Next::kGoOn;
   if (step_.halve()) return Next::kRetry;
+  if (const std::string end = branchEnd(trial); !end.empty()) {
+    ended_at_ = current_.omega;
+    return bridgeOrStop(end);
+  }
   return bridgeOrStop("the corrector failed (" + std::string(terminationName(trial.r.termination)) + ") near " +
                       at(current_.omega) + " even with the step at min_step = " + formatNumber(options_.min_step) +
                       ": give a smaller min_step, or try " + (system_->condensed() ? "system = full or " : "") + "another solver");

@@ -23,6 +23,12 @@ constexpr int kMostSampleRefinement = 4;
 // A point found with ω held lies within this many steps of the current one.
 constexpr double kLocalReach = 2.0;
 
+// branchEnd's first distance past the current point: this fraction of the range.
+constexpr double kEndProbe = 1e-6;
+// The least ω-component of the unit scaled tangent at a corner branchEnd
+// names (below it the curve is at a smooth fold, which the corrector turns).
+constexpr double kCornerOmega = 0.01;
+
 }  // namespace
 
 // The bordered corrector can stall just above the tolerance where a
@@ -98,11 +104,62 @@ bool ArclengthSweep::bridge() {
     const double from = current_.omega;
     current_ = {r.solution, target, s.physicalDirection(tangent)};
     largest_norm_ = std::max(largest_norm_, current_.z.norm());
-    bridged_.push_back(formatNumber(from) + " -> " + formatNumber(target));
+    bridged_.push_back(formatNumber(from) + " -> " + formatNumber(target) +
+                       (ended_at_ == from ? " (the branch ends at " + formatNumber(from) + ")" : ""));
+    ended_at_ = NAN;
     record(current_, r, tangent[n_], taken);
     return true;
   }
   return false;
+}
+
+// Where the corrector fails at the smallest step: does the branch end at
+// the current point? Solved with ω held a little further on, at two
+// distances δ and 10δ, from the current point. Past the end of a branch
+// the residual's least value grows in proportion to the distance (|∂g/∂ω|
+// times it); where neither solve converges and the least residuals reached
+// grow so (their ratio within a factor of three of 10), the branch ends
+// here. Measured on the damper at H = 40: the contact's least normal force
+// reaches zero at ω = 1.0759725 (about to open), and past it every backend
+// stalls at ‖g‖ ≈ 0.07 (ω − 1.0759725) on either system. While the tangent
+// there still points ahead in ω (a smooth fold's ω-component goes to
+// zero), the curve goes on from there at a corner, which the corrector,
+// predicting ahead, cannot turn. Returns the stop reason, or "" where the
+// test does not hold.
+std::string ArclengthSweep::branchEnd(const Trial& trial) {
+  const double heading = folds_.direction() != 0.0 ? folds_.direction() : direction_;
+  const double delta = kEndProbe * (hi_ - lo_);
+  double least[2] = {NAN, NAN};
+  for (int i = 0; i < 2; ++i) {
+    const double omega = current_.omega + heading * delta * (i == 0 ? 1.0 : 10.0);
+    if (omega < lo_ || omega > hi_) break;
+    try {
+      system_->setOmega(omega);
+    } catch (const std::exception&) {
+      break;
+    }
+    const SolverResult r = solver_.solve(*system_, current_.z, solver_options_);
+    if (r.converged() || !(r.final_norm > 0.0)) break;
+    least[i] = r.final_norm;
+  }
+  try {
+    system_->setOmega(current_.omega);  // back to the point the curve is at
+  } catch (const std::exception&) {
+    return "";
+  }
+  if (!std::isfinite(least[0]) || !std::isfinite(least[1])) return "";
+  const double ratio = least[1] / least[0];
+  if (!(ratio >= 10.0 / 3.0 && ratio <= 30.0)) return "";
+  const double tangent_omega = std::abs(trial.t[n_]);
+  if (tangent_omega < kCornerOmega) return "";  // a smooth fold's: not a corner
+  return "the branch ends at " + at(current_.omega) +
+         ": harmonic balance has no solution just past it (with omega held " + formatNumber(delta) + " and " +
+         formatNumber(10.0 * delta) + " further on the solves stall at a least residual of " +
+         formatNumber(least[0]) + " and " + formatNumber(least[1]) +
+         ", growing in proportion to the distance), while the tangent there still points ahead (its omega-" +
+         "component " + formatNumber(tangent_omega) +
+         "): a corner of the curve, as where a law switches at a sample (a contact opening, a slider "
+         "sticking), which the corrector, predicting ahead, cannot turn";
 }
 
 // Every point recorded, in the current system's unknowns, each bridge's

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -77,6 +78,7 @@ class ArclengthSweep {
 
   // arclength_recovery.cpp: where the curve cannot be followed.
   bool bridge();
+  std::string branchEnd(const Trial& trial);
   TracedPath wholeCurve() const;
   bool switchToFullSystem();
   bool refineSamples();
@@ -111,6 +113,7 @@ class ArclengthSweep {
   TracedPath traced_;
   bool by_omega_ = false;             // the corrector holds ω (correctAtFixedOmega)
   std::vector<std::string> bridged_;  // "ω_from -> ω_to" of each bridge
+  double ended_at_ = NAN;             // ω where branchEnd found the branch ends (the next bridge's start)
   std::string full_from_;             // ω where the sweep went on on the full system
   int scene_samples_ = 0;             // N of the model given (refineSamples raises model_.samples)
   std::vector<std::string> refined_;  // "N = 2048 from omega = ..." of each refinement
