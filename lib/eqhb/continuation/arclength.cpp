@@ -163,10 +163,28 @@ Next ArclengthSweep::correctorConverged(const Trial& trial) {
 Next ArclengthSweep::insideTheRange(Trial& trial) {
   trial.omega_new = trial.r.solution[n_] * trial.s.omega;
   if (!(trial.omega_new < lo_ || trial.omega_new > hi_)) return Next::kGoOn;
-  if (landOnTheEnd(trial.s, trial.y, trial.r.solution, step_.size())) return Next::kStop;
+  if (landOnTheEnd(trial.s, trial.y, trial.r.solution, step_.size()))
+    return curve_.complete ? Next::kStop : leftAtTheStart();
   if (step_.halve()) return Next::kRetry;
   stop("no solution at the end of the range next to " + at(current_.omega) +
        " even with the step at min_step = " + formatNumber(options_.min_step));
+  return Next::kStop;
+}
+
+// The curve turned back past its folds and left the range at its start:
+// where it came back through a tangle of folds it may go on from the
+// furthest point it reached (bridgeFromTheFrontier), else it stops there.
+Next ArclengthSweep::leftAtTheStart() {
+  if (static_cast<int>(bridged_.size()) < kMostBridges && bridgeFromTheFrontier()) {
+    step_ = ArclengthStep(options_);
+    kink_.reset();
+    if (current_.omega != options_.to) return Next::kRetry;
+    finishAtTheEnd();
+    return Next::kStop;
+  }
+  stop("the curve turned back and left the range at its start, " + at(options_.from) +
+       (curve_.fold_omegas.empty() ? "" : " (after the fold at " + at(curve_.fold_omegas.back()) + ")") +
+       ": not complete" + unresolvedAlongTheCurve());
   return Next::kStop;
 }
 
@@ -249,7 +267,8 @@ Next ArclengthSweep::bridgeOrStop(const std::string& reason) {
          " times already: arclength cannot follow it here, sweep it sequentially" + unresolvedAlongTheCurve());
     return Next::kStop;
   }
-  if (switchToFullSystem() || bridge() || refineSamples()) {
+  const double heading = folds_.direction() != 0.0 ? folds_.direction() : direction_;
+  if (switchToFullSystem() || bridge(heading) || refineSamples() || bridgeFromTheFrontier()) {
     step_ = ArclengthStep(options_);
     kink_.reset();
     if (current_.omega != options_.to) return Next::kRetry;

@@ -71,8 +71,7 @@ SolverResult ArclengthSweep::correctAtFixedOmega(const ArcScales& s, const Eigen
 // then by the fallback chain, and go on from there along a new tangent.
 // The point found is marked (fallback "bridge"): the curve between the two
 // points is not traced, and the jump is said in the stop reason.
-bool ArclengthSweep::bridge() {
-  const double heading = folds_.direction() != 0.0 ? folds_.direction() : direction_;
+bool ArclengthSweep::bridge(double heading) {
   const FallbackChain bridge_fallbacks = options_.fallbacks.withoutOmegaContinuation();
   for (double fraction : kBridgeFractions) {
     const double target = std::clamp(current_.omega + heading * fraction * (hi_ - lo_), lo_, hi_);
@@ -111,6 +110,40 @@ bool ArclengthSweep::bridge() {
     return true;
   }
   return false;
+}
+
+// The last way on, where the curve has turned back (folds) and nothing gets
+// on from where it is: a bridge ahead, in the sweep's direction, from the
+// furthest point the curve reached. Why: where a law's force is not
+// resolved the harmonic balance breaks its branch up into a tangle of folds
+// and kinks that arclength, however small its step, follows back and forth
+// (the damper at H = 20: 13 folds in 1.017-1.084, then back onto its own
+// path at 1.0176) while solutions with ω held exist on past the tangle (its
+// sequential sweep converges at every ω). The tangle stays in the curve as
+// traced; the jump is a bridge like any other, said in the stop reason.
+bool ArclengthSweep::bridgeFromTheFrontier() {
+  const CurvePoint* frontier = nullptr;
+  for (const CurvePoint& p : curve_.points)
+    if (p.converged && p.full.size() && (!frontier || (p.omega - frontier->omega) * direction_ > 0.0)) frontier = &p;
+  if (!frontier) return false;
+  const bool ahead = (frontier->omega - current_.omega) * direction_ > 0.0;
+  if (!ahead && folds_.direction() == direction_) return false;  // bridge() tried this way from here already
+  const auto folds_since = std::count_if(curve_.points.begin() + (frontier - curve_.points.data()),
+                                         curve_.points.end(), [](const CurvePoint& p) { return p.fold; });
+  const ArcPoint was = current_;
+  const FoldWatch folds_was = folds_;
+  current_ = {system_->fromFullCoefficients(frontier->full), frontier->omega, {}};
+  // The jump starts a new stretch of the path, heading as the sweep does.
+  folds_ = FoldWatch();
+  traced_.breakPath();
+  if (!bridge(direction_)) {
+    current_ = was;
+    folds_ = folds_was;
+    return false;
+  }
+  bridged_.back() += " (from the furthest point reached, " + std::to_string(folds_since) + " folds back)";
+  by_omega_ = false;
+  return true;
 }
 
 // Where the corrector fails at the smallest step: does the branch end at
@@ -286,6 +319,7 @@ bool ArclengthSweep::secantTangent(const ArcScales& s, double heading, Eigen::Ve
 // The corrector left the range between ŷ and ŷ_new: solve at the end it
 // crossed with ω fixed, from the chord's point there. Accepted only near
 // the chord (within one step), so that it cannot land on another branch.
+// Returns whether it landed (the point recorded; at `to`, the curve complete).
 bool ArclengthSweep::landOnTheEnd(const ArcScales& s, const Eigen::VectorXd& y, const Eigen::VectorXd& y_new,
                                   double step) {
   const double omega_new = y_new[n_] * s.omega;
@@ -305,13 +339,7 @@ bool ArclengthSweep::landOnTheEnd(const ArcScales& s, const Eigen::VectorXd& y, 
   const Eigen::VectorXd heading = (y_new - y).normalized();
   const double tangent_omega = tangentAt(*system_, s, landed, heading, &tangent) ? tangent[n_] : NAN;
   record({r.solution, end, {}}, r, tangent_omega);
-  if (end == options_.to) {
-    finishAtTheEnd();
-    return true;
-  }
-  stop("the curve turned back and left the range at its start, " + at(end) +
-       (curve_.fold_omegas.empty() ? "" : " (after the fold at " + at(curve_.fold_omegas.back()) + ")") +
-       ": not complete" + unresolvedAlongTheCurve());
+  if (end == options_.to) finishAtTheEnd();
   return true;
 }
 

@@ -69,6 +69,7 @@ class ArclengthSweep {
   // The named tests on a step, each kGoOn where the point passes.
   Next correctorConverged(const Trial& trial);
   Next insideTheRange(Trial& trial);
+  Next leftAtTheStart();
   Next tangentFound(Trial& trial);
   Next turnedLittle(Trial& trial);
   Next notRetracing(const Trial& trial);
@@ -77,7 +78,8 @@ class ArclengthSweep {
   std::string remedies() const;
 
   // arclength_recovery.cpp: where the curve cannot be followed.
-  bool bridge();
+  bool bridge(double heading);
+  bool bridgeFromTheFrontier();
   std::string branchEnd(const Trial& trial);
   TracedPath wholeCurve() const;
   bool switchToFullSystem();
