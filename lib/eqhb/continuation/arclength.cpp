@@ -163,6 +163,11 @@ Next ArclengthSweep::correctorConverged(const Trial& trial) {
 Next ArclengthSweep::insideTheRange(Trial& trial) {
   trial.omega_new = trial.r.solution[n_] * trial.s.omega;
   if (!(trial.omega_new < lo_ || trial.omega_new > hi_)) return Next::kGoOn;
+  // Back past the start while no fold has turned the curve: the corrector
+  // went back (ipopt-ls on den-hartog-coulomb from its first point), not the
+  // curve; a shorter step first.
+  const bool past_the_start = (trial.omega_new - options_.from) * direction_ < 0.0;
+  if (past_the_start && folds_.direction() != -direction_ && step_.halve()) return Next::kRetry;
   if (landOnTheEnd(trial.s, trial.y, trial.r.solution, step_.size()))
     return curve_.complete ? Next::kStop : leftAtTheStart();
   if (step_.halve()) return Next::kRetry;
