@@ -184,6 +184,9 @@ void FourierTransform::synthesize(const double* coefficients, double* samples) {
 }
 
 namespace {
+// |s| up to this keeps 2^s and 2^−s normal doubles (exponents −1022..1023).
+constexpr int kLargestPowerShift = 1000;
+
 // 2^e with e the difference of the binary exponents of the largest
 // coefficients of `first` and `second` (0 when either is all zero): the
 // factor that brings the second channel to the first's magnitude exactly.
@@ -212,10 +215,15 @@ void FourierTransform::synthesizePair(const double* first, const double* second,
   const auto& ks = basis_.harmonics();
   HalfWavePlans& w = *pairs_;
   const int shift = balancingExponent(first, second, basis_.size());
+  // x · 2^s is rounded once, as ldexp(x, s) is: the same double, without a
+  // library call per sample, wherever 2^±s is itself a double.
+  const bool exact = std::abs(shift) <= kLargestPowerShift;
+  const double up = exact ? std::ldexp(1.0, shift) : 0.0, down = exact ? std::ldexp(1.0, -shift) : 0.0;
+  auto scaleUp = [&](double x) { return exact ? x * up : std::ldexp(x, shift); };
   for (size_t h = 0; h < ks.size(); ++h) {
     const int o = basis_.offset(static_cast<int>(h));
     const double a1 = first[o], b1 = first[o + 1];
-    const double a2 = std::ldexp(second[o], shift), b2 = std::ldexp(second[o + 1], shift);
+    const double a2 = scaleUp(second[o]), b2 = scaleUp(second[o + 1]);
     // ½(C¹ + iC²) and ½(conj C¹ + i conj C²), C = a − ib
     const double ur = 0.5 * (a1 + b2), ui = 0.5 * (a2 - b1);
     const double vr = 0.5 * (a1 - b2), vi = 0.5 * (a2 + b1);
@@ -230,6 +238,14 @@ void FourierTransform::synthesizePair(const double* first, const double* second,
     }
   }
   fftw_execute(w.backward);
+  if (exact) {
+    for (int i = 0; i < w.m; ++i) {
+      const double re = w.samples[i][0], im = w.samples[i][1];
+      first_samples[i] = w.twist_cos[i] * re - w.twist_sin[i] * im;
+      second_samples[i] = (w.twist_cos[i] * im + w.twist_sin[i] * re) * down;
+    }
+    return;
+  }
   for (int i = 0; i < w.m; ++i) {
     const double re = w.samples[i][0], im = w.samples[i][1];
     first_samples[i] = w.twist_cos[i] * re - w.twist_sin[i] * im;
