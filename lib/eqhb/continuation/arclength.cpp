@@ -168,6 +168,12 @@ Next ArclengthSweep::insideTheRange(Trial& trial) {
   // curve; a shorter step first.
   const bool past_the_start = (trial.omega_new - options_.from) * direction_ < 0.0;
   if (past_the_start && folds_.direction() != -direction_ && step_.halve()) return Next::kRetry;
+  // Nor is a point past an end found further than the corrector reaches
+  // (nlvib-03-unilateral-wall: from 0.5819, where the curve bends sharply,
+  // it went past 0.5 in one step, and the landing there skipped the curve
+  // between).
+  const bool far = (trial.r.solution - trial.y).norm() > kLocalReach * step_.size();
+  if (far && step_.halve()) return Next::kRetry;
   if (landOnTheEnd(trial.s, trial.y, trial.r.solution, step_.size()))
     return curve_.complete ? Next::kStop : leftAtTheStart();
   if (step_.halve()) return Next::kRetry;

@@ -20,8 +20,6 @@ constexpr int kMostDenseUnknowns = 2000;
 // refineSamples doubles N at most up to this multiple of the scene's.
 constexpr int kMostSampleRefinement = 4;
 
-// A point found with ω held lies within this many steps of the current one.
-constexpr double kLocalReach = 2.0;
 
 // branchEnd's first distance past the current point: this fraction of the range.
 constexpr double kEndProbe = 1e-6;

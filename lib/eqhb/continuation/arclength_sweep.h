@@ -25,6 +25,10 @@ namespace eqhb::arclength {
 // contact force infinitely large in the scaled unknowns.
 constexpr double kScaleFloorFraction = 1e-3;
 
+// A corrected point lies within this many steps of the current one (a
+// corrector that went further left the curve).
+constexpr double kLocalReach = 2.0;
+
 // Where a bridge tries its fixed-ω point: these fractions of the range ahead.
 constexpr double kBridgeFractions[] = {1e-3, 1e-2, 3e-2};
 
