@@ -186,13 +186,7 @@ Next ArclengthSweep::insideTheRange(Trial& trial) {
 // where it came back through a tangle of folds it may go on from the
 // furthest point it reached (bridgeFromTheFrontier), else it stops there.
 Next ArclengthSweep::leftAtTheStart() {
-  if (static_cast<int>(bridged_.size()) < kMostBridges && bridgeFromTheFrontier()) {
-    step_ = ArclengthStep(options_);
-    kink_.reset();
-    if (current_.omega != options_.to) return Next::kRetry;
-    finishAtTheEnd();
-    return Next::kStop;
-  }
+  if (static_cast<int>(bridged_.size()) < kMostBridges && bridgeFromTheFrontier()) return goOnFromTheNewPoint();
   stop("the curve turned back and left the range at its start, " + at(options_.from) +
        (curve_.fold_omegas.empty() ? "" : " (after the fold at " + at(curve_.fold_omegas.back()) + ")") +
        ": not complete" + unresolvedAlongTheCurve());
@@ -279,14 +273,19 @@ Next ArclengthSweep::bridgeOrStop(const std::string& reason) {
     return Next::kStop;
   }
   const double heading = folds_.direction() != 0.0 ? folds_.direction() : direction_;
-  if (switchToFullSystem() || bridge(heading) || refineSamples() || bridgeFromTheFrontier()) {
-    step_ = ArclengthStep(options_);
-    kink_.reset();
-    if (current_.omega != options_.to) return Next::kRetry;
-    finishAtTheEnd();
-    return Next::kStop;
-  }
+  if (switchToFullSystem() || bridge(heading) || refineSamples() || bridgeFromTheFrontier())
+    return goOnFromTheNewPoint();
   stop(reason + "; no point found a little further in omega either (fallbacks included)" + unresolvedAlongTheCurve());
+  return Next::kStop;
+}
+
+// After a recovery put the curve on a new point: afresh from there with the
+// initial step, or done where that point is the end of the range.
+Next ArclengthSweep::goOnFromTheNewPoint() {
+  step_ = ArclengthStep(options_);
+  kink_.reset();
+  if (current_.omega != options_.to) return Next::kRetry;
+  finishAtTheEnd();
   return Next::kStop;
 }
 

@@ -79,6 +79,7 @@ class ArclengthSweep {
   Next notRetracing(const Trial& trial);
   void accept(const Trial& trial);
   Next bridgeOrStop(const std::string& reason);
+  Next goOnFromTheNewPoint();
   std::string remedies() const;
 
   // arclength_recovery.cpp: where the curve cannot be followed.
