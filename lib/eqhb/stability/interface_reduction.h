@@ -16,6 +16,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 #include <vector>
 
 namespace eqhb {
@@ -32,5 +33,28 @@ struct InterfaceReduction {
 InterfaceReduction reduceToInterface(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
                                      const Eigen::MatrixXd& stiffness, std::vector<int> boundary, double fast_rate,
                                      double period, double decay = 13.8);
+
+// The same reduction on the coordinates the laws read rather than on the
+// DOFs they touch (law_coordinate_reduction.cpp): a law between two nodes
+// reads their relative motion u = wᵀx, one coordinate where the DOFs are
+// two. The structure is written in y = E x, with y_p = w_pᵀ x on one pivot
+// DOF per direction and every other DOF as it is, and reduced there with
+// the y_p as the boundary: q = [u; η], each law's u kept exactly, the rest
+// (the pairs' common motion with the interior) following statically plus
+// the fixed-interface modes the monodromy needs. On the lap joint the
+// boundary is 42 relative coordinates instead of 84 DOFs. `directions`
+// (n x b) holds one column per distinct law direction.
+struct LawCoordinateReduction {
+  InterfaceReduction reduction;  // basis = E⁻¹ T_y and projection = P_y E, in x
+  std::vector<int> coordinate;   // per column of `directions`: its place in q
+};
+// Empty when the directions are linearly dependent; throws InputError when
+// the structure with every law coordinate held is not positive definite
+// (a body held by its joints alone: the DOF boundary may still hold it).
+std::optional<LawCoordinateReduction> reduceToLawCoordinates(const Eigen::MatrixXd& mass,
+                                                             const Eigen::MatrixXd& damping,
+                                                             const Eigen::MatrixXd& stiffness,
+                                                             const Eigen::MatrixXd& directions, double fast_rate,
+                                                             double period, double decay = 13.8);
 
 }  // namespace eqhb

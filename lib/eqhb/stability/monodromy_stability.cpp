@@ -84,13 +84,21 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
     }
   laws_ = static_cast<int>(dofs_.size());
   // The propagation's structure: the full one on small structures, else
-  // reduced to the law DOFs and the modes that matter (interface_reduction.h).
+  // reduced to the law DOFs and the modes that matter (interface_reduction.h);
+  // the spring laws' on the coordinates they read where that holds the
+  // structure (a joint's relative motions: half its DOFs).
+  std::vector<Eigen::VectorXd> law_directions;  // the spring laws': per law, w in q
   if (n_ > reduction.full_dofs) {
     int k_max = 1;
     for (int k : model_.basis.harmonics()) k_max = std::max(k_max, k);
-    const InterfaceReduction reduced = reduceToInterface(Eigen::MatrixXd(model_.structure.mass), dynamics_.damping,
-                                                         dynamics_.stiffness, boundary, kFastMargin * k_max * model_.omega,
-                                                         2.0 * M_PI / model_.omega, reduction.decay);
+    const Eigen::MatrixXd mass(model_.structure.mass);
+    const double fast_rate = kFastMargin * k_max * model_.omega, period = 2.0 * M_PI / model_.omega;
+    std::optional<LawCoordinateReduction> by_law;
+    if (springs && reduction.law_coordinates) by_law = reduceOnLawCoordinates(mass, fast_rate, period, reduction.decay, law_directions);
+    const InterfaceReduction reduced =
+        by_law ? by_law->reduction
+               : reduceToInterface(mass, dynamics_.damping, dynamics_.stiffness, boundary, fast_rate, period,
+                                   reduction.decay);
     m_ = static_cast<int>(reduced.mass.rows());
     projection_ = reduced.projection;
     propagated_.mass_inverse = reduced.mass.inverse();
@@ -100,18 +108,76 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
       coords_.push_back(static_cast<int>(std::lower_bound(reduced.boundary.begin(), reduced.boundary.end(), dof) -
                                          reduced.boundary.begin()));
     load_directions_ = reduced.basis.transpose();
+    if (springs && !by_law) {
+      // w in q: the attachment's weights at its DOFs' places in the boundary.
+      for (const AttachedLaw& a : model_.laws) {
+        Eigen::VectorXd w = Eigen::VectorXd::Zero(m_);
+        for (const AttachmentTerm& t : a.attachment.row(0))
+          w[std::lower_bound(reduced.boundary.begin(), reduced.boundary.end(), t.dof) - reduced.boundary.begin()] +=
+              t.weight;
+        law_directions.push_back(w);
+      }
+    }
   } else {
     m_ = n_;
     propagated_ = dynamics_;
     coords_ = dofs_;
     load_directions_ = Eigen::MatrixXd::Identity(n_, n_);
+    if (springs)
+      for (const AttachedLaw& a : model_.laws) {
+        Eigen::VectorXd w = Eigen::VectorXd::Zero(n_);
+        for (const AttachmentTerm& t : a.attachment.row(0)) w[t.dof] += t.weight;
+        law_directions.push_back(w);
+      }
   }
-  if (springs) {
-    std::vector<int> coordinate(n_, -1);
-    for (size_t j = 0; j < boundary.size(); ++j) coordinate[boundary[j]] = projection_.size() > 0 ? static_cast<int>(j) : boundary[j];
+  if (springs)
     springs_ = std::make_unique<SpringLawMonodromy>(model_, propagated_.mass_inverse, propagated_.damping,
-                                                    propagated_.stiffness, coordinate);
+                                                    propagated_.stiffness, law_directions);
+}
+
+// The reduction on the spring laws' coordinates (interface_reduction.h):
+// their distinct directions (a law on −w or 2w reads the same coordinate),
+// and per law its w in q, a multiple of a unit vector there. Empty when the
+// directions are dependent or the structure needs its joints to be held
+// (the DOF boundary is used then).
+std::optional<LawCoordinateReduction> MonodromyStability::reduceOnLawCoordinates(
+    const Eigen::MatrixXd& mass, double fast_rate, double period, double decay,
+    std::vector<Eigen::VectorXd>& law_directions) const {
+  std::vector<Eigen::VectorXd> distinct;
+  std::vector<std::pair<int, double>> along;  // per law: its direction and the factor w = c w_j
+  for (const AttachedLaw& a : model_.laws) {
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(n_);
+    for (const AttachmentTerm& t : a.attachment.row(0)) w[t.dof] += t.weight;
+    int found = -1;
+    double factor = 1.0;
+    for (size_t j = 0; j < distinct.size() && found < 0; ++j) {
+      factor = distinct[j].dot(w) / distinct[j].squaredNorm();
+      if ((w - factor * distinct[j]).norm() <= 1e-12 * w.norm()) found = static_cast<int>(j);
+    }
+    if (found < 0) {
+      found = static_cast<int>(distinct.size());
+      factor = 1.0;
+      distinct.push_back(w);
+    }
+    along.push_back({found, factor});
   }
+  Eigen::MatrixXd directions(n_, static_cast<Eigen::Index>(distinct.size()));
+  for (size_t j = 0; j < distinct.size(); ++j) directions.col(static_cast<Eigen::Index>(j)) = distinct[j];
+  std::optional<LawCoordinateReduction> out;
+  try {
+    out = reduceToLawCoordinates(mass, dynamics_.damping, dynamics_.stiffness, directions, fast_rate, period, decay);
+  } catch (const InputError&) {
+    return std::nullopt;  // held by its joints alone
+  }
+  if (!out) return out;
+  const Eigen::Index m = out->reduction.mass.rows();
+  law_directions.clear();
+  for (const auto& [j, factor] : along) {
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(m);
+    w[out->coordinate[j]] = factor;
+    law_directions.push_back(w);
+  }
+  return out;
 }
 
 MonodromyStability::~MonodromyStability() = default;

@@ -30,18 +30,13 @@ bool SpringLawMonodromy::supports(const HbModel& model) {
 
 SpringLawMonodromy::SpringLawMonodromy(const HbModel& model, const Eigen::MatrixXd& mass_inverse,
                                        const Eigen::MatrixXd& damping, const Eigen::MatrixXd& stiffness,
-                                       const std::vector<int>& coordinate)
-    : model_(model), mass_inverse_(mass_inverse), damping_(damping), stiffness_(stiffness) {
+                                       const std::vector<Eigen::VectorXd>& law_directions)
+    : model_(model), mass_inverse_(mass_inverse), damping_(damping), stiffness_(stiffness), direction_(law_directions) {
   m_ = static_cast<int>(mass_inverse.rows());
   laws_ = static_cast<int>(model_.laws.size());
   transform_ = std::make_unique<FourierTransform>(model_.basis, model_.samples);
   const int samples = model_.samples, nb = model_.basis.size();
   for (const AttachedLaw& a : model_.laws) {
-    // w in q: the attachment's weights at its DOFs' coordinates (they are
-    // boundary coordinates of the reduction, kept as they are).
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(m_);
-    for (const AttachmentTerm& t : a.attachment.row(0)) w[coordinate[t.dof]] += t.weight;
-    direction_.push_back(w);
     if (const auto* c = dynamic_cast<const PenaltyContact*>(a.law.get())) {
       contact_.push_back(true);
       spring_.push_back(c->stiffness());

@@ -50,8 +50,7 @@
 // with it every phase's B): A₁₁ = V D V⁻¹ is decomposed once per set of
 // states, and a = V⁻¹ (x + A₁₁⁻¹ B z) obeys ȧ = D a. Modes that a phase
 // damps below PhaseExponential::kNegligibleGrowth are dropped, so the
-// product carries only the modes that outlast their phase: on the lap joint
-// 40-60 of 190.
+// product carries only the modes that outlast their phase.
 #pragma once
 
 #include <Eigen/Dense>
@@ -69,12 +68,11 @@ class FourierTransform;
 
 class SpringLawMonodromy {
  public:
-  // `projection` (m x n, q = P x, P T = I on the law DOFs) and the
-  // propagation's dynamics (m x m) come from MonodromyStability: the full
-  // structure (P = I) or its interface reduction. `coordinate(dof)` of
-  // every DOF an attachment touches is its place in q.
+  // The propagation's dynamics (m x m) come from MonodromyStability: the
+  // full structure's or a reduction's that keeps every law's coordinate
+  // exactly; `law_directions` holds per law its w in q (u = wᵀq).
   SpringLawMonodromy(const HbModel& model, const Eigen::MatrixXd& mass_inverse, const Eigen::MatrixXd& damping,
-                     const Eigen::MatrixXd& stiffness, const std::vector<int>& law_coordinates_of_dofs);
+                     const Eigen::MatrixXd& stiffness, const std::vector<Eigen::VectorXd>& law_directions);
   ~SpringLawMonodromy();
   SpringLawMonodromy(const SpringLawMonodromy&) = delete;
   SpringLawMonodromy& operator=(const SpringLawMonodromy&) = delete;
