@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "eqhb/app/solve.h"
+#include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/laws/joints/jenkins_aft.h"
 #include "eqhb/laws/penalty_contact.h"
 #include "eqhb/orbits/piecewise_linear_flow.h"
@@ -31,7 +32,8 @@ namespace {
 // x2, x2 − x3, x3], where the same laws are grounded on y1 and y2 (M, C, K
 // and the load transformed congruently). The two models have the same
 // orbits and the same Floquet multipliers.
-HbModel chain(bool relative, double mu_n, double gap, double force, double omega, int harmonics) {
+HbModel chain(bool relative, double mu_n, double gap, double force, double omega, int harmonics,
+             bool exact_jenkins = false) {
   Eigen::MatrixXd k(3, 3);
   k << 2, -1, 0, -1, 2, -1, 0, -1, 2;
   Eigen::MatrixXd m = Eigen::MatrixXd::Identity(3, 3), c = 0.03 * k;
@@ -51,7 +53,8 @@ HbModel chain(bool relative, double mu_n, double gap, double force, double omega
   HbModel model;
   model.structure = LinearStructure::fromMassStiffnessDamping(m, k, c, loads);
   auto penalty = std::make_shared<PenaltyContact>(4.0, gap);
-  auto jenkins = std::make_shared<JenkinsAft>(std::vector<JenkinsAft::Slider>{{mu_n, 3.0}});
+  std::shared_ptr<Law> jenkins = std::make_shared<JenkinsAft>(std::vector<JenkinsAft::Slider>{{mu_n, 3.0}});
+  if (exact_jenkins) jenkins = std::make_shared<Jenkins>(1, mu_n, 3.0, FrictionForm::kMinMax);
   if (relative) {
     model.laws.push_back({LawAttachment({{{0, 1.0}, {1, -1.0}}}), penalty});
     model.laws.push_back({LawAttachment({{{1, 1.0}, {2, -1.0}}}), jenkins});
@@ -118,17 +121,18 @@ struct Radii {
 // The monodromy on both forms of the chain, and shooting (the exact orbit
 // and its multipliers, from the event-driven flow with saltation) on the
 // grounded one.
-Radii radii(double mu_n, double gap, double force, double omega, int harmonics) {
+Radii radii(double mu_n, double gap, double force, double omega, int harmonics, bool exact_jenkins = false) {
   Radii out;
-  const HbModel grounded = chain(false, mu_n, gap, force, omega, harmonics);
-  const HbModel relative = chain(true, mu_n, gap, force, omega, harmonics);
+  const HbModel grounded = chain(false, mu_n, gap, force, omega, harmonics, exact_jenkins);
+  const HbModel relative = chain(true, mu_n, gap, force, omega, harmonics, exact_jenkins);
   const Eigen::VectorXd hb_grounded = test::harmonicBalance(grounded), hb_relative = test::harmonicBalance(relative);
   out.grounded = MonodromyStability(grounded).analyse(omega, hb_grounded);
   out.relative = MonodromyStability(relative).analyse(omega, hb_relative);
   const orbits::PiecewiseLinearFlow flow(grounded, 0.0);
   out.exact = orbits::shootFromHarmonicBalance(flow, grounded, hb_grounded, orbits::ShootingOptions());
   EXPECT_TRUE(out.exact.converged) << out.exact.failure;
-  std::printf("w=%.3f H=%d: grounded %.6f relative %.6f exact %.6f (events:", omega, harmonics,
+  std::printf("w=%.3f H=%d%s: grounded %.6f relative %.6f exact %.6f (events:", omega, harmonics,
+              exact_jenkins ? " exact jenkins" : "",
               out.grounded.spectral_radius, out.relative.spectral_radius, out.exact.spectral_radius);
   for (const auto& [kind, count] : out.exact.events) std::printf(" %s %d", kind.c_str(), count);
   std::printf(")\n");
@@ -164,6 +168,31 @@ TEST(SpringMonodromy, StickSlipAndContactRadiusFollowsShooting) {
         nearest = std::min(nearest, std::abs(e.multiplier - r.exact.multipliers[i]));
       EXPECT_LT(nearest, 5e-3) << omega << " " << r.exact.multipliers[i];
     }
+  }
+}
+
+// (a') The same orbits with the Jenkins element in its exact form (the
+// harmonic balance solves for its force): the monodromy reads the orbit by
+// the slider's return map started at the position the harmonic balance
+// gives, and converges to shooting's radius as H grows: at ω = 0.7
+// 0.777239 (H = 40), 0.775508 (H = 80) against 0.774560; at ω = 1.5
+// 0.898000, 0.897874 against 0.897798 (the AFT form's orbit is closer at
+// a given H: 0.774546).
+TEST(SpringMonodromy, ExactJenkinsRadiusFollowsShooting) {
+  for (double omega : {0.7, 1.5}) {
+    const Radii r = radii(0.6, 0.3, 1.0, omega, 40, true);
+    ASSERT_TRUE(r.grounded.failure.empty()) << r.grounded.failure;
+    ASSERT_TRUE(r.relative.failure.empty()) << r.relative.failure;
+    ASSERT_TRUE(r.exact.converged);
+    EXPECT_EQ(r.grounded.method, "monodromy");
+    EXPECT_EQ(r.exact.events.at("stick"), 2) << omega;
+    ASSERT_EQ(r.grounded.exponents.size(), 7u);  // 2n and the slider's anchor
+    EXPECT_NEAR(r.grounded.spectral_radius, r.exact.spectral_radius, 5e-3) << omega;
+    EXPECT_NEAR(r.relative.spectral_radius, r.grounded.spectral_radius, 1e-8) << omega;
+    const Radii finer = radii(0.6, 0.3, 1.0, omega, 80, true);
+    EXPECT_LT(std::abs(finer.grounded.spectral_radius - r.exact.spectral_radius),
+              std::abs(r.grounded.spectral_radius - r.exact.spectral_radius)) << omega;
+    EXPECT_EQ(r.grounded.stable, r.exact.stable);
   }
 }
 

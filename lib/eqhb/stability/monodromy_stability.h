@@ -48,7 +48,7 @@
 // Supported: grounded Coulomb 1D in an exact form (minmax, projection) and
 // Signorini laws, one DOF each, with a positive definite mass (the phases
 // are ODEs); or, all laws of a model of this other kind, penalty contact and
-// one-slider Jenkins in the AFT form on one relative coordinate each,
+// Jenkins (exact, or AFT with one slider) on one relative coordinate each,
 // grounded or between two nodes (spring_law_monodromy.h: the reduction then
 // keeps the coordinates the laws read, a joint's relative motions, where
 // holding them holds the structure, else every DOF an attachment touches).

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eqhb/harmonic_balance/fourier_transform.h"
+#include "eqhb/laws/joints/jenkins.h"
 #include "eqhb/laws/joints/jenkins_aft.h"
 #include "eqhb/laws/penalty_contact.h"
 #include "eqhb/stability/switch_crossing.h"
@@ -17,13 +18,20 @@ const JenkinsAft* oneSlider(const Law& law) {
   return j && j->sliders().size() == 1 ? j : nullptr;
 }
 
+// The exact (equality-form) Jenkins element on one coordinate.
+const Jenkins* exactJenkins(const Law& law) {
+  const auto* j = dynamic_cast<const Jenkins*>(&law);
+  return j && j->dimension() == 1 ? j : nullptr;
+}
+
 }  // namespace
 
 bool SpringLawMonodromy::supports(const HbModel& model) {
   if (model.laws.empty()) return false;
   for (const AttachedLaw& a : model.laws) {
     if (a.law->dimension() != 1) return false;
-    if (!oneSlider(*a.law) && !dynamic_cast<const PenaltyContact*>(a.law.get())) return false;
+    if (!oneSlider(*a.law) && !exactJenkins(*a.law) && !dynamic_cast<const PenaltyContact*>(a.law.get()))
+      return false;
   }
   return true;
 }
@@ -37,18 +45,25 @@ SpringLawMonodromy::SpringLawMonodromy(const HbModel& model, const Eigen::Matrix
   transform_ = std::make_unique<FourierTransform>(model_.basis, model_.samples);
   const int samples = model_.samples, nb = model_.basis.size();
   for (const AttachedLaw& a : model_.laws) {
+    std::unique_ptr<JenkinsAft> reader;
     if (const auto* c = dynamic_cast<const PenaltyContact*>(a.law.get())) {
       contact_.push_back(true);
       spring_.push_back(c->stiffness());
+      limit_.push_back(0.0);
       gap_.push_back(c->gap());
     } else {
       contact_.push_back(false);
-      spring_.push_back(oneSlider(*a.law)->sliders().front().k_t);
+      const JenkinsAft* aft = oneSlider(*a.law);
+      const Jenkins* exact = exactJenkins(*a.law);
+      spring_.push_back(aft ? aft->sliders().front().k_t : exact->stiffness());
+      limit_.push_back(aft ? aft->muN() : exact->muN());
       gap_.push_back(0.0);
+      if (exact) reader = std::make_unique<JenkinsAft>(std::vector<JenkinsAft::Slider>{{exact->muN(), exact->stiffness()}});
     }
     LawSamples s;
-    s.resize(samples, 1, a.law->historyTerms());
+    s.resize(samples, 1, reader ? reader->historyTerms() : a.law->historyTerms());
     samples_.push_back(std::move(s));
+    readers_.push_back(std::move(reader));
   }
   // Ω: the fastest rate with every spring in (the norm of M⁻¹K).
   Eigen::MatrixXd k = stiffness_;
@@ -86,10 +101,21 @@ void SpringLawMonodromy::classify(double omega, const Eigen::VectorXd& full, lon
     }
     // The slider's state from its return map over u, as the harmonic
     // balance evaluates it: stuck where ∂Ψ/∂u = k_t; its force F = λ − Ψ.
+    // The exact law's orbit is read the same way, the map started where
+    // its force is furthest from the limit, at the slider's position there,
+    // w = u + λ/k_t: a slider that slips forgets it, one that never slips
+    // keeps the force the harmonic balance gives it.
     LawSamples& s = samples_[l];
     s.displacement.col(0) = u_.col(l);
     s.force.col(0) = force_.col(l);
-    a.law->evaluate(s, true);
+    if (readers_[l]) {
+      Eigen::Index deepest = 0;
+      force_.col(l).cwiseAbs().minCoeff(&deepest);
+      const double anchor = u_(deepest, l) + force_(deepest, l) / spring_[l];
+      readers_[l]->evaluateFrom(&anchor, s, true);
+    } else {
+      a.law->evaluate(s, true);
+    }
     bool slips = false;
     for (int k = 0; k < samples; ++k) {
       const bool stuck = s.dpsi_ddisplacement(k, 0) > 0.0;
@@ -116,7 +142,7 @@ void SpringLawMonodromy::findSwitches(double omega) {
       } else if (a) {
         // Slip onset: the stuck force's trial value at the next sample
         // against the limit.
-        const double limit = oneSlider(*model_.laws[l].law)->muN();
+        const double limit = limit_[l];
         const double trial = force_(k, l) - spring_[l] * (u_(next, l) - u_(k, l));
         fraction = switchCrossing(std::abs(force_(k, l)) - limit, std::abs(trial) - limit);
       } else {

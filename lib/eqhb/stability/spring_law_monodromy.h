@@ -1,9 +1,10 @@
 // The monodromy of the linearised dynamics over a harmonic-balance orbit for
 // laws that act by springs: penalty contact (laws/penalty_contact.h) and
-// elastic dry friction in the AFT form with one slider (Jenkins,
-// laws/joints/jenkins_aft.h), each on one relative coordinate u = w·x
-// (grounded: one DOF; between two nodes: both). Used by MonodromyStability
-// (monodromy_stability.h) when every law of a model is one of these.
+// elastic dry friction with one slider (Jenkins, in the AFT form of
+// laws/joints/jenkins_aft.h or the exact form of laws/joints/jenkins.h),
+// each on one relative coordinate u = w·x (grounded: one DOF; between two
+// nodes: both). Used by MonodromyStability (monodromy_stability.h) when
+// every law of a model is one of these.
 //
 // Per law and sample the state is read from the solution as the law itself
 // reads it: a penalty contact is closed where u > g0; a Jenkins slider
@@ -65,6 +66,7 @@
 namespace eqhb {
 
 class FourierTransform;
+class JenkinsAft;
 
 class SpringLawMonodromy {
  public:
@@ -76,8 +78,9 @@ class SpringLawMonodromy {
   ~SpringLawMonodromy();
   SpringLawMonodromy(const SpringLawMonodromy&) = delete;
   SpringLawMonodromy& operator=(const SpringLawMonodromy&) = delete;
-  // True when every law is a penalty contact or a one-slider Jenkins AFT
-  // law of dimension 1 (grounded or relative), and there is one at least.
+  // True when every law is a penalty contact or a Jenkins element (exact,
+  // or AFT with one slider) on one coordinate (grounded or relative), and
+  // there is one at least.
   static bool supports(const HbModel& model);
   // The Floquet multipliers of `full` ([x; λ] on the model's basis) at
   // ω: 2m + the sliders that slip, those of dropped modes as 0.
@@ -128,6 +131,8 @@ class SpringLawMonodromy {
   std::vector<double> spring_;              // per law: k_n or k_t
   std::vector<bool> contact_;
   std::vector<double> gap_;                 // g0 (contacts)
+  std::vector<double> limit_;               // μN (sliders)
+  std::vector<std::unique_ptr<JenkinsAft>> readers_;  // per exact Jenkins law: its slider's return map
   std::vector<int> slot_;                   // per law: its z's index among the slipping sliders, or -1
   int sliders_ = 0;                         // z's at this point
   std::vector<LawSamples> samples_;         // per law, the law's own evaluation

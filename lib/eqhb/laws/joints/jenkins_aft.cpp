@@ -36,6 +36,10 @@ inline double returnMap(const JenkinsAft::Slider& s, double x, int i, double& w,
 }  // namespace
 
 void JenkinsAft::evaluate(LawSamples& s, bool with_derivatives) const {
+  evaluateFrom(anchors_.empty() ? nullptr : anchors_.data(), s, with_derivatives);
+}
+
+void JenkinsAft::evaluateFrom(const double* anchors, LawSamples& s, bool with_derivatives) const {
   const int n = static_cast<int>(s.psi.rows());
   const int terms = historyTerms();
   if (with_derivatives && s.history_weight.cols() != terms)
@@ -52,8 +56,8 @@ void JenkinsAft::evaluate(LawSamples& s, bool with_derivatives) const {
     // Pass 1 from the mean, or from the static anchor: only the state at
     // its end matters. kFixed: w is a constant (no dependence on x).
     constexpr int kFixed = -2;
-    const bool anchored = !anchors_.empty();
-    double w = anchored ? anchors_[k] : mean;
+    const bool anchored = anchors != nullptr;
+    double w = anchored ? anchors[k] : mean;
     int anchor = anchored ? kFixed : LawSamples::kPeriodMean;
     bool slipped = false;
     for (int i = 0; i < n; ++i) returnMap(slider, x[i], i, w, anchor, slipped);

@@ -50,6 +50,11 @@ class JenkinsAft : public Law {
   int historyTerms() const override { return static_cast<int>(sliders_.size()); }
   double forceLevel() const override { return total_limit_; }
   void evaluate(LawSamples& samples, bool with_derivatives) const override;
+  // The same with the first pass started at `anchors` (one per slider)
+  // instead of the law's own start: for a reader of another law's orbit
+  // (the exact Jenkins law's slider, whose position the harmonic balance
+  // gives), without a copy of the law per orbit.
+  void evaluateFrom(const double* anchors, LawSamples& samples, bool with_derivatives) const;
   // aft_force_error max |λ − F[x]| and force_limit_excess max(|λ|/ΣμN − 1, 0),
   // relative to the larger of max|λ| and the problem's force scale's floor.
   std::vector<std::pair<std::string, double>> violations(const LawSamples& samples,
