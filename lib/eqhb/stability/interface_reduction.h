@@ -16,6 +16,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <optional>
 #include <vector>
 
@@ -29,7 +30,12 @@ struct InterfaceReduction {
   int modes_kept = 0, modes_dropped = 0;
 };
 
-// Throws InputError if M or K_ii is not positive definite.
+// Throws InputError if M or K_ii is not positive definite. On the sparse
+// matrices (a structure's own), factorised sparse; the dense form is read as
+// sparse.
+InterfaceReduction reduceToInterface(const Eigen::SparseMatrix<double>& mass, const Eigen::SparseMatrix<double>& damping,
+                                     const Eigen::SparseMatrix<double>& stiffness, std::vector<int> boundary,
+                                     double fast_rate, double period, double decay = 13.8);
 InterfaceReduction reduceToInterface(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
                                      const Eigen::MatrixXd& stiffness, std::vector<int> boundary, double fast_rate,
                                      double period, double decay = 13.8);

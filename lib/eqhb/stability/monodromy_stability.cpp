@@ -56,7 +56,11 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
     for (int k = 0; k < model_.samples; ++k) load_samples_(k, load.dof) += load.at(2.0 * M_PI * k / model_.samples);
   rate_.resize(model_.basis.size());
   combined_.resize(model_.basis.size());
-  dynamics_ = orbits::DenseDynamics(model_.structure);  // throws unless M > 0
+  // M⁻¹ is needed on the held DOFs' columns only (holdingForce): the mass
+  // is factorised sparse and the columns solved for as they are met.
+  mass_factor_.compute(model_.structure.mass);
+  if (mass_factor_.info() != Eigen::Success)
+    throwInputError("structure.mass", "singular", "exact orbits need a positive definite mass (no massless DOFs)");
   const bool springs = SpringLawMonodromy::supports(model_);
   // The DOFs kept by a reduction: every DOF an attachment touches.
   std::vector<int> boundary;
@@ -91,14 +95,14 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   if (n_ > reduction.full_dofs) {
     int k_max = 1;
     for (int k : model_.basis.harmonics()) k_max = std::max(k_max, k);
-    const Eigen::MatrixXd mass(model_.structure.mass);
     const double fast_rate = kFastMargin * k_max * model_.omega, period = 2.0 * M_PI / model_.omega;
     std::optional<LawCoordinateReduction> by_law;
-    if (springs && reduction.law_coordinates) by_law = reduceOnLawCoordinates(mass, fast_rate, period, reduction.decay, law_directions);
+    if (springs && reduction.law_coordinates)
+      by_law = reduceOnLawCoordinates(fast_rate, period, reduction.decay, law_directions);
+    const LinearStructure& s = model_.structure;
     const InterfaceReduction reduced =
         by_law ? by_law->reduction
-               : reduceToInterface(mass, dynamics_.damping, dynamics_.stiffness, boundary, fast_rate, period,
-                                   reduction.decay);
+               : reduceToInterface(s.mass, s.damping, s.stiffness, boundary, fast_rate, period, reduction.decay);
     m_ = static_cast<int>(reduced.mass.rows());
     projection_ = reduced.projection;
     propagated_.mass_inverse = reduced.mass.inverse();
@@ -120,7 +124,7 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
     }
   } else {
     m_ = n_;
-    propagated_ = dynamics_;
+    propagated_ = orbits::DenseDynamics(model_.structure);
     coords_ = dofs_;
     load_directions_ = Eigen::MatrixXd::Identity(n_, n_);
     if (springs)
@@ -141,8 +145,7 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
 // directions are dependent or the structure needs its joints to be held
 // (the DOF boundary is used then).
 std::optional<LawCoordinateReduction> MonodromyStability::reduceOnLawCoordinates(
-    const Eigen::MatrixXd& mass, double fast_rate, double period, double decay,
-    std::vector<Eigen::VectorXd>& law_directions) const {
+    double fast_rate, double period, double decay, std::vector<Eigen::VectorXd>& law_directions) const {
   std::vector<Eigen::VectorXd> distinct;
   std::vector<std::pair<int, double>> along;  // per law: its direction and the factor w = c w_j
   for (const AttachedLaw& a : model_.laws) {
@@ -165,7 +168,9 @@ std::optional<LawCoordinateReduction> MonodromyStability::reduceOnLawCoordinates
   for (size_t j = 0; j < distinct.size(); ++j) directions.col(static_cast<Eigen::Index>(j)) = distinct[j];
   std::optional<LawCoordinateReduction> out;
   try {
-    out = reduceToLawCoordinates(mass, dynamics_.damping, dynamics_.stiffness, directions, fast_rate, period, decay);
+    const LinearStructure& s = model_.structure;
+    out = reduceToLawCoordinates(Eigen::MatrixXd(s.mass), Eigen::MatrixXd(s.damping), Eigen::MatrixXd(s.stiffness),
+                                 directions, fast_rate, period, decay);
   } catch (const InputError&) {
     return std::nullopt;  // held by its joints alone
   }
@@ -286,13 +291,14 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
       const int g = static_cast<int>(held_key_.size()) - 1;
       Eigen::MatrixXd coupling(g, g), pm(g, n_);
       for (int a = 0; a < g; ++a) {
-        pm.row(a) = dynamics_.mass_inverse.row(held_key_[a]);
-        for (int b = 0; b < g; ++b) coupling(a, b) = dynamics_.mass_inverse(held_key_[a], held_key_[b]);
+        const Eigen::VectorXd& column = massInverseColumn(held_key_[a]);  // = its row: M⁻¹ is symmetric
+        pm.row(a) = column.transpose();
+        for (int b = 0; b < g; ++b) coupling(b, a) = column[held_key_[b]];
       }
       const Eigen::VectorXd pick = coupling.ldlt().solve(Eigen::VectorXd::Unit(g, held_key_.back()));  // coupling is symmetric
       h.row = -(pick.transpose() * pm);
-      h.stiffness_row = dynamics_.stiffness.transpose() * h.row.transpose();
-      h.damping_row = dynamics_.damping.transpose() * h.row.transpose();
+      h.stiffness_row = model_.structure.stiffness.transpose() * h.row.transpose();
+      h.damping_row = model_.structure.damping.transpose() * h.row.transpose();
       h.damping_row[held_dof] = 0.0;
       h.loads = load_samples_ * h.row.transpose();
       h.samples.resize(samples);
@@ -322,6 +328,12 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
     if (s == State::kSlipNegative) force += h.row[dofs_[m]] * limit_[m];
   }
   return force;
+}
+
+const Eigen::VectorXd& MonodromyStability::massInverseColumn(int dof) {
+  auto found = mass_inverse_columns_.find(dof);
+  if (found != mass_inverse_columns_.end()) return found->second;
+  return mass_inverse_columns_.emplace(dof, mass_factor_.solve(Eigen::VectorXd::Unit(n_, dof))).first->second;
 }
 
 void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {

@@ -65,6 +65,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -160,9 +161,9 @@ class MonodromyStability {
   HillResult verdict(const Eigen::VectorXcd& multipliers, double period,
                      std::chrono::steady_clock::time_point start) const;
   const Phase& phase(const std::vector<State>& states);
-  std::optional<LawCoordinateReduction> reduceOnLawCoordinates(const Eigen::MatrixXd& mass, double fast_rate,
-                                                               double period, double decay,
+  std::optional<LawCoordinateReduction> reduceOnLawCoordinates(double fast_rate, double period, double decay,
                                                                std::vector<Eigen::VectorXd>& law_directions) const;
+  const Eigen::VectorXd& massInverseColumn(int dof);
   // f = [v; Q b] of the forced system at (t, y) in `states`.
   void field(const std::vector<State>& states, double t, const Eigen::VectorXd& y, Eigen::VectorXd& f);
   void projectCoefficients(const Eigen::VectorXd& full);
@@ -179,7 +180,8 @@ class MonodromyStability {
   Work work_;
   // Modes faster than this many times the highest harmonic may be dropped.
   static constexpr double kFastMargin = 3.0;
-  orbits::DenseDynamics dynamics_;                 // M⁻¹, C, K of the full structure (holding forces)
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> mass_factor_;  // M of the full structure (holding forces)
+  std::map<int, Eigen::VectorXd> mass_inverse_columns_;             // M⁻¹'s column per held DOF met
   int m_ = 0;                                      // the propagation's DOFs (n, or the reduced q's)
   Eigen::MatrixXd projection_;                     // q = P x (empty when not reduced)
   orbits::DenseDynamics propagated_;               // the propagation's M⁻¹, C, K (m x m)
