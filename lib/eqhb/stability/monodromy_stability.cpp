@@ -39,7 +39,7 @@ bool MonodromyStability::supports(const HbModel& model) {
 
 MonodromyStability::MonodromyStability(const HbModel& model, double unit_tolerance,
                                        const MonodromyReduction& reduction)
-    : model_(model), unit_tolerance_(unit_tolerance) {
+    : model_(model), unit_tolerance_(unit_tolerance), leading_modes_(reduction.leading_modes) {
   model_.validate();
   if (!supports(model_))
     throwInputError("stability_method", "\"monodromy\"",
@@ -541,6 +541,9 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
     current_.assign(states_.begin(), states_.begin() + laws_);
     phase(current_).exponential.apply(period, phi_, scratch_);
     ++work_.exponentials;
+  } else if (leading_modes_ && 2 * m_ > PhaseExponential::kLazyProductSize && chainLeadingModes(period)) {
+    work_.exponentials += static_cast<long>(switches_.size());
+    return verdict(multipliers_, period, start);
   } else {
     // From just after the first switch round the period back to it.
     current_.assign(states_.begin(), states_.begin() + laws_);
@@ -558,6 +561,60 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
     }
   }
   return multipliers(phi_, period, start);
+}
+
+// Φ carried in each phase's leading modes (as SpringLawMonodromy's chain,
+// spring_law_modes.cpp): after phase q the product is V_q a with a on the
+// modes that outlast q (PhaseExponential::survivingModes); a switch's
+// saltation acts on V_q a (d x columns, not d x d), and the next phase reads
+// a = V_r⁻¹ x on its own leading modes. Started at the phase that keeps the
+// fewest, p, the cyclic product's eigenvalues are those of the p-sized
+// matrix (the rest are 0). On a large reduced structure most modes are the
+// interface's stiff, heavily damped ones and a few are kept: the products
+// are d x kept x kept where the full route's are d³ a phase. False (nothing
+// done) where some phase's exponential is not decomposed.
+bool MonodromyStability::chainLeadingModes(double period) {
+  const size_t phases = switches_.size();
+  phase_states_.resize(phases);
+  phase_refs_.clear();
+  phase_length_.resize(phases);
+  kept_.resize(phases);
+  current_.assign(states_.begin(), states_.begin() + laws_);
+  current_[switches_[0].law] = switches_[0].to;
+  size_t start = 0;
+  for (size_t j = 0; j < phases; ++j) {
+    const Switch& s = switches_[(j + 1) % phases];
+    phase_length_[j] = j + 1 < phases ? s.time - switches_[j].time : s.time + period - switches_[j].time;
+    phase_states_[j] = current_;
+    const Phase& p = phase(current_);
+    if (!p.exponential.decomposed()) return false;
+    phase_refs_.push_back(&p);
+    kept_[j] = p.exponential.survivingModes(phase_length_[j]);
+    if (kept_[j] < kept_[start]) start = j;
+    current_[s.law] = s.to;
+  }
+  const Eigen::Index columns = kept_[start];
+  Eigen::Index rows = columns;
+  modal_.setIdentity(rows, columns);
+  for (size_t k = 0; k < phases; ++k) {
+    const size_t q = (start + k) % phases, r = (q + 1) % phases;
+    const PhaseExponential& from = phase_refs_[q]->exponential;
+    if (k > 0) from.scaleModes(phase_length_[q], modal_);  // phase p's own scaling comes last
+    physical_.noalias() = from.vectors().leftCols(rows) * modal_;
+    applySaltation(switches_[r], phase_states_[q], phase_states_[r], physical_);
+    rows = kept_[r];
+    modal_.noalias() = phase_refs_[r]->exponential.inverse().topRows(rows) * physical_;
+  }
+  phase_refs_[start]->exponential.scaleModes(phase_length_[start], modal_);
+  multipliers_.setZero(2 * m_);
+  if (columns == 0) return true;
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(modal_, false);
+  if (solver.info() != Eigen::Success) {
+    multipliers_.resize(0);  // verdict() reports the failure
+    return true;
+  }
+  multipliers_.head(columns) = solver.eigenvalues();
+  return true;
 }
 
 HillResult MonodromyStability::multipliers(const Eigen::MatrixXd& phi, double period,
