@@ -532,6 +532,14 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   ++point_;
   const double period = 2.0 * M_PI / omega;
   if (springs_) return verdict(springs_->multipliers(omega, full, work_.exponentials, work_.syntheses), period, start);
+  // The caches by set of held DOFs start afresh once this large (between
+  // points: no reference into them is held), bounding their memory.
+  if (phases_.size() > kMaxCachedSets) phases_.clear();
+  if (holdings_.size() > 16 * kMaxCachedSets) {
+    holdings_.clear();
+    last_holding_ = nullptr;
+    last_key_.clear();
+  }
   projectCoefficients(full);
   classify(full);
   keepHeldRuns(full);

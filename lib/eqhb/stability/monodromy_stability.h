@@ -192,6 +192,8 @@ class MonodromyStability {
   Work work_;
   // Modes faster than this many times the highest harmonic may be dropped.
   static constexpr double kFastMargin = 3.0;
+  // The phases' decompositions kept at most (a cache; holdings 16 times as many).
+  static constexpr size_t kMaxCachedSets = 256;
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> mass_factor_;  // M of the full structure (holding forces)
   std::map<int, Eigen::VectorXd> mass_inverse_columns_;             // M⁻¹'s column per held DOF met
   int m_ = 0;                                      // the propagation's DOFs (n, or the reduced q's)

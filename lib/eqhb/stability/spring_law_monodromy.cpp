@@ -224,6 +224,11 @@ void SpringLawMonodromy::eigenvaluesOf(const Eigen::Ref<const Eigen::MatrixXd>& 
 const Eigen::VectorXcd& SpringLawMonodromy::multipliers(double omega, const Eigen::VectorXd& full,
                                                         long& exponentials, long& syntheses) {
   const double period = 2.0 * M_PI / omega;
+  // A long curve keeps meeting new sets of states: the caches start afresh
+  // (between points, no pointer into them held) once they hold this many,
+  // which bounds their memory (~0.3 MB a set on the lap joint).
+  if (modes_.size() > kMaxCachedSets) modes_.clear();
+  if (generators_.size() > kMaxCachedSets) generators_.clear();
   classify(omega, full, syntheses);
   findSwitches(omega);
   const int d = 2 * m_ + sliders_;

@@ -82,6 +82,8 @@ class SpringLawMonodromy {
   // or AFT with one slider) on one coordinate (grounded or relative), and
   // there is one at least.
   static bool supports(const HbModel& model);
+  // The sets of states whose decompositions are kept at most (a cache).
+  static constexpr size_t kMaxCachedSets = 256;
   // The Floquet multipliers of `full` ([x; λ] on the model's basis) at
   // ω: 2m + the sliders that slip, those of dropped modes as 0.
   // `exponentials` counts the phases' exponentials applied.
@@ -141,7 +143,7 @@ class SpringLawMonodromy {
   std::vector<char> active_;                // N x laws, row-major: stuck or closed
   std::vector<Switch> switches_;
   std::vector<char> current_;
-  std::map<std::vector<char>, ActiveModes> modes_;  // by the laws' states; never cleared (pointers kept)
+  std::map<std::vector<char>, ActiveModes> modes_;  // by the laws' states; cleared between points only
   std::map<std::pair<std::vector<char>, std::vector<int>>, PhaseExponential> generators_;
   std::vector<std::vector<char>> phase_states_;     // per phase of the point: the laws' states
   std::vector<const ActiveModes*> phase_modes_;     // and its modes
