@@ -20,7 +20,6 @@ constexpr int kMostDenseUnknowns = 2000;
 // refineSamples doubles N at most up to this multiple of the scene's.
 constexpr int kMostSampleRefinement = 4;
 
-
 // branchEnd's first distance past the current point: this fraction of the range.
 constexpr double kEndProbe = 1e-6;
 // The least ω-component of the unit scaled tangent at a corner branchEnd

@@ -112,27 +112,16 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
       coords_.push_back(static_cast<int>(std::lower_bound(reduced.boundary.begin(), reduced.boundary.end(), dof) -
                                          reduced.boundary.begin()));
     load_directions_ = reduced.basis.transpose();
-    if (springs && !by_law) {
-      // w in q: the attachment's weights at its DOFs' places in the boundary.
-      for (const AttachedLaw& a : model_.laws) {
-        Eigen::VectorXd w = Eigen::VectorXd::Zero(m_);
-        for (const AttachmentTerm& t : a.attachment.row(0))
-          w[std::lower_bound(reduced.boundary.begin(), reduced.boundary.end(), t.dof) - reduced.boundary.begin()] +=
-              t.weight;
-        law_directions.push_back(w);
-      }
-    }
+    if (springs && !by_law)  // u = wᵀx = (Tᵀw)ᵀq: w's weights at its DOFs' places in the boundary
+      for (const AttachedLaw& a : model_.laws)
+        law_directions.push_back(load_directions_ * a.attachment.transposeDense(n_).col(0));
   } else {
     m_ = n_;
     propagated_ = orbits::DenseDynamics(model_.structure);
     coords_ = dofs_;
     load_directions_ = Eigen::MatrixXd::Identity(n_, n_);
     if (springs)
-      for (const AttachedLaw& a : model_.laws) {
-        Eigen::VectorXd w = Eigen::VectorXd::Zero(n_);
-        for (const AttachmentTerm& t : a.attachment.row(0)) w[t.dof] += t.weight;
-        law_directions.push_back(w);
-      }
+      for (const AttachedLaw& a : model_.laws) law_directions.push_back(a.attachment.transposeDense(n_).col(0));
   }
   if (springs)
     springs_ = std::make_unique<SpringLawMonodromy>(model_, propagated_.mass_inverse, propagated_.damping,
@@ -149,8 +138,7 @@ std::optional<LawCoordinateReduction> MonodromyStability::reduceOnLawCoordinates
   std::vector<Eigen::VectorXd> distinct;
   std::vector<std::pair<int, double>> along;  // per law: its direction and the factor w = c w_j
   for (const AttachedLaw& a : model_.laws) {
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(n_);
-    for (const AttachmentTerm& t : a.attachment.row(0)) w[t.dof] += t.weight;
+    const Eigen::VectorXd w = a.attachment.transposeDense(n_).col(0);
     int found = -1;
     double factor = 1.0;
     for (size_t j = 0; j < distinct.size() && found < 0; ++j) {
