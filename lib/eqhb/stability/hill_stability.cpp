@@ -4,9 +4,11 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "eqhb/error.h"
 #include "eqhb/stability/dense_eigenproblem.h"
+#include "eqhb/stability/hill_reduction.h"
 #include "eqhb/stability/hill_pencil.h"
 #include "eqhb/stability/hill_spectrum.h"
 
@@ -105,7 +107,10 @@ void judge(double unit_tolerance, HillResult* result) {
 // (its full system's ω set per point), the dense solver's work space and J's
 // sparse LU.
 struct HillStability::Work {
-  explicit Work(const HbModel& m) : pencil(m) {}
+  Work(const HbModel& m, std::optional<HillReduction> r)
+      : full_dofs(m.structure.dofs()), reduction(std::move(r)), pencil(reduction ? reduction->model : m) {}
+  int full_dofs;
+  std::optional<HillReduction> reduction;  // the model the pencil is built on, if reduced
   HillPencilBuilder pencil;
   DenseEigenproblem dense;
   JacobianLu jacobian_lu;  // sparse path, σ = 0
@@ -127,6 +132,7 @@ bool solveSpectrum(HillStability::Work& work, const HillOptions& options, const 
 
 void HillOptions::validate() const {
   if (dense_limit < 0) throwInputError("dense_limit", std::to_string(dense_limit), "must be >= 0");
+  if (reduce_above < 0) throwInputError("reduce_above", std::to_string(reduce_above), "must be >= 0 (0: never)");
   if (sparse_eigenvalues < 0)
     throwInputError("sparse_eigenvalues", std::to_string(sparse_eigenvalues), "must be >= 0");
   if (!(unit_tolerance >= 0.0) || !std::isfinite(unit_tolerance))
@@ -140,7 +146,7 @@ void HillOptions::validate() const {
 HillStability::HillStability(const HbModel& model, const HillOptions& options) : options_(options) {
   options_.validate();
   model.validate();
-  work_ = std::make_unique<Work>(model);
+  work_ = std::make_unique<Work>(model, reduceForHill(model, options_.reduce_above));
 }
 
 HillStability::~HillStability() = default;
@@ -156,7 +162,11 @@ HillResult HillStability::analyse(double omega, const Eigen::VectorXd& full) {
   const HbModel& model = builder.model();
   HillResult result;
   result.state_dimension = 2 * model.structure.dofs();
-  const HillPencil& pencil = builder.build(full);
+  if (work_->reduction && full.size() != work_->reduction->projection.cols() * model.basis.size() +
+                                              static_cast<Eigen::Index>(model.lawComponents()) * model.basis.size())
+    throwInputError("full", std::to_string(full.size()) + " coefficients", "do not fit the model's DOFs and laws");
+  const HillPencil& pencil =
+      builder.build(work_->reduction ? work_->reduction->reduce(full, work_->full_dofs) : full);
   result.pencil_size = pencil.size;
   result.sparse = pencil.size > options_.dense_limit;
 

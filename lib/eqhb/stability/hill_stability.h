@@ -55,6 +55,10 @@ struct HillOptions {
   // nearest the shift σ = 0 (0: 40, capped by the size); only these are
   // candidates, so a large structure reports its least damped exponents.
   int sparse_eigenvalues = 0;
+  // Structures of more DOFs are analysed reduced to their law DOFs and the
+  // fixed-interface modes within the harmonics' band (hill_reduction.h);
+  // 0: never reduced.
+  int reduce_above = 20;
   // A multiplier counts as on the unit circle within this margin; stable
   // means spectral radius < 1 + unit_tolerance.
   double unit_tolerance = 1e-6;
@@ -84,7 +88,7 @@ struct HillResult {
   std::vector<FloquetExponent> exponents;  // selected, largest |multiplier| first
   double spectral_radius = 0.0;
   bool stable = false;
-  int state_dimension = 0;   // 2n: the number of exponents sought
+  int state_dimension = 0;   // 2n: the number of exponents sought (2m on a reduced structure)
   int candidates = 0;        // finite eigenvalues examined
   int pencil_size = 0;       // unknowns of the pencil
   bool sparse = false;       // Spectra (true) or the dense solver

@@ -1,0 +1,71 @@
+#include "eqhb/stability/hill_reduction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "eqhb/stability/interface_reduction.h"
+
+namespace eqhb {
+
+Eigen::VectorXd HillReduction::reduce(const Eigen::VectorXd& full, int full_dofs) const {
+  const int nb = model.basis.size(), m = model.structure.dofs();
+  const Eigen::Index forces = full.size() - static_cast<Eigen::Index>(full_dofs) * nb;
+  Eigen::VectorXd out(static_cast<Eigen::Index>(m) * nb + forces);
+  // One channel after another: column i of X holds DOF i's coefficients.
+  const Eigen::Map<const Eigen::MatrixXd> x(full.data(), nb, full_dofs);
+  Eigen::Map<Eigen::MatrixXd>(out.data(), nb, m).noalias() = x * projection.transpose();
+  out.tail(forces) = full.tail(forces);
+  return out;
+}
+
+std::optional<HillReduction> reduceForHill(const HbModel& model, int above) {
+  const int n = model.structure.dofs();
+  if (above <= 0 || n <= above || model.laws.empty()) return std::nullopt;
+  std::vector<int> boundary;
+  for (const AttachedLaw& a : model.laws)
+    for (int dof : a.attachment.dofs()) boundary.push_back(dof);
+  const double fast_rate = kHillFastMargin * std::max(model.basis.highest(), 1) * model.omega;
+  // decay 0: every damped mode above the band is dropped, whatever its
+  // damping (Hill cannot resolve it either way); undamped ones stay.
+  InterfaceReduction r = reduceToInterface(model.structure.mass, model.structure.damping, model.structure.stiffness,
+                                           boundary, fast_rate, 2.0 * M_PI / model.omega, 0.0);
+  if (r.modes_dropped == 0) return std::nullopt;
+  HillReduction out;
+  out.projection = std::move(r.projection);
+  out.modes_kept = r.modes_kept;
+  out.modes_dropped = r.modes_dropped;
+  const int m = static_cast<int>(r.basis.cols());
+  // Loads Tᵀ f, per harmonic (the pencil does not read them; the reduced
+  // model stays a valid model of the same forcing).
+  std::map<int, Eigen::VectorXd> cos_part, sin_part;
+  for (const HarmonicLoad& load : model.structure.loads) {
+    Eigen::VectorXd& c = cos_part.try_emplace(load.harmonic, Eigen::VectorXd::Zero(m)).first->second;
+    Eigen::VectorXd& s = sin_part.try_emplace(load.harmonic, Eigen::VectorXd::Zero(m)).first->second;
+    c += load.cos_amplitude * r.basis.row(load.dof).transpose();
+    s += load.sin_amplitude * r.basis.row(load.dof).transpose();
+  }
+  std::vector<HarmonicLoad> loads;
+  for (const auto& [k, c] : cos_part)
+    for (int j = 0; j < m; ++j)
+      if (c[j] != 0.0 || sin_part[k][j] != 0.0) loads.push_back({j, k, c[j], sin_part[k][j]});
+  out.model.structure = LinearStructure::fromMassStiffnessDamping(r.mass, r.stiffness, r.damping, loads);
+  // Each law on the same rows, its DOFs renumbered to their place in q.
+  std::vector<int> place(n, -1);
+  for (size_t j = 0; j < r.boundary.size(); ++j) place[r.boundary[j]] = static_cast<int>(j);
+  for (const AttachedLaw& a : model.laws) {
+    std::vector<std::vector<AttachmentTerm>> rows;
+    for (int c = 0; c < a.attachment.dimension(); ++c) {
+      rows.emplace_back(a.attachment.row(c));
+      for (AttachmentTerm& t : rows.back()) t.dof = place[t.dof];
+    }
+    out.model.laws.push_back({LawAttachment(std::move(rows)), a.law});
+  }
+  out.model.basis = model.basis;
+  out.model.samples = model.samples;
+  out.model.omega = model.omega;
+  return out;
+}
+
+}  // namespace eqhb
