@@ -5,6 +5,7 @@
 #include <map>
 #include <vector>
 
+#include "eqhb/error.h"
 #include "eqhb/stability/interface_reduction.h"
 
 namespace eqhb {
@@ -29,8 +30,13 @@ std::optional<HillReduction> reduceForHill(const HbModel& model, int above) {
   const double fast_rate = kHillFastMargin * std::max(model.basis.highest(), 1) * model.omega;
   // decay 0: every damped mode above the band is dropped, whatever its
   // damping (Hill cannot resolve it either way); undamped ones stay.
-  InterfaceReduction r = reduceToInterface(model.structure.mass, model.structure.damping, model.structure.stiffness,
-                                           boundary, fast_rate, 2.0 * M_PI / model.omega, 0.0);
+  InterfaceReduction r;
+  try {
+    r = reduceToInterface(model.structure.mass, model.structure.damping, model.structure.stiffness, boundary,
+                          fast_rate, 2.0 * M_PI / model.omega, 0.0);
+  } catch (const InputError&) {
+    return std::nullopt;  // a body held by its laws alone (K_ii singular): analysed as it is
+  }
   if (r.modes_dropped == 0) return std::nullopt;
   HillReduction out;
   out.projection = std::move(r.projection);

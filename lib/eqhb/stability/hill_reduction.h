@@ -34,9 +34,9 @@ struct HillReduction {
 // dropped (the monodromy's margin).
 constexpr double kHillFastMargin = 3.0;
 
-// Empty when the structure has no more than `above` DOFs, has no laws, or
-// no mode is dropped. Throws InputError where the reduction does (an
-// interior that is not positive definite).
+// Empty when the structure has no more than `above` DOFs, has no laws, no
+// mode is dropped, or its interior is not positive definite (a body held
+// by its laws alone).
 std::optional<HillReduction> reduceForHill(const HbModel& model, int above);
 
 }  // namespace eqhb
