@@ -32,12 +32,20 @@ bool isFullWith(const std::string& step) { return step.rfind(kFullWith, 0) == 0;
 constexpr double kForcingStart = 0.25, kForcingFirstStep = 0.25, kForcingSmallestStep = 1.0 / 256.0;
 constexpr int kForcingMostSolves = 40;
 
+// A backend step's most iterations: its rescues take a few dozen (Ceres'
+// LM on the damper above its peak: 13 from rest), where its 1000 on a
+// stalled full system cost minutes (a Jenkins element against a wall at
+// ω = 0.7, H = 80: 118 s of a 128 s solve, which the omega step then
+// converged in 3 s).
+constexpr int kBackendStepIterations = 100;
+
 // `options` for a chain step's `backend`: the backend-specific settings
 // (`--option NAME=VALUE`) are the failed solve's backend's; another backend
 // would refuse them (ipopt-ls: invalid_options, the step lost) and runs on
 // its own defaults.
 SolverOptions forBackend(const Solver& backend, const Solver& failed_with, SolverOptions options) {
   if (backend.name() != failed_with.name()) options.backend.clear();
+  options.max_iterations = std::min(options.max_iterations, kBackendStepIterations);
   return options;
 }
 
