@@ -106,6 +106,10 @@ TEST(HillReduction, OnlyLargeStructuresAreReducedAndTheLawDofsKept) {
     EXPECT_LE((q.segment(static_cast<Eigen::Index>(j) * nb, nb) - x).norm(), 1e-14 * x.norm()) << j;
   }
   EXPECT_EQ(q.size() - r->model.structure.dofs() * nb, s.full.size() - s.model().structure.dofs() * nb);
+  // A solution of the wrong size is refused, naming it, before it is reduced.
+  HillStability hill(s.model());
+  const std::string message = test::messageOf([&] { hill.analyse(770.0, s.full.head(s.full.size() - 1)); });
+  EXPECT_NE(message.find("solution"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -8,8 +8,8 @@
 // blade-tip-damper) come out of the pencil with spurious real parts: there
 // they gave exponents of 1.4e4 ± 4.3e6 i, radii of 1e64 and "unstable",
 // where the time-domain orbit started from the harmonic-balance one
-// settles (periodic to 6e-10). A mode faster than the band (kFastMargin ×
-// k_max × ω) and damped follows the law DOFs statically in T instead, as
+// settles (periodic to 6e-10). A mode faster than the band (kHillFastMargin
+// × k_max × ω) and damped follows the law DOFs statically in T instead, as
 // in the monodromy's reduction; undamped ones are kept. The law DOFs stay
 // coordinates of q, so each law reads the same u and its Jacobian is the
 // same; only the structure's fast interior is gone.

@@ -162,9 +162,12 @@ HillResult HillStability::analyse(double omega, const Eigen::VectorXd& full) {
   const HbModel& model = builder.model();
   HillResult result;
   result.state_dimension = 2 * model.structure.dofs();
-  if (work_->reduction && full.size() != work_->reduction->projection.cols() * model.basis.size() +
-                                              static_cast<Eigen::Index>(model.lawComponents()) * model.basis.size())
-    throwInputError("full", std::to_string(full.size()) + " coefficients", "do not fit the model's DOFs and laws");
+  if (work_->reduction) {
+    const Eigen::Index size = (work_->full_dofs + static_cast<Eigen::Index>(model.lawComponents())) * model.basis.size();
+    if (full.size() != size)
+      throwInputError("solution", std::to_string(full.size()) + " coefficients",
+                      "must have " + std::to_string(size) + " ([x; lambda] of the full system)");
+  }
   const HillPencil& pencil =
       builder.build(work_->reduction ? work_->reduction->reduce(full, work_->full_dofs) : full);
   result.pencil_size = pencil.size;
