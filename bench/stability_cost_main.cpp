@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Stability cost against the solve, per scene and method"};
   std::vector<std::string> scenes = {"friction-1d",     "coulomb-oscillator:0.3:1.5", "contact",
                                      "penalty-contact", "jenkins-1d",                 "beam-damper",
-                                     "beam-damper-elastic", "lap-joint",             "beam-joint-large"};
+                                     "beam-damper-elastic", "lap-joint",             "beam-joint-large",
+                                     "blade-tip-damper"};
   std::vector<std::string> methods = {"auto"};
   int repeats = 5;
   bool arclength = false;
