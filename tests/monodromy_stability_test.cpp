@@ -255,7 +255,8 @@ TEST(MonodromyStability, ReductionOnTheLawsCoordinates) {
 }
 
 // Where the reduced and Hill's radii disagree (beam-damper at ω = 2.8:
-// 0.244 against 0.499), the time-domain orbit started from the
+// 0.244 against 0.499 on the whole beam, 0.352 on Hill's reduction to the
+// modes within its band), the time-domain orbit started from the
 // harmonic-balance one settles at the reduced radius's rate: its
 // period-start change falls from 1.0e-2 to 8.5e-10 over periods 2 to 12, a
 // ratio of 0.196 a period (0.499 would take it to ~1e-5). Keeping more modes

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "eqhb/app/sweep.h"
+#include "eqhb/stability/hill_stability.h"
 #include "cantilever_units.h"
 #include "test_support.h"
 
@@ -41,6 +42,29 @@ TEST(UnitSystems, EveryPointOfTheSweepInEveryUnitSystem) {
     const app::SweepResult result = app::sweep(scene, app::SweepOptions{});
     EXPECT_EQ(result.curve.failed_points, 0) << u.name;
     EXPECT_EQ(result.curve.points.size(), 101u) << u.name;
+  }
+}
+
+// Hill's method gives one verdict and one spectral radius (a dimensionless
+// number) in every system of units: in SI the beam's stiffness rows (1e8)
+// against the law's (1) made every shift's pencil look singular, and no
+// verdict came out.
+TEST(UnitSystems, HillStabilityInEveryUnitSystem) {
+  double radius_si = 0.0;
+  for (const Units& u : unitSystems()) {
+    const Scene scene =
+        loadScene(test::problem("cantilever-friction-si.toml"), test::cantileverInUnits(u, 256.0));
+    auto system = makeHbSystem(scene.model, true);
+    SolverOptions options;
+    options.residual_tolerance = 1e-10;
+    const SolverResult solved = makeSolver("dogleg")->solve(*system, Eigen::VectorXd::Zero(system->size()), options);
+    ASSERT_TRUE(solved.converged()) << u.name;
+    HbModel model = scene.model;
+    const HillResult r = hillStability(model, system->fullCoefficients(solved.solution));
+    ASSERT_TRUE(r.failure.empty()) << u.name << ": " << r.failure;
+    EXPECT_TRUE(r.stable) << u.name;
+    if (radius_si == 0.0) radius_si = r.spectral_radius;
+    EXPECT_NEAR(r.spectral_radius, radius_si, 1e-6) << u.name;
   }
 }
 

@@ -59,18 +59,31 @@ class HillArnoldi : public Spectra::GenEigsSolver<ShiftInvertOperator> {
   }
 };
 
+// Scales each row of `a` to a largest entry of 1 and returns the factors D
+// (1 for a zero row): (D A)⁻¹ D B = A⁻¹ B, while the test of singularity by
+// rcond no longer reads a structure's units as singularity (a beam in SI
+// units: stiffness rows of 1e8 against law rows of 1, every shift judged
+// singular).
+Eigen::VectorXd equilibrate(Eigen::MatrixXd& a) {
+  Eigen::VectorXd d = a.cwiseAbs().rowwise().maxCoeff();
+  for (Eigen::Index i = 0; i < d.size(); ++i) d[i] = d[i] > 0.0 ? 1.0 / d[i] : 1.0;
+  a = d.asDiagonal() * a;
+  return d;
+}
+
 // E (A − σB)⁻¹ B̃ at σ = 0, dense. A = diag(J, I): J [p; q] = (B̃ x) on the top
 // n0 rows and w = (B̃ x) on the rest, so only J is factorised (n0 of the
 // pencil's unknowns). Singular as diag(J, I) would be judged: rcond(A) from
 // J's with ‖A‖₁ = max(‖J‖₁, 1) and ‖A⁻¹‖₁ = max(‖J⁻¹‖₁, 1). False if singular.
 bool reducedAtZeroShift(const HillPencil& pencil, const Eigen::MatrixXd& b_columns, Eigen::MatrixXd& reduced) {
   const int n0 = pencil.jacobian_size, m = static_cast<int>(pencil.columns.size());
-  const Eigen::MatrixXd j = Eigen::MatrixXd(pencil.a.topLeftCorner(n0, n0));
+  Eigen::MatrixXd j = Eigen::MatrixXd(pencil.a.topLeftCorner(n0, n0));
+  const Eigen::VectorXd rows = equilibrate(j);
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(j);
   const double norm = j.cwiseAbs().colwise().sum().maxCoeff();
   const double inverse_norm = 1.0 / (lu.rcond() * norm);
   if (!(1.0 / (std::max(norm, 1.0) * std::max(inverse_norm, 1.0)) > 1e-14)) return false;
-  const Eigen::MatrixXd solved = lu.solve(b_columns.topRows(n0));
+  const Eigen::MatrixXd solved = lu.solve(rows.asDiagonal() * b_columns.topRows(n0));
   for (int c = 0; c < m; ++c) {
     const int r = pencil.columns[c];
     reduced.row(c) = r < n0 ? solved.row(r) : b_columns.row(r);
@@ -84,9 +97,10 @@ bool reducedAtShift(const HillPencil& pencil, const Eigen::MatrixXd& b_columns, 
   const int m = static_cast<int>(pencil.columns.size());
   Eigen::MatrixXd a_shifted = Eigen::MatrixXd(pencil.a);
   for (size_t c = 0; c < pencil.columns.size(); ++c) a_shifted.col(pencil.columns[c]) -= sigma * b_columns.col(c);
+  const Eigen::VectorXd rows = equilibrate(a_shifted);
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a_shifted);
   if (!(lu.rcond() > 1e-14)) return false;
-  const Eigen::MatrixXd solved = lu.solve(b_columns);
+  const Eigen::MatrixXd solved = lu.solve(rows.asDiagonal() * b_columns);
   for (int c = 0; c < m; ++c) reduced.row(c) = solved.row(pencil.columns[c]);
   return true;
 }

@@ -40,7 +40,8 @@
 // rounding (ω = 2.8: radius 0.956 in the physical coordinates, 0.830 in the
 // reduced ones keeping every mode), while keeping the modes whose free
 // multiplier is above e^-13.8, e^-30, e^-100, e^-1000 gives 0.2442, 0.2442,
-// 0.2455, 0.2516. Hill's radius there is 0.499; the time-domain orbit
+// 0.2455, 0.2516. Hill's radius there is 0.499 on the whole beam (0.352
+// on the modes within its band, hill_reduction.h); the time-domain orbit
 // started from the harmonic-balance one settles at 0.196 a period (periods
 // 2 to 12), which the reduced radius matches and 0.499 does not (tested).
 // The holding forces stay on the full structure (M⁻¹ on the held DOFs'
