@@ -39,34 +39,39 @@ HillResult hill(const app::Solution& s, int reduce_above) {
 // parts (ω = 600: exponent 1.42e4 − 4.33e6 i, radius 3.8e64); the orbit is
 // stable (the time-domain orbit started from the harmonic-balance one is
 // periodic to 1e-9). Reduced, the verdict is stable and the exponents that
-// the harmonics resolve are the unreduced pencil's: ω = 770, where no
-// spurious exponent outgrows them, the same radius (0.989348).
+// the harmonics resolve are the unreduced pencil's (its spurious ones move
+// with round-off: at ω = 770 they stayed below the physical ones, radius
+// 0.989348 on both, until the pencil's rows were scaled; now 2.6e5).
 TEST(HillReduction, BladeTipDamperKeepsTheResolvedExponentsOnly) {
-  const app::Solution at600 = bladeAt(600.0);
-  const HillResult full = hill(at600, 0), reduced = hill(at600, HillOptions().reduce_above);
-  ASSERT_TRUE(full.failure.empty()) << full.failure;
-  ASSERT_TRUE(reduced.failure.empty()) << reduced.failure;
-  EXPECT_FALSE(full.stable);
-  EXPECT_GT(full.spectral_radius, 1e10);
-  EXPECT_TRUE(reduced.stable);
-  EXPECT_LT(reduced.spectral_radius, 1.0);
-  EXPECT_LT(reduced.pencil_size, full.pencil_size / 4);
-  EXPECT_LT(reduced.state_dimension, full.state_dimension);
   // The modes' exponents within the band in both (about −1.31 ± 656 i,
-  // −8.2 ± 4113 i, −15.7 ± 7861 i).
+  // −8.2 ± 4113 i, −15.7 ± 7861 i at ω = 600).
   auto nearest = [](const HillResult& r, std::complex<double> s) {
     double d = 1e300;
     for (const FloquetExponent& e : r.exponents) d = std::min(d, std::abs(e.exponent - s));
     return d;
   };
-  int compared = 0;
-  for (const FloquetExponent& e : full.exponents) {
-    // A structural mode's (its eigenvector on one harmonic) below the reduction's limit, 3 k_max ω.
-    if (std::abs(e.exponent.imag()) > 8000.0 || std::abs(e.centroid) > 0.05) continue;
-    ++compared;
-    EXPECT_LT(nearest(reduced, e.exponent), 0.05 * std::abs(e.exponent)) << e.exponent;
+  for (double omega : {600.0, 770.0}) {
+    const app::Solution s = bladeAt(omega);
+    const HillResult full = hill(s, 0), reduced = hill(s, HillOptions().reduce_above);
+    ASSERT_TRUE(full.failure.empty()) << full.failure;
+    ASSERT_TRUE(reduced.failure.empty()) << reduced.failure;
+    if (omega == 600.0) {
+      EXPECT_FALSE(full.stable);
+      EXPECT_GT(full.spectral_radius, 1e10);
+    }
+    EXPECT_TRUE(reduced.stable) << omega;
+    EXPECT_LT(reduced.spectral_radius, 1.0) << omega;
+    EXPECT_LT(reduced.pencil_size, full.pencil_size / 4);
+    EXPECT_LT(reduced.state_dimension, full.state_dimension);
+    int compared = 0;
+    for (const FloquetExponent& e : full.exponents) {
+      // A structural mode's (its eigenvector on one harmonic) below the reduction's limit, 3 k_max ω.
+      if (std::abs(e.exponent.imag()) > kHillFastMargin * 5 * omega || std::abs(e.centroid) > 0.05) continue;
+      ++compared;
+      EXPECT_LT(nearest(reduced, e.exponent), 0.05 * std::abs(e.exponent)) << omega << " " << e.exponent;
+    }
+    EXPECT_GE(compared, 6) << omega;
   }
-  EXPECT_GE(compared, 6);
 
   app::SimulateOptions time;
   time.from_hb = true;
@@ -76,12 +81,6 @@ TEST(HillReduction, BladeTipDamperKeepsTheResolvedExponentsOnly) {
   scene.omega = 600.0;
   const app::Simulation settles = app::simulate(scene, time);
   EXPECT_TRUE(settles.reference.periodic);
-
-  const app::Solution at770 = bladeAt(770.0);
-  const HillResult full770 = hill(at770, 0), reduced770 = hill(at770, HillOptions().reduce_above);
-  EXPECT_TRUE(full770.stable);
-  EXPECT_TRUE(reduced770.stable);
-  EXPECT_NEAR(reduced770.spectral_radius, full770.spectral_radius, 1e-5);
 }
 
 // A structure within the limit, or one whose modes are all within the band,
