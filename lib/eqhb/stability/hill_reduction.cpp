@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <vector>
 
 #include "eqhb/error.h"
@@ -27,7 +26,7 @@ std::optional<HillReduction> reduceForHill(const HbModel& model, int above) {
   std::vector<int> boundary;
   for (const AttachedLaw& a : model.laws)
     for (int dof : a.attachment.dofs()) boundary.push_back(dof);
-  const double fast_rate = kHillFastMargin * std::max(model.basis.highest(), 1) * model.omega;
+  const double fast_rate = kResolvedBandMargin * std::max(model.basis.highest(), 1) * model.omega;
   // decay 0: every damped mode above the band is dropped, whatever its
   // damping (Hill cannot resolve it either way); undamped ones stay.
   InterfaceReduction r;
@@ -43,19 +42,13 @@ std::optional<HillReduction> reduceForHill(const HbModel& model, int above) {
   out.modes_kept = r.modes_kept;
   out.modes_dropped = r.modes_dropped;
   const int m = static_cast<int>(r.basis.cols());
-  // Loads Tᵀ f, per harmonic (the pencil does not read them; the reduced
-  // model stays a valid model of the same forcing).
-  std::map<int, Eigen::VectorXd> cos_part, sin_part;
-  for (const HarmonicLoad& load : model.structure.loads) {
-    Eigen::VectorXd& c = cos_part.try_emplace(load.harmonic, Eigen::VectorXd::Zero(m)).first->second;
-    Eigen::VectorXd& s = sin_part.try_emplace(load.harmonic, Eigen::VectorXd::Zero(m)).first->second;
-    c += load.cos_amplitude * r.basis.row(load.dof).transpose();
-    s += load.sin_amplitude * r.basis.row(load.dof).transpose();
-  }
+  // Loads Tᵀ f: a load on DOF i acts on every q_j with T_ij ≠ 0 (the pencil
+  // does not read them; the reduced model stays a model of the same forcing).
   std::vector<HarmonicLoad> loads;
-  for (const auto& [k, c] : cos_part)
+  for (const HarmonicLoad& load : model.structure.loads)
     for (int j = 0; j < m; ++j)
-      if (c[j] != 0.0 || sin_part[k][j] != 0.0) loads.push_back({j, k, c[j], sin_part[k][j]});
+      if (const double t = r.basis(load.dof, j); t != 0.0)
+        loads.push_back({j, load.harmonic, t * load.cos_amplitude, t * load.sin_amplitude});
   out.model.structure = LinearStructure::fromMassStiffnessDamping(r.mass, r.stiffness, r.damping, loads);
   // Each law on the same rows, its DOFs renumbered to their place in q.
   std::vector<int> place(n, -1);

@@ -8,7 +8,7 @@
 // blade-tip-damper) come out of the pencil with spurious real parts: there
 // they gave exponents of 1.4e4 ± 4.3e6 i, radii of 1e64 and "unstable",
 // where the time-domain orbit started from the harmonic-balance one
-// settles (periodic to 6e-10). A mode faster than the band (kHillFastMargin
+// settles (periodic to 6e-10). A mode faster than the band (kResolvedBandMargin
 // × k_max × ω) and damped follows the law DOFs statically in T instead, as
 // in the monodromy's reduction; undamped ones are kept. The law DOFs stay
 // coordinates of q, so each law reads the same u and its Jacobian is the
@@ -29,10 +29,6 @@ struct HillReduction {
   // A solution [x; λ] of the full model in the reduced model's layout.
   Eigen::VectorXd reduce(const Eigen::VectorXd& full, int full_dofs) const;
 };
-
-// Modes faster than this many times the highest harmonic's frequency may be
-// dropped (the monodromy's margin).
-constexpr double kHillFastMargin = 3.0;
 
 // Empty when the structure has no more than `above` DOFs, has no laws, no
 // mode is dropped, or its interior is not positive definite (a body held

@@ -22,6 +22,11 @@
 
 namespace eqhb {
 
+// A mode faster than this many times the orbit's highest harmonic frequency
+// neither resonates with the orbit nor is resolved by its harmonics: both
+// the monodromy's and Hill's reductions may drop it (fast_rate below).
+constexpr double kResolvedBandMargin = 3.0;
+
 struct InterfaceReduction {
   Eigen::MatrixXd basis;       // T: n x m
   Eigen::MatrixXd projection;  // P: m x n, q = P x (P T = I)

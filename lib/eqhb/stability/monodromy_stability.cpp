@@ -95,7 +95,7 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   if (n_ > reduction.full_dofs) {
     int k_max = 1;
     for (int k : model_.basis.harmonics()) k_max = std::max(k_max, k);
-    const double fast_rate = kFastMargin * k_max * model_.omega, period = 2.0 * M_PI / model_.omega;
+    const double fast_rate = kResolvedBandMargin * k_max * model_.omega, period = 2.0 * M_PI / model_.omega;
     std::optional<LawCoordinateReduction> by_law;
     if (springs && reduction.law_coordinates)
       by_law = reduceOnLawCoordinates(fast_rate, period, reduction.decay, law_directions);

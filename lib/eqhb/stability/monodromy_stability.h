@@ -191,8 +191,6 @@ class MonodromyStability {
   int n_ = 0;
   long point_ = 0;                                 // analyses so far: stamps Holding::series
   Work work_;
-  // Modes faster than this many times the highest harmonic may be dropped.
-  static constexpr double kFastMargin = 3.0;
   // The phases' decompositions kept at most (a cache; holdings 16 times as many).
   static constexpr size_t kMaxCachedSets = 256;
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> mass_factor_;  // M of the full structure (holding forces)
