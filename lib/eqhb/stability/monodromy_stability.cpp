@@ -44,7 +44,8 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   if (!supports(model_))
     throwInputError("stability_method", "\"monodromy\"",
                     "needs grounded Coulomb 1D (minmax or projection form) or Signorini laws only, or penalty "
-                    "contact and jenkins laws on one coordinate (exact, or aft with one slider) only; use hill");
+                    "contact and jenkins laws on one coordinate (exact, or aft with one slider) and elastic-friction with "
+                    "one tangent only; use hill");
   n_ = model_.structure.dofs();
   // On odd harmonics the second half-period is the first's negative:
   // half the samples are transformed (synthesize).
@@ -113,15 +114,13 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
                                          reduced.boundary.begin()));
     load_directions_ = reduced.basis.transpose();
     if (springs && !by_law)  // u = wᵀx = (Tᵀw)ᵀq: w's weights at its DOFs' places in the boundary
-      for (const AttachedLaw& a : model_.laws)
-        law_directions.push_back(load_directions_ * a.attachment.transposeDense(n_).col(0));
+      for (const Eigen::VectorXd& w : springLawDirections()) law_directions.push_back(load_directions_ * w);
   } else {
     m_ = n_;
     propagated_ = orbits::DenseDynamics(model_.structure);
     coords_ = dofs_;
     load_directions_ = Eigen::MatrixXd::Identity(n_, n_);
-    if (springs)
-      for (const AttachedLaw& a : model_.laws) law_directions.push_back(a.attachment.transposeDense(n_).col(0));
+    if (springs) law_directions = springLawDirections();
   }
   if (springs)
     springs_ = std::make_unique<SpringLawMonodromy>(model_, propagated_.mass_inverse, propagated_.damping,
@@ -137,8 +136,7 @@ std::optional<LawCoordinateReduction> MonodromyStability::reduceOnLawCoordinates
     double fast_rate, double period, double decay, std::vector<Eigen::VectorXd>& law_directions) const {
   std::vector<Eigen::VectorXd> distinct;
   std::vector<std::pair<int, double>> along;  // per law: its direction and the factor w = c w_j
-  for (const AttachedLaw& a : model_.laws) {
-    const Eigen::VectorXd w = a.attachment.transposeDense(n_).col(0);
+  for (const Eigen::VectorXd& w : springLawDirections()) {
     int found = -1;
     double factor = 1.0;
     for (size_t j = 0; j < distinct.size() && found < 0; ++j) {
@@ -169,6 +167,17 @@ std::optional<LawCoordinateReduction> MonodromyStability::reduceOnLawCoordinates
     Eigen::VectorXd w = Eigen::VectorXd::Zero(m);
     w[out->coordinate[j]] = factor;
     law_directions.push_back(w);
+  }
+  return out;
+}
+
+// Per spring law and component, in order, the w of u = wᵀx (one per
+// SpringLawMonodromy channel).
+std::vector<Eigen::VectorXd> MonodromyStability::springLawDirections() const {
+  std::vector<Eigen::VectorXd> out;
+  for (const AttachedLaw& a : model_.laws) {
+    const Eigen::MatrixXd w = a.attachment.transposeDense(n_);
+    for (Eigen::Index c = 0; c < w.cols(); ++c) out.push_back(w.col(c));
   }
   return out;
 }

@@ -55,6 +55,7 @@
 // Signorini laws, one DOF each, with a positive definite mass (the phases
 // are ODEs); or, all laws of a model of this other kind, penalty contact and
 // Jenkins (exact, or AFT with one slider) on one relative coordinate each,
+// and elastic friction with one tangent on its normal and tangential ones,
 // grounded or between two nodes (spring_law_monodromy.h: the reduction then
 // keeps the coordinates the laws read, a joint's relative motions, where
 // holding them holds the structure, else every DOF an attachment touches).
@@ -173,6 +174,7 @@ class MonodromyStability {
   const Phase& phase(const std::vector<State>& states);
   std::optional<LawCoordinateReduction> reduceOnLawCoordinates(double fast_rate, double period, double decay,
                                                                std::vector<Eigen::VectorXd>& law_directions) const;
+  std::vector<Eigen::VectorXd> springLawDirections() const;
   const Eigen::VectorXd& massInverseColumn(int dof);
   // f = [v; Q b] of the forced system at (t, y) in `states`.
   void field(const std::vector<State>& states, double t, const Eigen::VectorXd& y, Eigen::VectorXd& f);
@@ -235,7 +237,7 @@ class MonodromyStability {
   const double* orbit_coefficients_ = nullptr;     // nb x m, column-major: projected_ or the solution's x
   Eigen::VectorXd y_, f_before_, f_after_, force_;
   Eigen::RowVectorXd gradient_row_;
-  std::unique_ptr<SpringLawMonodromy> springs_;    // penalty contact and Jenkins AFT laws (its header)
+  std::unique_ptr<SpringLawMonodromy> springs_;    // penalty contact, Jenkins and elastic-friction laws (its header)
 };
 
 }  // namespace eqhb

@@ -21,7 +21,7 @@ const SpringLawMonodromy::ActiveModes& SpringLawMonodromy::activeModes(const std
   modes.exponential = PhaseExponential(structuralGenerator(active, stiffness));
   modes.anchor_shift = Eigen::MatrixXd::Zero(2 * m_, laws_);
   for (int l = 0; l < laws_; ++l)
-    if (active[l] && !contact_[l]) modes.sliders.push_back(l);
+    if (active[l] == kHeld && !contact_[l]) modes.sliders.push_back(l);
   modes.usable = modes.exponential.decomposed();
   if (modes.usable && !modes.sliders.empty()) {
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(stiffness);
@@ -79,7 +79,7 @@ void SpringLawMonodromy::chainLeadingModes(double period) {
     for (int l : from.sliders)
       if (slot_[l] >= 0) x.noalias() -= from.anchor_shift.col(l) * z.row(slot_[l]);
     const Switch& s = switches_[r];
-    if (resetsAnchor(s)) z.row(slot_[s.law]).noalias() = direction_[s.law].transpose() * x.topRows(m_);
+    if (resetsAnchor(s)) resetAnchor(s, x, z.row(slot_[s.law]));
     rows = kept_[r];
     a(rows).noalias() = to.exponential.inverse().topRows(rows) * x;
     for (int l : to.sliders)

@@ -1,20 +1,35 @@
 // The monodromy of the linearised dynamics over a harmonic-balance orbit for
-// laws that act by springs: penalty contact (laws/penalty_contact.h) and
+// laws that act by springs: penalty contact (laws/penalty_contact.h),
 // elastic dry friction with one slider (Jenkins, in the AFT form of
 // laws/joints/jenkins_aft.h or the exact form of laws/joints/jenkins.h),
 // each on one relative coordinate u = w·x (grounded: one DOF; between two
-// nodes: both). Used by MonodromyStability (monodromy_stability.h) when
-// every law of a model is one of these.
+// nodes: both), and the elastic-friction element with one tangent
+// (laws/joints/elastic_friction_aft.h) on its two, [u_n; u_t]. Used by
+// MonodromyStability (monodromy_stability.h) when every law of a model is
+// one of these.
 //
-// Per law and sample the state is read from the solution as the law itself
-// reads it: a penalty contact is closed where u > g0; a Jenkins slider
-// sticks where its return map over the samples of u (JenkinsAft::evaluate,
-// the same passes and anchors as the harmonic balance) leaves the trial
-// force inside ±μN. Between two switching instants every law is in one
-// state and a perturbation y = [δq; δq̇; δz] obeys
-//   M δq̈ + C δq̇ + (K + Σ_closed k_n w wᵀ + Σ_stuck k_t w wᵀ) δq = Σ_stuck k_t w δz,
+// A "channel" below is one coordinate a law acts on: a penalty contact and
+// a Jenkins slider are one each; an elastic-friction element is two, its
+// normal contact (a penalty spring k_n beyond the gap g0) and its slider on
+// u_t, whose limit μ p = μ k_n (u_n − g0) follows the normal channel.
+//
+// Per channel and sample the state is read from the solution as the law
+// itself reads it: a penalty contact is closed where u > g0; a Jenkins
+// slider sticks where its return map over the samples of u (JenkinsAft::
+// evaluate, the same passes and anchors as the harmonic balance) leaves the
+// trial force inside ±μN; an elastic-friction slider is free where its
+// contact is open, stuck where its trial force is inside ±μp and slips with
+// the trial's sign where it is not, by the law's return map (elastic_
+// friction_aft.h) but started at a closing contact from u_t at the closing
+// instant (classifyElasticSlider says why). Between
+// two switching instants every channel is in one state and a perturbation
+// y = [δq; δq̇; δz] obeys
+//   M δq̈ + C δq̇ + (K + Σ_closed k_n w wᵀ + Σ_stuck k_t w wᵀ
+//                    + Σ_slipping s μ k_n w_t w_nᵀ) δq = Σ_stuck k_t w δz,
 // δż = 0,                                                               (1)
-// whose transition over a phase of length τ is exp(A τ) exactly.
+// whose transition over a phase of length τ is exp(A τ) exactly; the last
+// sum is an elastic-friction slider slipping with T = s μ p (s = ±1), whose
+// force follows its normal coordinate (a Jenkins slider's limit is fixed).
 //
 // z is the slider's anchor: stuck, the force is −k_t (u − z) with z set at
 // the stick onset; slipping, it is the constant ±μN and z = u ∓ μN/k_t
@@ -28,19 +43,29 @@
 // nothing of its own while it slips, so it is not propagated there (its row
 // of (1) is 0 and its force term absent) and is set at the stick onset,
 //   δz := wᵀ δx  at slip → stick,                                       (4)
-// which is (3) applied to the slaved δz. A penalty contact's field is
-// continuous at u = g0: S = I. A slider that never slips keeps the anchor
-// the harmonic balance gives it (the period's mean of u, or its static
-// position): it is a spring k_t without a z, as in the harmonic balance's
-// Jacobian, so an orbit that never slips nor opens has the linear
+// which is (3) applied to the slaved δz. An elastic-friction slider's
+// anchor while it slips is z = u_t − s μ k_n (u_n − g0)/k_t, and the same
+// steps give
+//   δz := w_tᵀ δx − s (μ k_n / k_t) w_nᵀ δx  at slip → stick;            (4')
+// where its contact closes into stick the anchor is u_t at the closing
+// instant t_c, which moves by δt_c = −w_nᵀδx / u̇_n:
+//   δz := w_tᵀ δx − (u̇_t / u̇_n) w_nᵀ δx  at open → stuck.               (4'')
+// A penalty contact's field is continuous at u = g0 (and the slider's force
+// is 0 there on both sides): S = I. A slider that never slips keeps the
+// anchor the harmonic balance gives it (the period's mean of u, or its
+// static position): it is a spring k_t without a z, as in the harmonic
+// balance's Jacobian, so an orbit that never slips nor opens has the linear
 // structure's multipliers (the neutral drift of a stuck anchor, a
 // multiplier 1, is left out as Hill's method leaves it out). A slider that
 // slips has one z: the multipliers are 2m + (sliders that slip), one of
-// them 0 per such slider (δz is forgotten while it slips).
+// them 0 per such slider (δz is forgotten while it slips); an
+// elastic-friction slider that never sticks has none.
 //
 // Switching instants lie between two samples, placed by linear
-// interpolation of what vanishes there: u − g0 (contact), u̇ (stick onset),
-// |trial force| − μN (slip onset). A slider whose slip turns over between
+// interpolation of what vanishes there: u − g0 (contact, and an
+// elastic-friction slider's switches to or from free), the slider's rate
+// u̇ (Jenkins) or u̇_t − s μ k_n u̇_n / k_t (elastic friction) at a stick
+// onset, |trial force| − limit at a slip onset. A slider whose slip turns over between
 // two slipping samples (a stick shorter than a sample) is taken as slipping.
 //
 // The product is formed in the phases' modal coordinates
@@ -72,15 +97,16 @@ class SpringLawMonodromy {
  public:
   // The propagation's dynamics (m x m) come from MonodromyStability: the
   // full structure's or a reduction's that keeps every law's coordinate
-  // exactly; `law_directions` holds per law its w in q (u = wᵀq).
+  // exactly; `law_directions` holds per law and component, in order, its w
+  // in q (u = wᵀq): one per channel.
   SpringLawMonodromy(const HbModel& model, const Eigen::MatrixXd& mass_inverse, const Eigen::MatrixXd& damping,
                      const Eigen::MatrixXd& stiffness, const std::vector<Eigen::VectorXd>& law_directions);
   ~SpringLawMonodromy();
   SpringLawMonodromy(const SpringLawMonodromy&) = delete;
   SpringLawMonodromy& operator=(const SpringLawMonodromy&) = delete;
   // True when every law is a penalty contact or a Jenkins element (exact,
-  // or AFT with one slider) on one coordinate (grounded or relative), and
-  // there is one at least.
+  // or AFT with one slider) on one coordinate (grounded or relative), or an
+  // elastic-friction element with one tangent, and there is one at least.
   static bool supports(const HbModel& model);
   // The sets of states whose decompositions are kept at most (a cache).
   static constexpr size_t kMaxCachedSets = 256;
@@ -91,10 +117,15 @@ class SpringLawMonodromy {
                                       long& syntheses);
 
  private:
+  // A channel's state in a phase. Penalty contacts and Jenkins sliders are
+  // free or held (open / closed, slipping / stuck); an elastic-friction
+  // slider also slips with T = +μp or −μp, a force that follows u_n.
+  enum State : char { kFree = 0, kHeld = 1, kSlipPositive = 2, kSlipNegative = 3 };
   struct Switch {
     double time = 0.0;
-    int law = 0;
-    bool to_active = false;  // stuck or closed after it
+    int law = 0;              // the channel
+    char state = kFree;       // its state after it
+    double normal_reset = 0;  // an anchor reset's weight on w_nᵀδx ((4'), (4''))
   };
   // The modes of A₁₁ for one set of stuck or closed laws (header), and
   // where a unit anchor displacement of each stuck slider moves them.
@@ -106,6 +137,9 @@ class SpringLawMonodromy {
     bool usable = false;           // decomposed, and A₁₁ invertible if a slider is stuck
   };
   void classify(double omega, const Eigen::VectorXd& full, long& syntheses);
+  // The states of the elastic-friction element whose normal channel is
+  // `normal` (its slider the next), from u_ (u_n, u_t).
+  void classifyElasticSlider(const Law& law, int normal);
   void findSwitches(double omega);
   // A₁₁ of (1) for the laws' states `active`, and K with their springs in.
   Eigen::MatrixXd structuralGenerator(const std::vector<char>& active, Eigen::MatrixXd& stiffness) const;
@@ -117,6 +151,16 @@ class SpringLawMonodromy {
   // The length of phase j (from switch j to the next, round the period).
   double phaseLength(size_t j, double period) const;
   bool resetsAnchor(const Switch& s) const;
+  // The anchor's perturbation a reset sets ((4), (4'), (4'')) from δq (the
+  // top m rows of `x`), into `row`.
+  template <typename Row, typename Block>
+  void resetAnchor(const Switch& s, const Block& x, Row&& row) const {
+    row.noalias() = direction_[s.law].transpose() * x.topRows(m_);
+    if (s.normal_reset != 0.0) row.noalias() += s.normal_reset * direction_[partner_[s.law]].transpose() * x.topRows(m_);
+  }
+  // An elastic-friction slider's switch at `fraction` of the step from
+  // sample k to `next`, from state a to b (the header's instants and resets).
+  Switch elasticSliderSwitch(int l, int k, int next, char a, char b, double step) const;
   // multipliers_ from the product in the phases' leading modes (header;
   // spring_law_modes.cpp), every phase's ActiveModes usable.
   void chainLeadingModes(double period);
@@ -126,21 +170,23 @@ class SpringLawMonodromy {
 
   HbModel model_;
   std::unique_ptr<FourierTransform> transform_;
-  int m_ = 0, laws_ = 0;
+  int m_ = 0, laws_ = 0;                    // laws_: the channels (the header)
   double scale_ = 1.0;                      // Ω of the scaled velocities (generator())
   Eigen::MatrixXd mass_inverse_, damping_, stiffness_;
   std::vector<Eigen::VectorXd> direction_;  // per law: w in q (m)
   std::vector<double> spring_;              // per law: k_n or k_t
   std::vector<bool> contact_;
   std::vector<double> gap_;                 // g0 (contacts)
-  std::vector<double> limit_;               // μN (sliders)
-  std::vector<std::unique_ptr<JenkinsAft>> readers_;  // per exact Jenkins law: its slider's return map
+  std::vector<double> limit_;               // μN (Jenkins sliders), μ (elastic-friction sliders)
+  std::vector<int> partner_;                // per channel: an elastic-friction slider's normal channel, else -1
+  std::vector<int> first_channel_;          // per law: its first channel
+  std::vector<std::unique_ptr<JenkinsAft>> readers_;  // per law: an exact Jenkins law's slider's return map
   std::vector<int> slot_;                   // per law: its z's index among the slipping sliders, or -1
   int sliders_ = 0;                         // z's at this point
   std::vector<LawSamples> samples_;         // per law, the law's own evaluation
-  Eigen::MatrixXd u_, rate_, force_;        // N x laws
+  Eigen::MatrixXd u_, rate_, force_;        // N x channels (force: a slider's T, an elastic contact's p)
   Eigen::VectorXd buffer_, derivative_;     // coefficient buffers (one channel)
-  std::vector<char> active_;                // N x laws, row-major: stuck or closed
+  std::vector<char> active_;                // N x channels, row-major: each one's State
   std::vector<Switch> switches_;
   std::vector<char> current_;
   std::map<std::vector<char>, ActiveModes> modes_;  // by the laws' states; cleared between points only
