@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> scenes = {"friction-1d",     "coulomb-oscillator:0.3:1.5", "contact",
                                      "penalty-contact", "jenkins-1d",                 "beam-damper",
                                      "beam-damper-elastic", "lap-joint",             "beam-joint-large",
-                                     "blade-tip-damper"};
+                                     "lap-joint-varying",   "blade-tip-damper"};
   std::vector<std::string> methods = {"auto"};
   int repeats = 5;
   bool arclength = false;
