@@ -44,8 +44,8 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
   if (!supports(model_))
     throwInputError("stability_method", "\"monodromy\"",
                     "needs grounded Coulomb 1D (minmax or projection form) or Signorini laws only, or penalty "
-                    "contact and jenkins laws on one coordinate (exact, or aft with one slider) and elastic-friction with "
-                    "one tangent only; use hill");
+                    "contact and jenkins laws on one coordinate (exact, or aft with one slider) and "
+                    "elastic-friction with one tangent only; use hill");
   n_ = model_.structure.dofs();
   // On odd harmonics the second half-period is the first's negative:
   // half the samples are transformed (synthesize).

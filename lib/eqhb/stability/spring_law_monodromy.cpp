@@ -123,8 +123,8 @@ void SpringLawMonodromy::classify(double omega, const Eigen::VectorXd& full, lon
       continue;
     }
     const int l = first;
-    transform_->synthesize(full.data() + static_cast<std::ptrdiff_t>(n + model_.componentIndex(static_cast<int>(i), 0)) * nb,
-                           force_.col(l).data());
+    const std::ptrdiff_t force_row = n + model_.componentIndex(static_cast<int>(i), 0);
+    transform_->synthesize(full.data() + force_row * nb, force_.col(l).data());
     ++syntheses;
     if (contact_[l]) {
       for (int k = 0; k < samples; ++k) state(k, l) = u_(k, l) > gap_[l] ? kHeld : kFree;

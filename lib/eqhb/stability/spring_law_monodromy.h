@@ -156,7 +156,8 @@ class SpringLawMonodromy {
   template <typename Row, typename Block>
   void resetAnchor(const Switch& s, const Block& x, Row&& row) const {
     row.noalias() = direction_[s.law].transpose() * x.topRows(m_);
-    if (s.normal_reset != 0.0) row.noalias() += s.normal_reset * direction_[partner_[s.law]].transpose() * x.topRows(m_);
+    if (s.normal_reset != 0.0)
+      row.noalias() += s.normal_reset * direction_[partner_[s.law]].transpose() * x.topRows(m_);
   }
   // An elastic-friction slider's switch at `fraction` of the step from
   // sample k to `next`, from state a to b (the header's instants and resets).
