@@ -21,9 +21,8 @@
 // contact is open, stuck where its trial force is inside ±μp and slips with
 // the trial's sign where it is not, by the law's return map (elastic_
 // friction_aft.h) but started at a closing contact from u_t at the closing
-// instant (classifyElasticSlider says why). Between
-// two switching instants every channel is in one state and a perturbation
-// y = [δq; δq̇; δz] obeys
+// instant (classifyElasticSlider says why). Between two switching instants
+// every channel is in one state and a perturbation y = [δq; δq̇; δz] obeys
 //   M δq̈ + C δq̇ + (K + Σ_closed k_n w wᵀ + Σ_stuck k_t w wᵀ
 //                    + Σ_slipping s μ k_n w_t w_nᵀ) δq = Σ_stuck k_t w δz,
 // δż = 0,                                                               (1)
@@ -65,8 +64,9 @@
 // interpolation of what vanishes there: u − g0 (contact, and an
 // elastic-friction slider's switches to or from free), the slider's rate
 // u̇ (Jenkins) or u̇_t − s μ k_n u̇_n / k_t (elastic friction) at a stick
-// onset, |trial force| − limit at a slip onset. A slider whose slip turns over between
-// two slipping samples (a stick shorter than a sample) is taken as slipping.
+// onset, |trial force| − limit at a slip onset. A slider whose slip turns
+// over between two slipping samples (a stick shorter than a sample) is
+// taken as slipping.
 //
 // The product is formed in the phases' modal coordinates
 // (spring_law_modes.cpp). A phase's generator is A = [A₁₁ B; 0 0]: A₁₁ the
@@ -159,8 +159,8 @@ class SpringLawMonodromy {
     if (s.normal_reset != 0.0)
       row.noalias() += s.normal_reset * direction_[partner_[s.law]].transpose() * x.topRows(m_);
   }
-  // An elastic-friction slider's switch at `fraction` of the step from
-  // sample k to `next`, from state a to b (the header's instants and resets).
+  // An elastic-friction slider's switch between sample k and `next`, from
+  // state a to b: its instant and its anchor's reset (the header's).
   Switch elasticSliderSwitch(int l, int k, int next, char a, char b, double step) const;
   // multipliers_ from the product in the phases' leading modes (header;
   // spring_law_modes.cpp), every phase's ActiveModes usable.
