@@ -66,6 +66,14 @@ int HbModel::lawComponents() const {
   return count;
 }
 
+void HbModel::checkSolutionSize(const Eigen::VectorXd& full, int dofs) const {
+  if (dofs < 0) dofs = structure.dofs();
+  const Eigen::Index size = static_cast<Eigen::Index>(basis.size()) * (dofs + lawComponents());
+  if (full.size() != size)
+    throwInputError("solution", std::to_string(full.size()) + " coefficients",
+                    "must have " + std::to_string(size) + " ([x; lambda] of the full system)");
+}
+
 int HbModel::componentIndex(int l, int a) const {
   int index = 0;
   for (int i = 0; i < l; ++i) index += laws[i].law->dimension();

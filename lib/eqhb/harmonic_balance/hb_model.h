@@ -30,6 +30,10 @@ struct HbModel {
   int lawComponents() const;
   // Global component index of component `a` of law `l` (order of `laws`).
   int componentIndex(int l, int a) const;
+  // Throws InputError naming the solution unless `full` holds the [x; λ]
+  // coefficients of a structure of `dofs` DOFs (default: this one's) with
+  // these laws on this basis.
+  void checkSolutionSize(const Eigen::VectorXd& full, int dofs = -1) const;
 };
 
 // N for `model` on `harmonics` harmonics when no N is given: a scene's N is

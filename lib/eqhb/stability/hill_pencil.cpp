@@ -33,9 +33,7 @@ const HillPencil& HillPencilBuilder::build(const Eigen::VectorXd& full) {
 void HillPencilBuilder::startPencil(const Eigen::VectorXd& full) {
   const HbModel& model = system_.model();
   const int n0 = system_.size(), nx = model.structure.dofs() * model.basis.size();
-  if (full.size() != n0)
-    throwInputError("solution", std::to_string(full.size()) + " coefficients",
-                    "must have " + std::to_string(n0) + " ([x; lambda] of the full system)");
+  model.checkSolutionSize(full);
   system_.residualAndSparseJacobian(full, g_, jacobian_);
   pencil_.size = n0 + nx;
   pencil_.displacement_unknowns = nx;

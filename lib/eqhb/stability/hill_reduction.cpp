@@ -9,7 +9,8 @@
 
 namespace eqhb {
 
-Eigen::VectorXd HillReduction::reduce(const Eigen::VectorXd& full, int full_dofs) const {
+Eigen::VectorXd HillReduction::reduce(const Eigen::VectorXd& full) const {
+  model.checkSolutionSize(full, full_dofs);
   const int nb = model.basis.size(), m = model.structure.dofs();
   const Eigen::Index forces = full.size() - static_cast<Eigen::Index>(full_dofs) * nb;
   Eigen::VectorXd out(static_cast<Eigen::Index>(m) * nb + forces);
@@ -41,6 +42,7 @@ std::optional<HillReduction> reduceForHill(const HbModel& model, int above) {
   out.projection = std::move(r.projection);
   out.modes_kept = r.modes_kept;
   out.modes_dropped = r.modes_dropped;
+  out.full_dofs = n;
   const int m = static_cast<int>(r.basis.cols());
   // Loads Tᵀ f: a load on DOF i acts on every q_j with T_ij ≠ 0 (the pencil
   // does not read them; the reduced model stays a model of the same forcing).

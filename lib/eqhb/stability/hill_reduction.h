@@ -26,8 +26,10 @@ struct HillReduction {
   HbModel model;               // the structure Tᵀ(M, C, K)T and loads Tᵀf, the laws on q's law coordinates
   Eigen::MatrixXd projection;  // P: q = P x (P T = I)
   int modes_kept = 0, modes_dropped = 0;
-  // A solution [x; λ] of the full model in the reduced model's layout.
-  Eigen::VectorXd reduce(const Eigen::VectorXd& full, int full_dofs) const;
+  int full_dofs = 0;           // the unreduced structure's
+  // A solution [x; λ] of the full model in the reduced model's layout;
+  // throws InputError naming the solution if it is not of the full model.
+  Eigen::VectorXd reduce(const Eigen::VectorXd& full) const;
 };
 
 // Empty when the structure has no more than `above` DOFs, has no laws, no

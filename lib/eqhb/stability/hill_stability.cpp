@@ -108,8 +108,7 @@ void judge(double unit_tolerance, HillResult* result) {
 // sparse LU.
 struct HillStability::Work {
   Work(const HbModel& m, std::optional<HillReduction> r)
-      : full_dofs(m.structure.dofs()), reduction(std::move(r)), pencil(reduction ? reduction->model : m) {}
-  int full_dofs;
+      : reduction(std::move(r)), pencil(reduction ? reduction->model : m) {}
   std::optional<HillReduction> reduction;  // the model the pencil is built on, if reduced
   HillPencilBuilder pencil;
   DenseEigenproblem dense;
@@ -162,14 +161,7 @@ HillResult HillStability::analyse(double omega, const Eigen::VectorXd& full) {
   const HbModel& model = builder.model();
   HillResult result;
   result.state_dimension = 2 * model.structure.dofs();
-  if (work_->reduction) {
-    const Eigen::Index size = (work_->full_dofs + static_cast<Eigen::Index>(model.lawComponents())) * model.basis.size();
-    if (full.size() != size)
-      throwInputError("solution", std::to_string(full.size()) + " coefficients",
-                      "must have " + std::to_string(size) + " ([x; lambda] of the full system)");
-  }
-  const HillPencil& pencil =
-      builder.build(work_->reduction ? work_->reduction->reduce(full, work_->full_dofs) : full);
+  const HillPencil& pencil = builder.build(work_->reduction ? work_->reduction->reduce(full) : full);
   result.pencil_size = pencil.size;
   result.sparse = pencil.size > options_.dense_limit;
 

@@ -521,10 +521,7 @@ void MonodromyStability::projectCoefficients(const Eigen::VectorXd& full) {
 HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full) {
   const auto start = std::chrono::steady_clock::now();
   if (!(omega > 0.0) || !std::isfinite(omega)) throwInputError("omega", formatNumber(omega), "must be finite and > 0");
-  const int size = n_ * model_.basis.size() + model_.lawComponents() * model_.basis.size();
-  if (full.size() != size)
-    throwInputError("solution", std::to_string(full.size()) + " coefficients",
-                    "must have " + std::to_string(size) + " ([x; lambda] of the full system)");
+  model_.checkSolutionSize(full);
   model_.omega = omega;
   ++point_;
   const double period = 2.0 * M_PI / omega;

@@ -64,10 +64,7 @@ HillResult ShootingStability::analyse(double omega, const Eigen::VectorXd& full)
   const auto start = std::chrono::steady_clock::now();
   if (!(omega > 0.0) || !std::isfinite(omega)) throwInputError("omega", formatNumber(omega), "must be finite and > 0");
   const int n = model_.structure.dofs(), nb = model_.basis.size();
-  const Eigen::Index size = static_cast<Eigen::Index>(nb) * (n + model_.lawComponents());
-  if (full.size() != size)
-    throwInputError("solution", std::to_string(full.size()) + " coefficients",
-                    "must have " + std::to_string(size) + " ([x; lambda] of the full system)");
+  model_.checkSolutionSize(full);
   model_.omega = omega;
   last_distance_ = std::nan("");
   last_ = orbits::ShootingResult();

@@ -76,8 +76,8 @@ SpringLawMonodromy::SpringLawMonodromy(const HbModel& model, const Eigen::Matrix
                  -1);
       if (exact) reader = std::make_unique<JenkinsAft>(std::vector<JenkinsAft::Slider>{{exact->muN(), exact->stiffness()}});
     }
-    LawSamples s;
-    s.resize(samples, a.law->dimension(), reader ? reader->historyTerms() : a.law->historyTerms());
+    LawSamples s;  // read by a Jenkins slider's return map only
+    if (!contact_.back() && partner_.back() < 0) s.resize(samples, 1, reader ? reader->historyTerms() : a.law->historyTerms());
     samples_.push_back(std::move(s));
     readers_.push_back(std::move(reader));
   }
@@ -98,24 +98,21 @@ SpringLawMonodromy::SpringLawMonodromy(const HbModel& model, const Eigen::Matrix
 
 SpringLawMonodromy::~SpringLawMonodromy() = default;
 
-// u, u̇ and the force per sample, and the state per sample by the law's own
-// rule (header).
+// u, u̇ (and a slider's force) per sample, and the state per sample by the
+// law's own rule (header).
 void SpringLawMonodromy::classify(double omega, const Eigen::VectorXd& full, long& syntheses) {
   const int nb = model_.basis.size(), samples = model_.samples, n = model_.structure.dofs();
   active_.assign(static_cast<size_t>(samples) * laws_, kFree);
-  auto state = [&](int k, int l) -> char& { return active_[static_cast<size_t>(k) * laws_ + l]; };
   sliders_ = 0;
   slot_.assign(laws_, -1);
   for (size_t i = 0; i < model_.laws.size(); ++i) {
     const AttachedLaw& a = model_.laws[i];
     const int first = first_channel_[i], dimension = a.law->dimension();
-    LawSamples& s = samples_[i];
     for (int c = 0; c < dimension; ++c) {
       a.attachment.gatherCoefficients(full.data(), nb, c, buffer_.data());
       transform_->synthesize(buffer_.data(), u_.col(first + c).data());
       transform_->differentiate(buffer_.data(), omega, derivative_.data());
       transform_->synthesize(derivative_.data(), rate_.col(first + c).data());
-      s.displacement.col(c) = u_.col(first + c);
       syntheses += 2;
     }
     if (partner_[first + dimension - 1] >= 0) {
@@ -123,19 +120,21 @@ void SpringLawMonodromy::classify(double omega, const Eigen::VectorXd& full, lon
       continue;
     }
     const int l = first;
-    const std::ptrdiff_t force_row = n + model_.componentIndex(static_cast<int>(i), 0);
-    transform_->synthesize(full.data() + force_row * nb, force_.col(l).data());
-    ++syntheses;
     if (contact_[l]) {
       for (int k = 0; k < samples; ++k) state(k, l) = u_(k, l) > gap_[l] ? kHeld : kFree;
       continue;
     }
+    const std::ptrdiff_t force_row = n + model_.componentIndex(static_cast<int>(i), 0);
+    transform_->synthesize(full.data() + force_row * nb, force_.col(l).data());
+    ++syntheses;
     // The slider's state from its return map over u, as the harmonic
     // balance evaluates it: stuck where ∂Ψ/∂u = k_t; its force F = λ − Ψ.
     // The exact law's orbit is read the same way, the map started where
     // its force is furthest from the limit, at the slider's position there,
     // w = u + λ/k_t: a slider that slips forgets it, one that never slips
     // keeps the force the harmonic balance gives it.
+    LawSamples& s = samples_[i];
+    s.displacement.col(0) = u_.col(l);
     s.force.col(0) = force_.col(l);
     if (readers_[i]) {
       Eigen::Index deepest = 0;
@@ -171,7 +170,6 @@ void SpringLawMonodromy::classifyElasticSlider(const Law& law, int normal) {
   const auto& e = static_cast<const ElasticFrictionAft&>(law);
   const int slider = normal + 1, samples = model_.samples;
   const double k_t = spring_[slider], k_n = spring_[normal], mu = limit_[slider], g0 = gap_[normal];
-  auto state = [&](int k, int l) -> char& { return active_[static_cast<size_t>(k) * laws_ + l]; };
   double w = e.anchor().empty() ? u_.col(slider).mean() : e.anchor().front();
   bool sticks = false, slips = false;
   for (int pass = 0; pass < 2; ++pass)
@@ -212,7 +210,7 @@ void SpringLawMonodromy::findSwitches(double omega) {
   for (int k = 0; k < samples; ++k) {
     const int next = (k + 1) % samples;
     for (int l = 0; l < laws_; ++l) {
-      const char a = active_[static_cast<size_t>(k) * laws_ + l], b = active_[static_cast<size_t>(next) * laws_ + l];
+      const char a = state(k, l), b = state(next, l);
       if (a == b) continue;
       if (partner_[l] >= 0) {
         switches_.push_back(elasticSliderSwitch(l, k, next, a, b, step));

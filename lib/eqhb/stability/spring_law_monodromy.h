@@ -137,6 +137,9 @@ class SpringLawMonodromy {
     bool usable = false;           // decomposed, and A₁₁ invertible if a slider is stuck
   };
   void classify(double omega, const Eigen::VectorXd& full, long& syntheses);
+  // Channel l's state at sample k (active_).
+  char& state(int k, int l) { return active_[static_cast<size_t>(k) * laws_ + l]; }
+  char state(int k, int l) const { return active_[static_cast<size_t>(k) * laws_ + l]; }
   // The states of the elastic-friction element whose normal channel is
   // `normal` (its slider the next), from u_ (u_n, u_t).
   void classifyElasticSlider(const Law& law, int normal);
@@ -184,7 +187,7 @@ class SpringLawMonodromy {
   std::vector<std::unique_ptr<JenkinsAft>> readers_;  // per law: an exact Jenkins law's slider's return map
   std::vector<int> slot_;                   // per law: its z's index among the slipping sliders, or -1
   int sliders_ = 0;                         // z's at this point
-  std::vector<LawSamples> samples_;         // per law, the law's own evaluation
+  std::vector<LawSamples> samples_;         // per law: a Jenkins slider's samples for its return map
   Eigen::MatrixXd u_, rate_, force_;        // N x channels (force: a slider's T, an elastic contact's p)
   Eigen::VectorXd buffer_, derivative_;     // coefficient buffers (one channel)
   std::vector<char> active_;                // N x channels, row-major: each one's State
