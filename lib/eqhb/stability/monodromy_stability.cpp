@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "eqhb/error.h"
 #include "eqhb/harmonic_balance/fourier_transform.h"
@@ -88,6 +89,14 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
       }
     }
   laws_ = static_cast<int>(dofs_.size());
+  // Half a period is enough where the series and the field are odd in it
+  // (header): odd harmonics (the transform samples half), odd loads,
+  // friction only.
+  const bool odd_loads = std::all_of(model_.structure.loads.begin(), model_.structure.loads.end(),
+                                     [](const HarmonicLoad& load) { return load.harmonic % 2 == 1; });
+  half_period_ = reduction.half_period && !springs && odd_loads && transform_->activeSamples() < model_.samples &&
+                 std::none_of(contact_.begin(), contact_.end(), [](bool contact) { return contact; });
+  span_ = half_period_ ? transform_->activeSamples() : model_.samples;
   // The propagation's structure: the full one on small structures, else
   // reduced to the law DOFs and the modes that matter (interface_reduction.h);
   // the spring laws' on the coordinates they read where that holds the
@@ -201,11 +210,13 @@ void MonodromyStability::synthesize(const double* coefficients, double* samples)
 // structure's other DOFs are not sampled: the holding forces are series
 // formed from the coefficients (holdingForce).
 void MonodromyStability::classify(const Eigen::VectorXd& full) {
-  const int nb = model_.basis.size(), samples = model_.samples, laws = laws_;
+  const int nb = model_.basis.size(), samples = span_, laws = laws_;
   FourierTransform& transform = *transform_;
-  u_.resize(samples, laws);
-  v_.resize(samples, laws);
-  r_.resize(samples, laws);
+  // A half-wave transform fills N/2 samples: the whole period's mode
+  // completes them, half-period mode reads those alone.
+  u_.resize(model_.samples, laws);
+  v_.resize(model_.samples, laws);
+  r_.resize(model_.samples, laws);
   for (int l = 0; l < laws; ++l) {
     const double* x = full.data() + dofs_[l] * nb;
     if (contact_[l]) {
@@ -215,8 +226,10 @@ void MonodromyStability::classify(const Eigen::VectorXd& full) {
     transform.differentiate(x, model_.omega, rate_.data());
     transform.synthesizePair(rate_.data(), full.data() + (n_ + model_.componentIndex(l, 0)) * nb, v_.col(l).data(),
                              r_.col(l).data());
-    completePeriod(v_.col(l).data());
-    completePeriod(r_.col(l).data());
+    if (!half_period_) {
+      completePeriod(v_.col(l).data());
+      completePeriod(r_.col(l).data());
+    }
     work_.syntheses += 2;
   }
   states_.resize(static_cast<size_t>(samples) * laws);
@@ -333,80 +346,117 @@ const Eigen::VectorXd& MonodromyStability::massInverseColumn(int dof) {
   return mass_inverse_columns_.emplace(dof, mass_factor_.solve(Eigen::VectorXd::Unit(n_, dof))).first->second;
 }
 
+// Over the whole period, k in [0, N), through fold(): in half-period mode
+// a run that crosses T/2 goes on in the stored half mirrored, and only the
+// runs that start in one half-period's worth of samples are walked.
 void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
   const int samples = model_.samples, laws = laws_;
   auto next = [samples](int k) { return k + 1 == samples ? 0 : k + 1; };  // round the period
   auto opposite = [](State s) { return s == State::kSlipPositive ? State::kSlipNegative : State::kSlipPositive; };
   for (int l = 0; l < laws; ++l) {
     if (contact_[l]) continue;
+    auto stateAt = [&](int k) {
+      const Folded f = fold(k);
+      return f.mirrored ? mirror(state(f.index, l)) : state(f.index, l);
+    };
+    auto setState = [&](int k, State s) {
+      const Folded f = fold(k);
+      state(f.index, l) = f.mirrored ? mirror(s) : s;
+    };
+    auto velocity = [&](int k) {
+      const Folded f = fold(k);
+      return f.mirrored ? -v_(f.index, l) : v_(f.index, l);
+    };
+    auto force = [&](int k) {
+      const Folded f = fold(k);
+      return f.mirrored ? -r_(f.index, l) : r_(f.index, l);
+    };
+    // λ at sample k, kept as the sample's force.
+    auto hold = [&](int k) {
+      const Folded f = fold(k);
+      const double held = holdingForce(full, l, f.index);
+      r_(f.index, l) = held;
+      return f.mirrored ? -held : held;
+    };
     int origin = 0;  // a slipping sample to scan from
-    while (origin < samples && state(origin, l) == State::kStick) ++origin;
-    if (origin == samples) continue;
-    const double sliding_scale = v_.col(l).cwiseAbs().maxCoeff();
-    for (int i = 1; i <= samples; ++i) {
+    while (origin < span_ && state(origin, l) == State::kStick) ++origin;
+    if (origin == span_) continue;
+    const double sliding_scale = v_.col(l).head(span_).cwiseAbs().maxCoeff();
+    for (int i = 1; i <= span_; ++i) {
       const int first = origin + i < samples ? origin + i : origin + i - samples;
       const int before = first == 0 ? samples - 1 : first - 1;
-      if (state(first, l) != State::kStick || state(before, l) == State::kStick) continue;
+      if (stateAt(first) != State::kStick || stateAt(before) == State::kStick) continue;
       // The run starts where v reaches 0 (the series' v rings into it).
-      const State old_state = state(before, l);
+      const State old_state = stateAt(before);
       const double sign = old_state == State::kSlipPositive ? 1.0 : -1.0;
       int zero = first;
-      while (state(zero, l) == State::kStick && sign * v_(zero, l) > 0.0 && zero != origin) zero = next(zero);
-      const bool crossed = state(zero, l) == State::kStick && zero != origin;
+      while (stateAt(zero) == State::kStick && sign * velocity(zero) > 0.0 && zero != origin) zero = next(zero);
+      const bool crossed = stateAt(zero) == State::kStick && zero != origin;
       if (!crossed) zero = first;
-      for (int k = first; k != zero; k = next(k)) state(k, l) = old_state;
-      const double force = holdingForce(full, l, zero);
-      if (std::abs(force) > limit_[l]) {
+      for (int k = first; k != zero; k = next(k)) setState(k, old_state);
+      if (std::abs(hold(zero)) > limit_[l]) {
         // A reversal at v = 0; where the series' v slows down without
         // reaching 0, the slip goes on.
         const State through = crossed ? opposite(old_state) : old_state;
-        for (int k = zero; state(k, l) == State::kStick && k != origin; k = next(k)) state(k, l) = through;
+        for (int k = zero; stateAt(k) == State::kStick && k != origin; k = next(k)) setState(k, through);
         continue;
       }
-      r_(zero, l) = force;
       const int start = zero;
       int k = next(start);
       for (; k != start; k = next(k)) {
-        r_(k, l) = holdingForce(full, l, k);
-        if (std::abs(r_(k, l)) > limit_[l]) break;
-        state(k, l) = State::kStick;
+        if (std::abs(hold(k)) > limit_[l]) break;
+        setState(k, State::kStick);
       }
       // Slip against λ through the series' flicker, up to the first sample
       // that clearly slides either way (kSlidingFraction of max|v|): a stick
       // that ends slips against λ even where the series' v still rings about 0.
-      const State slip = r_(k, l) > 0.0 ? State::kSlipNegative : State::kSlipPositive;
+      const State slip = force(k) > 0.0 ? State::kSlipNegative : State::kSlipPositive;
       for (int j = k; j != start; j = next(j)) {
-        if (std::abs(v_(j, l)) > kSlidingFraction * sliding_scale) break;
-        state(j, l) = slip;
+        if (std::abs(velocity(j)) > kSlidingFraction * sliding_scale) break;
+        setState(j, slip);
       }
     }
   }
 }
 
-// The instants where a law's state changes between two samples (the last
-// sample wraps to the first), placed by linear interpolation of the
-// quantity that vanishes there.
+// The instants where a law's state changes between two samples of the
+// span (its last sample wraps to the first, mirrored in half-period mode),
+// placed by linear interpolation of the quantity that vanishes there. Rows
+// of equal states are skipped a block at a time: switches are few.
 void MonodromyStability::findSwitches() {
-  const int samples = model_.samples, laws = laws_;
-  const double step = 2.0 * M_PI / model_.omega / samples;
+  const int samples = span_, laws = laws_;
+  const double step = 2.0 * M_PI / model_.omega / model_.samples;
   switches_.clear();
   const State* states = states_.data();
+  constexpr int kBlock = 32;
   for (int k = 0; k < samples; ++k) {
-    const int next = k + 1 == samples ? 0 : k + 1;
+    if (k + kBlock < samples &&
+        std::memcmp(states + static_cast<size_t>(k) * laws, states + static_cast<size_t>(k + 1) * laws,
+                    sizeof(State) * kBlock * laws) == 0) {
+      k += kBlock - 1;
+      continue;
+    }
+    const bool wraps = k + 1 == samples;
+    const int next = wraps ? 0 : k + 1;
+    const double flip = wraps && half_period_ ? -1.0 : 1.0;  // the mirrored first sample
     const State *now = states + static_cast<size_t>(k) * laws, *then = states + static_cast<size_t>(next) * laws;
     for (int l = 0; l < laws; ++l) {
-      const State a = now[l], b = then[l];
+      const State a = now[l], b = flip < 0.0 ? mirror(then[l]) : then[l];
       if (a == b) continue;
       double fraction = 0.5;
       if (a == State::kOpen) fraction = switchCrossing(gap_[l] - u_(k, l), gap_[l] - u_(next, l));
       else if (a == State::kClosed) fraction = switchCrossing(r_(k, l), r_(next, l));
       else if (a == State::kStick)
         fraction = switchCrossing(std::abs(r_(k, l)) - limit_[l], std::abs(r_(next, l)) - limit_[l]);
-      else fraction = switchCrossing(v_(k, l), v_(next, l));
+      else fraction = switchCrossing(v_(k, l), flip * v_(next, l));
       switches_.push_back({(k + fraction) * step, l, a, b});
     }
   }
   std::stable_sort(switches_.begin(), switches_.end(), [](const Switch& x, const Switch& y) { return x.time < y.time; });
+}
+
+void MonodromyStability::mirrorStates(std::vector<State>& states) const {
+  for (State& s : states) s = mirror(s);
 }
 
 const MonodromyStability::Phase& MonodromyStability::phase(const std::vector<State>& states) {
@@ -538,31 +588,42 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   classify(full);
   keepHeldRuns(full);
   findSwitches();
-  phi_.setIdentity(2 * m_, 2 * m_);
-  if (switches_.empty()) {
-    current_.assign(states_.begin(), states_.begin() + laws_);
-    phase(current_).exponential.apply(period, phi_, scratch_);
-    ++work_.exponentials;
-  } else if (leading_modes_ && 2 * m_ > PhaseExponential::kLazyProductSize && chainLeadingModes(period)) {
+  const double span = half_period_ ? 0.5 * period : period;
+  if (!switches_.empty() && leading_modes_ && 2 * m_ > PhaseExponential::kLazyProductSize && chainLeadingModes(span)) {
     work_.exponentials += static_cast<long>(switches_.size());
     return verdict(multipliers_, period, start);
-  } else {
-    // From just after the first switch round the period back to it.
-    current_.assign(states_.begin(), states_.begin() + laws_);
-    current_[switches_[0].law] = switches_[0].to;
-    for (size_t j = 0; j < switches_.size(); ++j) {
-      const Switch& s = switches_[(j + 1) % switches_.size()];
-      const double previous = switches_[j].time;
-      const double tau = j + 1 < switches_.size() ? s.time - previous : s.time + period - previous;
-      phase(current_).exponential.apply(tau, phi_, scratch_);
-      ++work_.exponentials;
-      after_ = current_;
-      after_[s.law] = s.to;
-      applySaltation(s, current_, after_, phi_);
-      current_.swap(after_);
-    }
   }
+  propagateSpan(span);
   return multipliers(phi_, period, start);
+}
+
+// Φ over the span from just after the first switch round it back to that
+// switch (in half-period mode the span's end is the first switch mirrored,
+// where the states read at the span's start come back with their slip
+// directions swapped: they are mirrored there so that the saltation is the
+// first switch's own).
+void MonodromyStability::propagateSpan(double span) {
+  phi_.setIdentity(2 * m_, 2 * m_);
+  current_.assign(states_.begin(), states_.begin() + laws_);
+  if (switches_.empty()) {
+    phase(current_).exponential.apply(span, phi_, scratch_);
+    ++work_.exponentials;
+    return;
+  }
+  current_[switches_[0].law] = switches_[0].to;
+  for (size_t j = 0; j < switches_.size(); ++j) {
+    const bool wraps = j + 1 == switches_.size();
+    const Switch& s = switches_[wraps ? 0 : j + 1];
+    const double previous = switches_[j].time;
+    const double tau = wraps ? s.time + span - previous : s.time - previous;
+    phase(current_).exponential.apply(tau, phi_, scratch_);
+    ++work_.exponentials;
+    if (wraps && half_period_) mirrorStates(current_);
+    after_ = current_;
+    after_[s.law] = s.to;
+    applySaltation(s, current_, after_, phi_);
+    current_.swap(after_);
+  }
 }
 
 // Φ carried in each phase's leading modes (as SpringLawMonodromy's chain,
@@ -575,7 +636,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
 // interface's stiff, heavily damped ones and a few are kept: the products
 // are d x kept x kept where the full route's are d³ a phase. False (nothing
 // done) where some phase's exponential is not decomposed.
-bool MonodromyStability::chainLeadingModes(double period) {
+bool MonodromyStability::chainLeadingModes(double span) {
   const size_t phases = switches_.size();
   phase_states_.resize(phases);
   phase_refs_.clear();
@@ -586,7 +647,7 @@ bool MonodromyStability::chainLeadingModes(double period) {
   size_t start = 0;
   for (size_t j = 0; j < phases; ++j) {
     const Switch& s = switches_[(j + 1) % phases];
-    phase_length_[j] = j + 1 < phases ? s.time - switches_[j].time : s.time + period - switches_[j].time;
+    phase_length_[j] = j + 1 < phases ? s.time - switches_[j].time : s.time + span - switches_[j].time;
     phase_states_[j] = current_;
     const Phase& p = phase(current_);
     if (!p.exponential.decomposed()) return false;
@@ -603,7 +664,13 @@ bool MonodromyStability::chainLeadingModes(double period) {
     const PhaseExponential& from = phase_refs_[q]->exponential;
     if (k > 0) from.scaleModes(phase_length_[q], modal_);  // phase p's own scaling comes last
     physical_.noalias() = from.vectors().leftCols(rows) * modal_;
-    applySaltation(switches_[r], phase_states_[q], phase_states_[r], physical_);
+    // Half-period mode: the span's last phase meets the first switch mirrored (propagateSpan).
+    const bool mirrored = half_period_ && r == 0;
+    if (mirrored) {
+      after_ = phase_states_[q];
+      mirrorStates(after_);
+    }
+    applySaltation(switches_[r], mirrored ? after_ : phase_states_[q], phase_states_[r], physical_);
     rows = kept_[r];
     modal_.noalias() = phase_refs_[r]->exponential.inverse().topRows(rows) * physical_;
   }
@@ -616,6 +683,7 @@ bool MonodromyStability::chainLeadingModes(double period) {
     return true;
   }
   multipliers_.head(columns) = solver.eigenvalues();
+  if (half_period_) multipliers_ = multipliers_.array().square().matrix();  // of Φ_h
   return true;
 }
 
@@ -623,6 +691,7 @@ HillResult MonodromyStability::multipliers(const Eigen::MatrixXd& phi, double pe
                                            std::chrono::steady_clock::time_point start) const {
   Eigen::EigenSolver<Eigen::MatrixXd> solver(phi, false);
   if (solver.info() != Eigen::Success) return verdict(Eigen::VectorXcd(), period, start);
+  if (half_period_) return verdict(solver.eigenvalues().array().square().matrix(), period, start);  // of Φ_h
   return verdict(solver.eigenvalues(), period, start);
 }
 

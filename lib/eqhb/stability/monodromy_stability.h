@@ -31,6 +31,17 @@
 // zero of v). Hill's method stays the reference; "auto" (the command line's
 // default) takes this method wherever it applies.
 //
+// On odd harmonics with friction laws only (no contact: its gap is not
+// odd), the orbit is half-wave antisymmetric, y(t + T/2) = −y(t), and so is
+// the forced field, f(−y, t + T/2) = −f(y, t): the linearised dynamics and
+// the saltations repeat every half period (a mirrored switch has f∓ and ġ⁻
+// negated, the same S), so Φ = Φ_h² with Φ_h the transition over half a
+// period. The states are read on the first half of the samples, sample
+// k + N/2 being sample k with the slip directions swapped, and half the
+// phases are propagated: half the passes and products a point, with the
+// same multipliers (friction-1d's and beam-damper's curves: radii within
+// 1e-12 of the whole period's).
+//
 // Structures of more than MonodromyReduction::full_dofs (20) DOFs are
 // propagated reduced to the law DOFs and the fixed-interface modes that are
 // slow or weakly damped (interface_reduction.h): beam-damper's 120 DOFs
@@ -105,6 +116,9 @@ struct MonodromyReduction {
   // states) carries the product in the phases' leading modes, else the
   // whole Φ.
   bool leading_modes = true;
+  // On odd harmonics with friction only, half a period is propagated
+  // (Φ = Φ_h², header), else the whole.
+  bool half_period = true;
 };
 
 class MonodromyStability {
@@ -158,6 +172,18 @@ class MonodromyStability {
   };
   State& state(int k, int l) { return states_[static_cast<size_t>(k) * laws_ + l]; }
   State state(int k, int l) const { return states_[static_cast<size_t>(k) * laws_ + l]; }
+  // A sample of the whole period, k in [0, N), on the stored span
+  // [0, span_): past the span it is sample k − span_ mirrored (half-period
+  // mode; in whole-period mode span_ = N and nothing is mirrored).
+  struct Folded {
+    int index;
+    bool mirrored;
+  };
+  Folded fold(int k) const { return k < span_ ? Folded{k, false} : Folded{k - span_, true}; }
+  static State mirror(State s) {
+    return s == State::kSlipPositive ? State::kSlipNegative : s == State::kSlipNegative ? State::kSlipPositive : s;
+  }
+  void mirrorStates(std::vector<State>& states) const;
   void completePeriod(double* samples) const;
   void synthesize(const double* coefficients, double* samples);
   void classify(const Eigen::VectorXd& full);
@@ -166,7 +192,11 @@ class MonodromyStability {
   // b gains law l's slip force in `state` (∓μN against the slip; none held).
   void addSlipForce(int l, State state, Eigen::VectorXd& b) const;
   void findSwitches();
-  // The verdict from the multipliers, the eigenvalues of phi.
+  // The propagation over the span from just after the first switch back to
+  // it: Φ, or Φ_h in half-period mode.
+  void propagateSpan(double span);
+  // The verdict from the multipliers, the eigenvalues of phi (their
+  // squares in half-period mode: phi is Φ_h).
   HillResult multipliers(const Eigen::MatrixXd& phi, double period, std::chrono::steady_clock::time_point start) const;
   // The verdict from the multipliers themselves (none: their eigenproblem failed).
   HillResult verdict(const Eigen::VectorXcd& multipliers, double period,
@@ -184,7 +214,7 @@ class MonodromyStability {
                       Eigen::MatrixXd& phi);
   // multipliers_ from the product in the phases' leading modes (large
   // propagations); false where a phase is not decomposed.
-  bool chainLeadingModes(double period);
+  bool chainLeadingModes(double span);
   static bool held(State s) { return s == State::kStick || s == State::kClosed; }
 
   HbModel model_;
@@ -204,9 +234,11 @@ class MonodromyStability {
   std::vector<int> coords_;                        // per law: its DOF's coordinate in the propagation
   std::vector<int> dofs_;                          // per law
   int laws_ = 0;                                   // dofs_.size(): the held-DOF method's laws
+  bool half_period_ = false;                       // odd harmonics, friction only: Φ = Φ_h² (header)
+  int span_ = 0;                                   // samples read: N/2 in half-period mode, else N
   std::vector<double> limit_, rho_, gap_;          // per law: μN (friction), ρ in trial form, g0 (contact)
   std::vector<bool> contact_;
-  Eigen::MatrixXd u_, v_, r_;                      // N x laws: displacement (contacts), velocity, force samples
+  Eigen::MatrixXd u_, v_, r_;                      // span x laws: displacement (contacts), velocity, force samples
   Eigen::VectorXd rate_, combined_;                // coefficient buffers (one channel)
   Eigen::MatrixXd load_samples_;                   // N x n: f(t_k), the same at every ω (t_k = kT/N)
   std::vector<int> held_key_;                      // holdingForce's held DOFs and the law's row, kept to allocate once
@@ -215,10 +247,10 @@ class MonodromyStability {
   Holding* last_holding_ = nullptr;                // the last holding looked up
   std::uint64_t last_mask_ = 0;                    // its held laws (up to 64) and
   int last_law_ = -1;                              // its law
-  std::vector<State> states_;                      // N x laws, row-major by sample
+  std::vector<State> states_;                      // span x laws, row-major by sample
   std::vector<State> current_, after_;             // the propagation's states before and after a switch
   std::vector<bool> phase_key_;                    // phase()'s held DOFs, likewise
-  std::vector<Switch> switches_;                   // increasing in time, within [0, T)
+  std::vector<Switch> switches_;                   // increasing in time, within [0, T) (half-period: [0, T/2))
   std::map<std::vector<bool>, Phase> phases_;      // by held DOFs
   // Storage reused from point to point: the monodromy and a product's
   // scratch, the orbit's state at a switch (propagation), the
