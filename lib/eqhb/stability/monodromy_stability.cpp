@@ -325,9 +325,10 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
     differentiateCoefficients(model_.basis, combined_.data(), model_.omega, rate_.data());
     combined_.noalias() = -(x * h.stiffness_row);
     combined_ -= rate_;
-    synthesize(combined_.data(), h.samples.data());
+    transform_->synthesize(combined_.data(), h.samples.data());
+    if (!half_period_) completePeriod(h.samples.data());
     ++work_.syntheses;
-    h.samples += h.loads;
+    h.samples.head(span_) += h.loads.head(span_);  // the samples read (half-period mode: the first half)
     h.point = point_;
   }
   double force = h.samples[k];
@@ -355,6 +356,8 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
   auto opposite = [](State s) { return s == State::kSlipPositive ? State::kSlipNegative : State::kSlipPositive; };
   for (int l = 0; l < laws; ++l) {
     if (contact_[l]) continue;
+    // Stuck or not does not depend on the mirror: the scan reads the stored state.
+    auto stuck = [&](int k) { return state(fold(k).index, l) == State::kStick; };
     auto stateAt = [&](int k) {
       const Folded f = fold(k);
       return f.mirrored ? mirror(state(f.index, l)) : state(f.index, l);
@@ -385,20 +388,20 @@ void MonodromyStability::keepHeldRuns(const Eigen::VectorXd& full) {
     for (int i = 1; i <= span_; ++i) {
       const int first = origin + i < samples ? origin + i : origin + i - samples;
       const int before = first == 0 ? samples - 1 : first - 1;
-      if (stateAt(first) != State::kStick || stateAt(before) == State::kStick) continue;
+      if (!stuck(first) || stuck(before)) continue;
       // The run starts where v reaches 0 (the series' v rings into it).
       const State old_state = stateAt(before);
       const double sign = old_state == State::kSlipPositive ? 1.0 : -1.0;
       int zero = first;
-      while (stateAt(zero) == State::kStick && sign * velocity(zero) > 0.0 && zero != origin) zero = next(zero);
-      const bool crossed = stateAt(zero) == State::kStick && zero != origin;
+      while (stuck(zero) && sign * velocity(zero) > 0.0 && zero != origin) zero = next(zero);
+      const bool crossed = stuck(zero) && zero != origin;
       if (!crossed) zero = first;
       for (int k = first; k != zero; k = next(k)) setState(k, old_state);
       if (std::abs(hold(zero)) > limit_[l]) {
         // A reversal at v = 0; where the series' v slows down without
         // reaching 0, the slip goes on.
         const State through = crossed ? opposite(old_state) : old_state;
-        for (int k = zero; stateAt(k) == State::kStick && k != origin; k = next(k)) setState(k, through);
+        for (int k = zero; stuck(k) && k != origin; k = next(k)) setState(k, through);
         continue;
       }
       const int start = zero;
@@ -589,7 +592,7 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   keepHeldRuns(full);
   findSwitches();
   const double span = half_period_ ? 0.5 * period : period;
-  if (!switches_.empty() && leading_modes_ && 2 * m_ > PhaseExponential::kLazyProductSize && chainLeadingModes(span)) {
+  if (!switches_.empty() && leading_modes_ && chainLeadingModes(span)) {
     work_.exponentials += static_cast<long>(switches_.size());
     return verdict(multipliers_, period, start);
   }
@@ -677,22 +680,23 @@ bool MonodromyStability::chainLeadingModes(double span) {
   phase_refs_[start]->exponential.scaleModes(phase_length_[start], modal_);
   multipliers_.setZero(2 * m_);
   if (columns == 0) return true;
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(modal_, false);
-  if (solver.info() != Eigen::Success) {
+  eigen_.compute(modal_, false);
+  if (eigen_.info() != Eigen::Success) {
     multipliers_.resize(0);  // verdict() reports the failure
     return true;
   }
-  multipliers_.head(columns) = solver.eigenvalues();
+  multipliers_.head(columns) = eigen_.eigenvalues();
   if (half_period_) multipliers_ = multipliers_.array().square().matrix();  // of Φ_h
   return true;
 }
 
 HillResult MonodromyStability::multipliers(const Eigen::MatrixXd& phi, double period,
-                                           std::chrono::steady_clock::time_point start) const {
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(phi, false);
-  if (solver.info() != Eigen::Success) return verdict(Eigen::VectorXcd(), period, start);
-  if (half_period_) return verdict(solver.eigenvalues().array().square().matrix(), period, start);  // of Φ_h
-  return verdict(solver.eigenvalues(), period, start);
+                                           std::chrono::steady_clock::time_point start) {
+  eigen_.compute(phi, false);
+  if (eigen_.info() != Eigen::Success) return verdict(Eigen::VectorXcd(), period, start);
+  multipliers_ = eigen_.eigenvalues();
+  if (half_period_) multipliers_ = multipliers_.array().square().matrix();  // of Φ_h
+  return verdict(multipliers_, period, start);
 }
 
 HillResult MonodromyStability::verdict(const Eigen::VectorXcd& multipliers, double period,

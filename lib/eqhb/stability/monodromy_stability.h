@@ -57,10 +57,12 @@
 // 2 to 12), which the reduced radius matches and 0.499 does not (tested).
 // The holding forces stay on the full structure (M⁻¹ on the held DOFs'
 // columns, solved from M's sparse factor). The reduction runs on the sparse
-// matrices, and a large propagation carries its product in the phases'
-// leading modes (chainLeadingModes): beam-joint-large (2000 DOFs, 50 laws;
-// 52 propagated DOFs) spends 20 ms setting up and ~5 ms a point, where the
-// dense set-up took 11 s and the whole products ~60 ms a point.
+// matrices, and the propagation carries its product in the phases' leading
+// modes (chainLeadingModes) wherever their generators are decomposed:
+// beam-joint-large (2000 DOFs, 50 laws; 52 propagated DOFs) spends 20 ms
+// setting up and ~5 ms a point, where the dense set-up took 11 s and the
+// whole products ~60 ms a point; on beam-damper's 6 it is 20 % less time a
+// point than the whole products (two 12 x 12 products a phase).
 //
 // Supported: grounded Coulomb 1D in an exact form (minmax, projection) and
 // Signorini laws, one DOF each, with a positive definite mass (the phases
@@ -112,9 +114,8 @@ struct MonodromyReduction {
   // The spring laws' reduction keeps the coordinates the laws read (a
   // joint's relative motions), else the DOFs they touch.
   bool law_coordinates = true;
-  // A large propagation (more than PhaseExponential::kLazyProductSize
-  // states) carries the product in the phases' leading modes, else the
-  // whole Φ.
+  // The product is carried in the phases' leading modes where their
+  // generators are decomposed, else (or false) the whole Φ.
   bool leading_modes = true;
   // On odd harmonics with friction only, half a period is propagated
   // (Φ = Φ_h², header), else the whole.
@@ -197,7 +198,7 @@ class MonodromyStability {
   void propagateSpan(double span);
   // The verdict from the multipliers, the eigenvalues of phi (their
   // squares in half-period mode: phi is Φ_h).
-  HillResult multipliers(const Eigen::MatrixXd& phi, double period, std::chrono::steady_clock::time_point start) const;
+  HillResult multipliers(const Eigen::MatrixXd& phi, double period, std::chrono::steady_clock::time_point start);
   // The verdict from the multipliers themselves (none: their eigenproblem failed).
   HillResult verdict(const Eigen::VectorXcd& multipliers, double period,
                      std::chrono::steady_clock::time_point start) const;
@@ -264,6 +265,7 @@ class MonodromyStability {
   std::vector<Eigen::Index> kept_;
   Eigen::MatrixXd modal_, physical_;
   Eigen::VectorXcd multipliers_;
+  Eigen::EigenSolver<Eigen::MatrixXd> eigen_;      // the multipliers' eigenproblem, its storage kept
   bool leading_modes_ = true;                      // MonodromyReduction::leading_modes
   Eigen::MatrixXd projected_;                      // nb x m: the orbit's coefficients in q (reduced)
   const double* orbit_coefficients_ = nullptr;     // nb x m, column-major: projected_ or the solution's x
