@@ -592,6 +592,18 @@ HillResult MonodromyStability::analyse(double omega, const Eigen::VectorXd& full
   keepHeldRuns(full);
   findSwitches();
   const double span = half_period_ ? 0.5 * period : period;
+  if (switches_.empty()) {
+    // One phase the whole period (stuck throughout, say): the multipliers
+    // are exp(λ T) of its generator's eigenvalues, no product to form.
+    current_.assign(states_.begin(), states_.begin() + laws_);
+    const PhaseExponential& whole = phase(current_).exponential;
+    if (whole.decomposed()) {
+      ++work_.exponentials;
+      multipliers_.resize(2 * m_);
+      whole.multipliers(period, multipliers_);
+      return verdict(multipliers_, period, start);
+    }
+  }
   if (!switches_.empty() && leading_modes_ && chainLeadingModes(span)) {
     work_.exponentials += static_cast<long>(switches_.size());
     return verdict(multipliers_, period, start);

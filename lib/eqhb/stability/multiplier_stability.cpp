@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace eqhb {
 
@@ -14,16 +15,22 @@ HillResult stabilityFromMultipliers(const Eigen::VectorXcd& multipliers, double 
     result.failure = "no multipliers";
     return result;
   }
+  // Largest |μ| first: the moduli are taken once, then the order.
+  std::vector<double> modulus(static_cast<size_t>(multipliers.size()));
+  std::vector<Eigen::Index> order(modulus.size());
   for (Eigen::Index j = 0; j < multipliers.size(); ++j) {
+    modulus[j] = std::abs(multipliers[j]);
+    order[j] = j;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index x, Eigen::Index y) { return modulus[x] > modulus[y]; });
+  result.exponents.reserve(order.size());
+  for (Eigen::Index j : order) {
     FloquetExponent e;
     e.multiplier = multipliers[j];
-    const double modulus = std::max(std::abs(e.multiplier), 1e-300);
-    e.exponent = std::complex<double>(std::log(modulus), std::arg(e.multiplier)) / period;
+    e.exponent = std::complex<double>(std::log(std::max(modulus[j], 1e-300)), std::arg(e.multiplier)) / period;
     result.exponents.push_back(e);
   }
-  std::stable_sort(result.exponents.begin(), result.exponents.end(),
-                   [](const auto& x, const auto& y) { return std::abs(x.multiplier) > std::abs(y.multiplier); });
-  result.spectral_radius = std::abs(result.exponents.front().multiplier);
+  result.spectral_radius = modulus[order.front()];
   result.stable = result.spectral_radius < 1.0 + unit_tolerance;
   return result;
 }
