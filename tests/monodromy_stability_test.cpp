@@ -117,6 +117,55 @@ TEST(MonodromyStability, WorkPerPoint) {
   }
 }
 
+// An orbit stuck the whole period has one phase: its multipliers are
+// exp(λT) of that phase's generator, here friction-1d with a limit no force
+// reaches, DOF 2 held: DOF 1 alone, m ẍ + 2d ẋ + 2k x = f, whose pair is
+// exp((−d/m ± i√(2k/m − (d/m)²)) T), and the held DOF's position and
+// velocity, 1 and 1 (a stuck DOF stays where it is). The period is the
+// whole one on odd harmonics too (not the half that is propagated).
+TEST(MonodromyStability, StuckOrbitHasItsPhasesMultipliers) {
+  const double omega = 0.4, period = 2.0 * M_PI / omega, m = 1.0, k = 1.0, d = 0.02;
+  const HbModel model = loadScene(test::problem("friction-1d.toml"),
+                                  {"harmonic_balance.omega=0.4", "law.muN=1000"}).model;
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
+  MonodromyStability monodromy(model);
+  const HillResult r = monodromy.analyse(omega, hb);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  EXPECT_EQ(monodromy.work().exponentials, 1);
+  ASSERT_EQ(r.exponents.size(), 4u);
+  const std::complex<double> pair =
+      std::exp(std::complex<double>(-d / m, std::sqrt(2.0 * k / m - (d / m) * (d / m))) * period);
+  std::vector<std::complex<double>> expected = {1.0, 1.0, pair, std::conj(pair)};
+  for (const FloquetExponent& e : r.exponents) {
+    auto nearest = std::min_element(expected.begin(), expected.end(), [&](const auto& x, const auto& y) {
+      return std::abs(x - e.multiplier) < std::abs(y - e.multiplier);
+    });
+    EXPECT_LE(std::abs(*nearest - e.multiplier), 1e-9) << e.multiplier;
+    expected.erase(nearest);
+  }
+  EXPECT_TRUE(r.stable);  // neutral: a radius of 1 within the unit tolerance
+}
+
+// The default monodromy and one with `other` options at the same
+// harmonic-balance solution of `file` at ω, with their work.
+struct TwoWays {
+  HillResult usual, other;
+  long usual_exponentials = 0, other_exponentials = 0;
+  int propagated_dofs = 0;
+};
+TwoWays analyseTwoWays(const std::string& file, double omega, const MonodromyReduction& other) {
+  const HbModel model = loadScene(test::problem(file), {"harmonic_balance.omega=" + std::to_string(omega)}).model;
+  const Eigen::VectorXd hb = test::harmonicBalance(model);
+  MonodromyStability usual(model), changed(model, HillOptions().unit_tolerance, other);
+  TwoWays out{usual.analyse(omega, hb), changed.analyse(omega, hb)};
+  EXPECT_TRUE(out.usual.failure.empty()) << out.usual.failure;
+  EXPECT_TRUE(out.other.failure.empty()) << out.other.failure;
+  out.usual_exponentials = usual.work().exponentials;
+  out.other_exponentials = changed.work().exponentials;
+  out.propagated_dofs = usual.propagatedDofs();
+  return out;
+}
+
 // Half a period on odd harmonics (Φ = Φ_h², header) against the whole
 // period's product: the same multipliers, each of them, on a stick-slip and a
 // reversal-only orbit of friction-1d, the reduced beam-damper (one point
@@ -127,16 +176,11 @@ TEST(MonodromyStability, HalfPeriodHasTheWholePeriodsMultipliers) {
   const std::pair<const char*, double> cases[] = {
       {"friction-1d.toml", 0.308}, {"friction-1d.toml", 0.55}, {"beam-damper.toml", 2.8},
       {"beam-damper.toml", 3.5},   {"beam-joint-large.toml", 3.25}};
+  MonodromyReduction whole_period;
+  whole_period.half_period = false;
   for (const auto& [file, omega] : cases) {
-    const HbModel model = loadScene(test::problem(file), {"harmonic_balance.omega=" + std::to_string(omega)}).model;
-    const Eigen::VectorXd hb = test::harmonicBalance(model);
-    MonodromyStability half(model);
-    MonodromyReduction options;
-    options.half_period = false;
-    MonodromyStability whole(model, HillOptions().unit_tolerance, options);
-    const HillResult a = half.analyse(omega, hb), b = whole.analyse(omega, hb);
-    ASSERT_TRUE(a.failure.empty()) << a.failure;
-    ASSERT_TRUE(b.failure.empty()) << b.failure;
+    const TwoWays two = analyseTwoWays(file, omega, whole_period);
+    const HillResult &a = two.usual, &b = two.other;
     ASSERT_EQ(a.exponents.size(), b.exponents.size()) << file << " " << omega;
     EXPECT_EQ(a.stable, b.stable) << file << " " << omega;
     EXPECT_NEAR(a.spectral_radius, b.spectral_radius, 1e-9 * b.spectral_radius) << file << " " << omega;
@@ -146,9 +190,9 @@ TEST(MonodromyStability, HalfPeriodHasTheWholePeriodsMultipliers) {
       for (const FloquetExponent& f : a.exponents) nearest = std::min(nearest, std::abs(f.multiplier - e.multiplier));
       EXPECT_LE(nearest, 1e-8 * std::max(1.0, std::abs(e.multiplier))) << file << " " << omega << " " << e.multiplier;
     }
-    EXPECT_EQ(2 * half.work().exponentials, whole.work().exponentials) << file << " " << omega;
+    EXPECT_EQ(2 * two.usual_exponentials, two.other_exponentials) << file << " " << omega;
     std::printf("%s w=%.3f: radius %.12f (half period), %.12f (whole), exponentials %ld / %ld\n", file, omega,
-                a.spectral_radius, b.spectral_radius, half.work().exponentials, whole.work().exponentials);
+                a.spectral_radius, b.spectral_radius, two.usual_exponentials, two.other_exponentials);
   }
 }
 
@@ -212,27 +256,28 @@ TEST(MonodromyStability, LargeBeamIsReducedOnItsSparseMatrices) {
     EXPECT_NEAR(std::sqrt(small.eigenvalues()[k] / lowest[k]), 1.0, 5e-3) << k;
 }
 
-// On the large beam (104 propagated states, 50 friction laws) the product
-// carried in the phases' leading modes has the whole Φ's multipliers: at
-// ω = 3.25, between the curve's two Neimark–Sacker points (unstable) and at
-// 3.5 (stable), the same verdict and radius to 1e-9.
+// The product carried in the phases' leading modes has the whole Φ's
+// multipliers: on the large beam (104 propagated states, 50 friction laws)
+// at ω = 3.25, between the curve's two Neimark–Sacker points (unstable), and
+// at 3.5 (stable), and on the small propagations that now take it too
+// (beam-damper's 12 states, friction-1d's 4): the same verdict and radius
+// to 1e-9.
 TEST(MonodromyStability, LeadingModesChainIsTheWholeProduct) {
-  for (double omega : {3.25, 3.5}) {
-    const HbModel model =
-        loadScene(test::problem("beam-joint-large.toml"), {"harmonic_balance.omega=" + std::to_string(omega)}).model;
-    const Eigen::VectorXd hb = test::harmonicBalance(model);
-    MonodromyStability modal(model);
-    MonodromyReduction whole;
-    whole.leading_modes = false;
-    MonodromyStability full(model, HillOptions().unit_tolerance, whole);
-    const HillResult a = modal.analyse(omega, hb), b = full.analyse(omega, hb);
-    ASSERT_TRUE(a.failure.empty()) << a.failure;
-    ASSERT_TRUE(b.failure.empty()) << b.failure;
-    EXPECT_GT(modal.propagatedDofs(), 50);
-    EXPECT_EQ(a.stable, b.stable) << omega;
-    EXPECT_NEAR(a.spectral_radius, b.spectral_radius, 1e-9) << omega;
-    EXPECT_EQ(modal.work().exponentials, full.work().exponentials);
-    std::printf("beam-joint-large w=%.2f: radius %.9f (leading modes), %.9f (whole), stable %d\n", omega,
+  MonodromyReduction whole;
+  whole.leading_modes = false;
+  const std::pair<const char*, double> cases[] = {
+      {"beam-joint-large.toml", 3.25}, {"beam-joint-large.toml", 3.5}, {"beam-damper.toml", 2.8},
+      {"friction-1d.toml", 0.308}};
+  for (const auto& [file, omega] : cases) {
+    const TwoWays two = analyseTwoWays(file, omega, whole);
+    const HillResult &a = two.usual, &b = two.other;
+    if (std::string(file) == "beam-joint-large.toml") {
+      EXPECT_GT(two.propagated_dofs, 50);
+    }
+    EXPECT_EQ(a.stable, b.stable) << file << " " << omega;
+    EXPECT_NEAR(a.spectral_radius, b.spectral_radius, 1e-9) << file << " " << omega;
+    EXPECT_EQ(two.usual_exponentials, two.other_exponentials) << file << " " << omega;
+    std::printf("%s w=%.2f: radius %.9f (leading modes), %.9f (whole), stable %d\n", file, omega,
                 a.spectral_radius, b.spectral_radius, a.stable ? 1 : 0);
   }
 }
