@@ -48,13 +48,17 @@ build() {
 }
 
 # Its own build directory: clang with ASan + UBSan and libFuzzer, only what
-# the tests need (no benchmark, no Python module, the optional backends off).
+# the tests need (no benchmark, no Python module, the optional backends off),
+# eight source files to a compilation unit (Eigen's headers parsed once per
+# eight: 6 min instead of 10 on two cores; the release build keeps one file a
+# unit, whose objects the Python module's build takes from the cache).
 sanitize_build() {
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
     -DEQHB_SANITIZE=ON -DEQHB_FUZZ=ON -DEQHB_BUILD_BENCH=OFF -DEQHB_BUILD_PYTHON=OFF -DEQHB_INSTALL=OFF \
-    -DEQHB_WITH_CERES=OFF -DEQHB_WITH_IPOPT=OFF -DEQHB_WITH_NLOPT=OFF -DEQHB_WITH_MPI=OFF "${launcher[@]}" >/dev/null
+    -DEQHB_WITH_CERES=OFF -DEQHB_WITH_IPOPT=OFF -DEQHB_WITH_NLOPT=OFF -DEQHB_WITH_MPI=OFF \
+    -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 "${launcher[@]}" >/dev/null
   cmake --build build-sanitize -j"$(nproc)"
 }
 

@@ -21,6 +21,22 @@ namespace eqhb {
 
 namespace {
 
+// Σ_h a_h cos(k_h θ) + b_h sin(k_h θ) (a constant term alone) of one
+// channel's coefficients on `basis`, at the fundamental's phase θ.
+double seriesValue(const HarmonicSet& basis, const double* c, double theta) {
+  double value = 0.0;
+  const std::vector<int>& ks = basis.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int o = basis.offset(static_cast<int>(h));
+    if (ks[h] == 0) {
+      value += c[o];
+      continue;
+    }
+    value += c[o] * std::cos(ks[h] * theta) + c[o + 1] * std::sin(ks[h] * theta);
+  }
+  return value;
+}
+
 bool exactCoulomb(const Law& law) {
   const auto* c = dynamic_cast<const Coulomb1D*>(&law);
   return c && (c->form() == CoulombForm::kMinMax || c->form() == CoulombForm::kProjection);
@@ -319,19 +335,33 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
   }
   Holding& h = *last_holding_;
   if (h.point != point_) {
-    // −(Kᵀrow)·X − D((Cᵀrow)·X) as a series, sampled by one synthesis.
+    // −(Kᵀrow)·X − D((Cᵀrow)·X) as a series.
     const Eigen::Map<const Eigen::MatrixXd> x(full.data(), nb, n_);
     combined_.noalias() = x * h.damping_row;
     differentiateCoefficients(model_.basis, combined_.data(), model_.omega, rate_.data());
-    combined_.noalias() = -(x * h.stiffness_row);
-    combined_ -= rate_;
-    transform_->synthesize(combined_.data(), h.samples.data());
+    h.series.noalias() = -(x * h.stiffness_row);
+    h.series -= rate_;
+    h.point = point_;
+    h.sampled = false;
+    h.first = -1;
+  }
+  double force = 0.0;
+  if (h.sampled) {
+    force = h.samples[k];
+  } else if (h.first < 0 || h.first == k) {
+    if (h.first < 0) {
+      h.first = k;
+      h.first_value = seriesValue(model_.basis, h.series.data(), 2.0 * M_PI * k / samples) + h.loads[k];
+    }
+    force = h.first_value;
+  } else {
+    transform_->synthesize(h.series.data(), h.samples.data());
     if (!half_period_) completePeriod(h.samples.data());
     ++work_.syntheses;
     h.samples.head(span_) += h.loads.head(span_);  // the samples read (half-period mode: the first half)
-    h.point = point_;
+    h.sampled = true;
+    force = h.samples[k];
   }
-  double force = h.samples[k];
   for (int m = 0; m < laws; ++m) {
     if (m == l) continue;
     const State s = state(k, m);

@@ -155,15 +155,22 @@ class MonodromyStability {
   // The holding force of law `law` under the held DOFs of one key, as a
   // function of time: multiplier row · b(t) with b's loads sampled once
   // (they do not depend on ω) and its orbit part a Fourier series formed per
-  // point from the coefficients and sampled by one synthesis (the structure's
-  // DOFs are not sampled one by one).
+  // point from the coefficients (the structure's DOFs are not sampled one by
+  // one). The first sample asked for is summed from the series; a second one
+  // samples the whole series by one synthesis (a stick run), so that a key
+  // asked once a point (a reversal read through the series' ringing, all
+  // beam-damper's) costs no transform.
   struct Holding {
     Eigen::RowVectorXd row;        // the multiplier's row of λ_law
     Eigen::VectorXd stiffness_row; // Kᵀ row
     Eigen::VectorXd damping_row;   // Cᵀ row, the held DOF's entry 0 (its velocity is held at 0)
     Eigen::VectorXd loads;         // row · f(t_k) per sample
-    Eigen::VectorXd samples;       // row · b(t_k) but the slip forces, at the current point
-    long point = -1;               // the point `samples` belongs to
+    Eigen::VectorXd series;        // the orbit part's coefficients at the current point
+    Eigen::VectorXd samples;       // row · b(t_k) but the slip forces, at the current point once sampled
+    long point = -1;               // the point `series` belongs to
+    bool sampled = false;          // `samples` holds this point's
+    int first = -1;                // the sample summed from the series, and its value
+    double first_value = 0.0;
   };
   // The projector Q for one set of held DOFs and its generator A_G's
   // exponential, decomposed once per curve.
