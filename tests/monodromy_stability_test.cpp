@@ -93,7 +93,7 @@ TEST(MonodromyStability, ReversalRadiusFollowsShooting) {
 }
 
 // Cost signal (no timing): a point costs the syntheses of each law's
-// velocity and force and one per holding-force series, not a sampling of
+// velocity and force and at most one per holding-force series, not a sampling of
 // every DOF; on odd harmonics half a period is propagated (Φ = Φ_h²), so a
 // stick-slip orbit of friction-1d (two sticks, two slips a period) forms one
 // exponential per phase of the half period, a reversal-only orbit one, and
@@ -115,6 +115,16 @@ TEST(MonodromyStability, WorkPerPoint) {
     EXPECT_EQ(after.exponentials - before.exponentials, phases) << omega;
     EXPECT_LE(after.holding_forces - before.holding_forces, model.samples / 4) << omega;
   }
+  // beam-damper at 2.8 slides through reversals only: each of its 5 laws'
+  // holding forces is asked at one sample (the series' ringing read as a
+  // short stick), summed from its series, so no holding series is
+  // transformed: the syntheses are the laws' v and r alone.
+  const HbModel beam = loadScene(test::problem("beam-damper.toml"), {"harmonic_balance.omega=2.8"}).model;
+  const Eigen::VectorXd hb = test::harmonicBalance(beam);
+  MonodromyStability monodromy(beam);
+  monodromy.analyse(2.8, hb);
+  EXPECT_GT(monodromy.work().holding_forces, 0);
+  EXPECT_EQ(monodromy.work().syntheses, 2 * static_cast<long>(beam.laws.size()));
 }
 
 // An orbit stuck the whole period has one phase: its multipliers are
