@@ -364,6 +364,22 @@ void differentiateCoefficients(const HarmonicSet& basis, const double* in, doubl
   }
 }
 
+SeriesPoint seriesAt(const HarmonicSet& basis, const double* c, double theta) {
+  SeriesPoint out;
+  const auto& ks = basis.harmonics();
+  for (size_t h = 0; h < ks.size(); ++h) {
+    const int k = ks[h], o = basis.offset(static_cast<int>(h));
+    if (k == 0) {
+      out.value += c[o];
+      continue;
+    }
+    const double cosine = std::cos(k * theta), sine = std::sin(k * theta);
+    out.value += c[o] * cosine + c[o + 1] * sine;
+    out.slope += k * (c[o + 1] * cosine - c[o] * sine);
+  }
+  return out;
+}
+
 void FourierTransform::rightMultiplyDerivative(const Eigen::Ref<const Eigen::MatrixXd>& g,
                                                double omega,
                                                Eigen::Ref<Eigen::MatrixXd> out) const {

@@ -38,6 +38,15 @@ namespace eqhb {
 // `in` and `out` must not alias.
 void differentiateCoefficients(const HarmonicSet& basis, const double* in, double omega, double* out);
 
+// One channel's series on `basis` at one instant, the fundamental's phase
+// θ = ωt: its value and its derivative in θ (the rate is ω times it). A sum
+// over the harmonics, where one instant is wanted and a transform would
+// sample them all.
+struct SeriesPoint {
+  double value = 0.0, slope = 0.0;
+};
+SeriesPoint seriesAt(const HarmonicSet& basis, const double* coefficients, double theta);
+
 enum class Sampling { kFullPeriod, kHalfWave };
 
 class FourierTransform {

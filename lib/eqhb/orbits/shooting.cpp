@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "eqhb/error.h"
+#include "eqhb/harmonic_balance/fourier_transform.h"
 #include "eqhb/laws/law_registry.h"
 #include "eqhb/orbits/flow_dynamics.h"
 #include "eqhb/solvers/deadline.h"
@@ -154,17 +155,9 @@ Eigen::VectorXd harmonicState(const HbModel& model, const Eigen::VectorXd& full,
   const int n = model.structure.dofs(), nb = model.basis.size();
   // Value and rate at t of the series whose coefficients start at `first`.
   auto synthesize = [&](int first, double& value, double& rate) {
-    value = rate = 0.0;
-    for (size_t h = 0; h < model.basis.harmonics().size(); ++h) {
-      const int k = model.basis.harmonics()[h], o = first + model.basis.offset(static_cast<int>(h));
-      if (k == 0) {
-        value += full[o];
-        continue;
-      }
-      const double kw = k * model.omega, c = std::cos(kw * t), s = std::sin(kw * t);
-      value += full[o] * c + full[o + 1] * s;
-      rate += kw * (-full[o] * s + full[o + 1] * c);
-    }
+    const SeriesPoint at = seriesAt(model.basis, full.data() + first, model.omega * t);
+    value = at.value;
+    rate = model.omega * at.slope;
   };
   std::vector<double> sliders;  // w = x + r/k_t of each Jenkins law on one DOF
   for (size_t l = 0; l < model.laws.size(); ++l) {

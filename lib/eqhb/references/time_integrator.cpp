@@ -23,17 +23,6 @@ void TimeOptions::validate() const {
 
 namespace {
 
-// State of a Fourier series [x coefficients] at t = 0 and its rate.
-void stateAtZero(const HarmonicSet& basis, const double* c, double omega, double* x, double* v) {
-  *x = 0.0;
-  *v = 0.0;
-  for (size_t h = 0; h < basis.harmonics().size(); ++h) {
-    const int k = basis.harmonics()[h], o = basis.offset(static_cast<int>(h));
-    *x += c[o];                      // cos(0) = 1
-    if (k > 0) *v += k * omega * c[o + 1];  // d/dt b sin(kωt) at 0
-  }
-}
-
 double periodOf(const HbModel& model) { return 2.0 * M_PI / model.omega; }
 
 // Steps per period T of about options.step each, bounded by kMaxStepsPerPeriod.
@@ -114,7 +103,11 @@ TimeReference integrateToSteadyState(const HbModel& model, const TimeOptions& op
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), v = Eigen::VectorXd::Zero(n);
   const int nb = model.basis.size();
   if (initial_full.size() > 0)
-    for (int i = 0; i < n; ++i) stateAtZero(model.basis, initial_full.data() + i * nb, model.omega, &x[i], &v[i]);
+    for (int i = 0; i < n; ++i) {  // the series' state at t = 0
+      const SeriesPoint at = seriesAt(model.basis, initial_full.data() + i * nb, 0.0);
+      x[i] = at.value;
+      v[i] = model.omega * at.slope;
+    }
   std::vector<LocalVector> lambda;
   for (const auto& attached : model.laws) lambda.push_back(LocalVector::Zero(attached.law->dimension()));
   TimeReference ref = emptyReference(model, steps, h);

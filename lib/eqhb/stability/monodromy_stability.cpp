@@ -21,22 +21,6 @@ namespace eqhb {
 
 namespace {
 
-// Σ_h a_h cos(k_h θ) + b_h sin(k_h θ) (a constant term alone) of one
-// channel's coefficients on `basis`, at the fundamental's phase θ.
-double seriesValue(const HarmonicSet& basis, const double* c, double theta) {
-  double value = 0.0;
-  const std::vector<int>& ks = basis.harmonics();
-  for (size_t h = 0; h < ks.size(); ++h) {
-    const int o = basis.offset(static_cast<int>(h));
-    if (ks[h] == 0) {
-      value += c[o];
-      continue;
-    }
-    value += c[o] * std::cos(ks[h] * theta) + c[o + 1] * std::sin(ks[h] * theta);
-  }
-  return value;
-}
-
 bool exactCoulomb(const Law& law) {
   const auto* c = dynamic_cast<const Coulomb1D*>(&law);
   return c && (c->form() == CoulombForm::kMinMax || c->form() == CoulombForm::kProjection);
@@ -106,11 +90,9 @@ MonodromyStability::MonodromyStability(const HbModel& model, double unit_toleran
     }
   laws_ = static_cast<int>(dofs_.size());
   // Half a period is enough where the series and the field are odd in it
-  // (header): odd harmonics (the transform samples half), odd loads,
-  // friction only.
-  const bool odd_loads = std::all_of(model_.structure.loads.begin(), model_.structure.loads.end(),
-                                     [](const HarmonicLoad& load) { return load.harmonic % 2 == 1; });
-  half_period_ = reduction.half_period && !springs && odd_loads && transform_->activeSamples() < model_.samples &&
+  // (header): odd harmonics (the transform samples half; the loads are on
+  // the model's harmonics, validated), friction only.
+  half_period_ = reduction.half_period && !springs && transform_->activeSamples() < model_.samples &&
                  std::none_of(contact_.begin(), contact_.end(), [](bool contact) { return contact; });
   span_ = half_period_ ? transform_->activeSamples() : model_.samples;
   // The propagation's structure: the full one on small structures, else
@@ -351,7 +333,7 @@ double MonodromyStability::holdingForce(const Eigen::VectorXd& full, int l, int 
   } else if (h.first < 0 || h.first == k) {
     if (h.first < 0) {
       h.first = k;
-      h.first_value = seriesValue(model_.basis, h.series.data(), 2.0 * M_PI * k / samples) + h.loads[k];
+      h.first_value = seriesAt(model_.basis, h.series.data(), 2.0 * M_PI * k / samples).value + h.loads[k];
     }
     force = h.first_value;
   } else {
